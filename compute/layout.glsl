@@ -1,0 +1,80 @@
+// The one source of truth for the GPU data layout, compiled by both C++ and GLSL.
+// std430 for storage buffers, std140 for the parameter block; every struct member is a
+// vec4/uvec4 so the two rules and the C++ compiler all agree (a vec3[] would have a
+// 16-byte stride in GLSL and 12 in C++). tests/test_gpu_layout.cpp asks GL for the real
+// offsets and strides and compares them with sizeof/offsetof here.
+#ifndef CLOTHSIM_LAYOUT_GLSL
+#define CLOTHSIM_LAYOUT_GLSL
+
+#ifdef __cplusplus
+#include <cstdint>
+#include <glm/vec4.hpp>
+namespace layout {
+using vec4 = glm::vec4;
+using uvec4 = glm::uvec4;
+#endif
+
+// Shader-storage buffer bindings (one per per-particle stream).
+#define BINDING_POSITIONS 0   // vec4: xyz position, w inverse mass (0 = pinned)
+#define BINDING_PREVIOUS 1    // vec4: xyz position one substep ago
+#define BINDING_FORCES 2      // vec4: xyz force of this substep
+#define BINDING_NORMALS 3     // vec4: xyz unit vertex normal
+#define BINDING_REST 4        // RestLengths per particle
+#define BINDING_SPHERES 5     // SphereCollider[]
+#define BINDING_PLANES 6      // PlaneCollider[]
+#define BINDING_POSITIONS_OUT 7  // vec4: Jacobi output of self-collision
+#define BINDING_CELL_COUNT 8     // uint per hash bucket
+#define BINDING_CELL_START 9     // uint per hash bucket (+1 sentinel)
+#define BINDING_CELL_ENTRIES 10  // uint particle id, in cell order
+#define BINDING_SCAN_SUMS 11     // uint per scan block (multi-level prefix sum)
+// Uniform block binding.
+#define BINDING_STEP_PARAMS 0
+
+// Threads per workgroup for every per-particle pass (a 1-D dispatch over the particle index).
+#ifndef WORKGROUP_SIZE
+#define WORKGROUP_SIZE 128
+#endif
+
+// Spring directions stored at their "first" particle: the rest length of the spring from
+// (x, y) to (x + dx, y + dy) lives at particle (x, y). The other six directions of a
+// particle's twelve springs are these seen from the far end.
+#define DIR_RIGHT 0       // structural (+1, 0)
+#define DIR_DOWN 1        // structural (0, +1)
+#define DIR_DIAG_DOWN_RIGHT 2  // shearing (+1, +1)
+#define DIR_DIAG_DOWN_LEFT 3   // shearing (-1, +1)
+#define DIR_RIGHT2 4      // bending (+2, 0)
+#define DIR_DOWN2 5       // bending (0, +2)
+#define NUM_DIRECTIONS 6
+// Two colours per direction: no two springs of one colour share a particle.
+#define NUM_COLOURS 12
+
+struct RestLengths {
+  vec4 near;  // rest length of DIR_RIGHT, DIR_DOWN, DIR_DIAG_DOWN_RIGHT, DIR_DIAG_DOWN_LEFT (0 if absent)
+  vec4 far;   // rest length of DIR_RIGHT2, DIR_DOWN2, unused, unused
+};
+
+struct SphereCollider {
+  vec4 origin_radius;  // xyz origin, w radius
+  vec4 keep;           // x = 1 - friction
+};
+
+struct PlaneCollider {
+  vec4 point;   // xyz a point on the plane
+  vec4 normal;  // xyz unit normal, w = 1 - friction
+};
+
+// Everything a pass needs that is constant over a substep. Built on the host from the
+// same Constants<float> the CPU reference uses, so both sides see identical floats.
+struct StepParams {
+  vec4 gravity_mass;   // xyz gravity (m/s^2), w particle mass (kg)
+  vec4 springs;        // x ks, y bending ks (0.2 ks), z velocity keep (1 - damping/100), w dt^2
+  vec4 constraint;     // x 1 + max_stretch, y self-collision distance (2 thickness), z cell size, w simulation_steps (as float)
+  uvec4 grid;          // x width points, y height points, z particle count, w hash table size
+  uvec4 enabled;       // x structural, y shearing, z bending (1 = exerts force / is constrained), w unused
+  uvec4 colliders;     // x sphere count, y plane count
+};
+
+#ifdef __cplusplus
+}  // namespace layout
+#endif
+#endif

@@ -1,0 +1,45 @@
+#include "cli_common.hpp"
+
+#include <unistd.h>
+
+#include <fmt/format.h>
+
+namespace clothsim {
+
+void SceneOptions::add_to(CLI::App& cmd, bool positional_required) {
+  auto* opt = cmd.add_option("scene", path, "scene JSON file (classic CS184 format or extended)");
+  if (positional_required) opt->required();
+  cmd.add_option("--set", sets, "override a scene value, e.g. --set cloth.ks=500 (repeatable)")
+      ->type_name("KEY=VALUE")
+      ->allow_extra_args(false);
+}
+
+Scene SceneOptions::load() const { return path.empty() ? default_scene(sets) : load_scene(path, sets); }
+
+BackendKind parse_backend(const std::string& name) {
+  if (name == "cpu") return BackendKind::Cpu;
+  if (name == "gpu") return BackendKind::Gpu;
+  throw ExitError(kExitBadInput, fmt::format("--backend: expected gpu or cpu, got '{}'", name));
+}
+
+Progress::Progress(std::string label, int total)
+    : label_(std::move(label)), total_(total), tty_(isatty(STDERR_FILENO) != 0),
+      start_(std::chrono::steady_clock::now()), last_(start_) {}
+
+void Progress::update(int done) {
+  if (!tty_) return;
+  auto now = std::chrono::steady_clock::now();
+  if (done < total_ && now - last_ < std::chrono::milliseconds(100)) return;
+  last_ = now;
+  double secs = std::chrono::duration<double>(now - start_).count();
+  double rate = secs > 0 ? done / secs : 0;
+  double eta = rate > 0 ? (total_ - done) / rate : 0;
+  fmt::print(stderr, "\r{} {}/{}  {:.1f} frames/s  ETA {:.0f} s   ", label_, done, total_, rate, eta);
+  std::fflush(stderr);
+}
+
+void Progress::finish() {
+  if (tty_) fmt::print(stderr, "\r\033[K");
+}
+
+}  // namespace clothsim

@@ -1,0 +1,54 @@
+// Pieces every command shares: exit codes (DESIGN.md §3), scene loading from flags,
+// terminal progress.
+#pragma once
+
+#include <chrono>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "backend.hpp"
+#include "scene.hpp"
+
+namespace clothsim {
+
+enum ExitCode { kExitOk = 0, kExitCheckFailed = 1, kExitBadInput = 2, kExitNoContext = 3 };
+
+// Thrown by a command to end with a documented exit code and a message for stderr.
+struct ExitError : std::runtime_error {
+  ExitError(int c, const std::string& m) : std::runtime_error(m), code(c) {}
+  int code;
+};
+
+// The scene options common to commands that take a scene.
+struct SceneOptions {
+  std::string path;                // empty: the built-in default
+  std::vector<std::string> sets;   // --set key.path=value
+  void add_to(CLI::App& cmd, bool positional_required);
+  Scene load() const;              // throws SceneError
+};
+
+enum class BackendKind { Cpu, Gpu };
+BackendKind parse_backend(const std::string& name);
+// The backend for a scene; the GPU one needs a GL 4.3 context (exit 3 when none).
+std::unique_ptr<Backend> make_backend(BackendKind kind, const Scene& scene, const ClothModel& model);
+
+// "frame 120/300  45.1 frames/s  ETA 4 s" on one refreshed line of a terminal; silent when
+// stderr is not a TTY so logs and pipes stay clean.
+class Progress {
+ public:
+  Progress(std::string label, int total);
+  void update(int done);
+  void finish();
+
+ private:
+  std::string label_;
+  int total_;
+  bool tty_;
+  std::chrono::steady_clock::time_point start_, last_;
+};
+
+}  // namespace clothsim

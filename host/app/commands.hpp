@@ -1,0 +1,12 @@
+// Each command registers its subcommand; its callback stores the work to run after parsing.
+#pragma once
+
+#include <functional>
+
+#include <CLI/CLI.hpp>
+
+namespace clothsim {
+
+void add_simulate_command(CLI::App& app, std::function<int()>& run);
+
+}  // namespace clothsim

@@ -1,0 +1,36 @@
+// clothsim: command-line entry. Parses, runs one command, maps failures to the exit codes
+// of DESIGN.md §3.
+#include <fmt/format.h>
+
+#include "cli_common.hpp"
+#include "commands.hpp"
+
+int main(int argc, char** argv) {
+  using namespace clothsim;
+  CLI::App app{"clothsim: a GPU cloth simulator (OpenGL 4.3 compute shaders) with a CPU reference", "clothsim"};
+  app.require_subcommand(1);
+  std::function<int()> run;
+  add_simulate_command(app, run);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    app.exit(e);  // prints the message and usage
+    return kExitBadInput;
+  }
+  try {
+    return run();
+  } catch (const SceneError& e) {
+    fmt::print(stderr, "error: {}\n", e.what());
+    return kExitBadInput;
+  } catch (const ExitError& e) {
+    fmt::print(stderr, "error: {}\n", e.what());
+    return e.code;
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "error: {}\n", e.what());
+    return kExitCheckFailed;
+  }
+}

@@ -1,0 +1,103 @@
+#include "diagnostics.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <stdexcept>
+
+#include <fmt/format.h>
+#include <fmt/os.h>
+
+#include "spring_grid.hpp"
+
+namespace clothsim {
+namespace {
+
+glm::dvec3 xyz(const glm::dvec4& v) { return {v.x, v.y, v.z}; }
+
+glm::dvec3 initial_centre(const ClothModel& m) {
+  glm::dvec3 c(0);
+  for (auto& p : m.initial) c += p;
+  return c / double(m.count());
+}
+
+}  // namespace
+
+ClothStats measure(const Scene& scene, const ClothModel& m, const ClothSnapshot& s) {
+  ClothStats st;
+  const double dt = scene.dt();
+  const bool enabled[3] = {scene.cloth.enable_structural, scene.cloth.enable_shearing, scene.cloth.enable_bending};
+  for (int i = 0; i < m.count(); ++i) {
+    const glm::dvec3 x = xyz(s.pos[i]);
+    for (int c = 0; c < 4; ++c) st.finite = st.finite && std::isfinite(s.pos[i][c]) && std::isfinite(s.prev[i][c]);
+    const glm::dvec3 v = (x - xyz(s.prev[i])) / dt;
+    if (!m.pinned[i]) st.kinetic += 0.5 * m.mass * glm::dot(v, v);
+    st.max_speed = std::max(st.max_speed, glm::length(v));
+    st.gravitational -= m.mass * glm::dot(scene.simulation.gravity, x);
+  }
+  for (int y = 0; y < m.nh; ++y)
+    for (int x = 0; x < m.nw; ++x)
+      for (int d = 0; d < NUM_DIRECTIONS; ++d) {
+        const Direction& dir = kDirections[d];
+        if (!in_grid(x + dir.dx, y + dir.dy, m.nw, m.nh)) continue;
+        const double rest = m.rest[m.index(x, y)][d];
+        const double len = glm::length(xyz(s.pos[m.index(x + dir.dx, y + dir.dy)]) - xyz(s.pos[m.index(x, y)]));
+        st.max_stretch_ratio = std::max(st.max_stretch_ratio, len / rest);
+        if (enabled[int(dir.type)]) {
+          const double k = dir.type == SpringType::Bending ? 0.2 * scene.cloth.ks : scene.cloth.ks;
+          st.spring += 0.5 * k * (len - rest) * (len - rest);
+        }
+      }
+  const glm::dvec3 centre = initial_centre(m);
+  for (auto& sp : scene.spheres) {
+    double best = std::numeric_limits<double>::infinity();
+    for (auto& p : s.pos) best = std::min(best, glm::length(xyz(p) - sp.origin) - sp.radius);
+    st.sphere_clearance.push_back(best);
+  }
+  for (auto& pl : scene.planes) {
+    // The side the cloth started on counts as outside; a plane through the start centre uses +normal.
+    double side = glm::dot(centre - pl.point, pl.normal) < 0 ? -1.0 : 1.0;
+    double best = std::numeric_limits<double>::infinity();
+    for (auto& p : s.pos) best = std::min(best, side * glm::dot(xyz(p) - pl.point, pl.normal));
+    st.plane_clearance.push_back(best);
+  }
+  return st;
+}
+
+std::optional<std::string> check_divergence(const Scene& scene, const ClothModel& m, const ClothSnapshot& s, int frame) {
+  const glm::dvec3 centre = initial_centre(m);
+  const double limit = 1000.0 * std::max(scene.cloth.width, scene.cloth.height);
+  for (int i = 0; i < m.count(); ++i) {
+    const glm::dvec3 x = xyz(s.pos[i]);
+    const bool finite = std::isfinite(x.x) && std::isfinite(x.y) && std::isfinite(x.z);
+    if (finite && glm::length(x - centre) <= limit) continue;
+    const std::string what = finite ? fmt::format("was flung {:.3g} m from the cloth (limit {:.3g} m)",
+                                                  glm::length(x - centre), limit)
+                                    : std::string("became NaN/Inf");
+    return fmt::format(
+        "the simulation diverged at frame {}: particle {} ({}, {}) {}. The springs are too stiff for the time "
+        "step: lower cloth.ks (now {:g}) or raise simulation.simulation_steps (now {}), e.g. --set "
+        "simulation.simulation_steps={}",
+        frame, i, i % m.nw, i / m.nw, what, scene.cloth.ks, scene.simulation.simulation_steps,
+        scene.simulation.simulation_steps * 4);
+  }
+  return std::nullopt;
+}
+
+void write_obj(const std::string& path, const ClothModel& m, const ClothSnapshot& s) {
+  std::FILE* f = std::fopen(path.c_str(), "w");
+  if (!f) throw std::runtime_error(fmt::format("{}: cannot open for writing", path));
+  fmt::print(f, "# clothsim cloth, {}x{} particles, row-major\n", m.nw, m.nh);
+  for (auto& p : s.pos) fmt::print(f, "v {:.9g} {:.9g} {:.9g}\n", p.x, p.y, p.z);
+  for (auto& t : m.uv) fmt::print(f, "vt {:.9g} {:.9g}\n", t.x, t.y);
+  for (int i = 0; i < m.count(); ++i) {
+    glm::dvec4 n = i < int(s.normal.size()) ? s.normal[i] : glm::dvec4(0, 1, 0, 0);
+    fmt::print(f, "vn {:.9g} {:.9g} {:.9g}\n", n.x, n.y, n.z);
+  }
+  for (auto& t : m.triangles)
+    fmt::print(f, "f {0}/{0}/{0} {1}/{1}/{1} {2}/{2}/{2}\n", t[0] + 1, t[1] + 1, t[2] + 1);
+  if (std::fclose(f) != 0) throw std::runtime_error(fmt::format("{}: write failed", path));
+}
+
+}  // namespace clothsim

@@ -1,0 +1,44 @@
+// What a run reports about the cloth: stretch, energy, clearance to colliders, divergence.
+// Works on double copies of any backend's state.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/geometric.hpp>
+#include <glm/vec4.hpp>
+
+#include "cloth.hpp"
+#include "scene.hpp"
+
+namespace clothsim {
+
+struct ClothSnapshot {
+  std::vector<glm::dvec4> pos, prev;  // w = inverse mass
+  std::vector<glm::dvec4> normal;     // may be empty
+};
+
+struct ClothStats {
+  double max_stretch_ratio = 0;  // max over springs of length / rest length
+  double kinetic = 0;            // J, from the Verlet velocity (x - x_prev) / dt
+  double gravitational = 0;      // J, -m g . x summed
+  double spring = 0;             // J, 1/2 k (len - rest)^2 over enabled springs
+  std::vector<double> sphere_clearance;  // min |x - o| - r per sphere (negative: inside)
+  std::vector<double> plane_clearance;   // min signed distance on the cloth's starting side, per plane
+  double max_speed = 0;          // m/s
+  bool finite = true;
+  double total_energy() const { return kinetic + gravitational + spring; }
+};
+
+ClothStats measure(const Scene& scene, const ClothModel& model, const ClothSnapshot& s);
+
+// A blown-up run: a non-finite value, or a particle farther than 1000 x the cloth size from
+// where the cloth started. Returns the user-facing explanation (which frame, what to change).
+std::optional<std::string> check_divergence(const Scene& scene, const ClothModel& model, const ClothSnapshot& s,
+                                            int frame);
+
+// Wavefront OBJ: v in particle order, vt, vn, then the triangles of §1 (1-based).
+void write_obj(const std::string& path, const ClothModel& model, const ClothSnapshot& s);
+
+}  // namespace clothsim

@@ -1,0 +1,230 @@
+#include "reference.hpp"
+
+#include <numeric>
+
+namespace clothsim {
+
+template <class R> Constants<R> make_constants(const Scene& scene, const ClothModel& model) {
+  const ClothParams& cp = scene.cloth;
+  const SimulationParams& sp = scene.simulation;
+  Constants<R> c;
+  const double dt = scene.dt();
+  // Derived values are formed in double and rounded once, identically for the GPU upload.
+  c.gravity = Vec3<R>(sp.gravity);
+  c.mass = R(model.mass);
+  c.ks = R(cp.ks);
+  c.ks_bending = R(0.2 * cp.ks);
+  c.keep_velocity = R(1.0 - cp.damping / 100.0);
+  c.dt2 = R(dt * dt);
+  c.stretch_limit = R(1.0 + sp.max_stretch);
+  c.contact_distance = R(2.0 * cp.thickness);
+  c.inv_cell = R(1.0 / (2.0 * cp.thickness));
+  c.steps = R(sp.simulation_steps);
+  c.enabled[0] = cp.enable_structural;
+  c.enabled[1] = cp.enable_shearing;
+  c.enabled[2] = cp.enable_bending;
+  c.iterations = sp.constraint_iterations;
+  c.self_collision = sp.self_collision;
+  for (auto& s : scene.spheres) c.spheres.push_back({Vec3<R>(s.origin), R(s.radius), R(1.0 - s.friction)});
+  for (auto& p : scene.planes) c.planes.push_back({Vec3<R>(p.point), Vec3<R>(p.normal), R(1.0 - p.friction)});
+  return c;
+}
+
+template <class R> State<R> initial_state(const ClothModel& m) {
+  State<R> s;
+  const int n = m.count();
+  s.pos.resize(n);
+  for (int i = 0; i < n; ++i)
+    s.pos[i] = Vec4<R>(Vec3<R>(m.initial[i]), m.pinned[i] ? R(0) : R(1.0 / m.mass));
+  s.prev = s.pos;
+  s.force.assign(n, Vec4<R>(0));
+  s.normal.assign(n, Vec4<R>(0));
+  s.pos_out = s.pos;
+  s.hash.table_size = hash_table_size(uint32_t(n));
+  s.hash.count.assign(s.hash.table_size, 0);
+  s.hash.start.assign(s.hash.table_size + 1, 0);
+  s.hash.entries.assign(n, 0);
+  return s;
+}
+
+// Rest length of spring `ref` seen from (x, y), or 0 when it leaves the grid.
+inline double rest_of(const ClothModel& m, int x, int y, const SpringRef& ref, int* j) {
+  const Direction& d = kDirections[ref.direction];
+  int x2 = x + ref.sign * d.dx, y2 = y + ref.sign * d.dy;
+  if (!in_grid(x2, y2, m.nw, m.nh)) return 0;
+  *j = m.index(x2, y2);
+  return ref.sign > 0 ? m.rest[m.index(x, y)][ref.direction] : m.rest[*j][ref.direction];
+}
+
+template <class R> void accumulate_forces(const ClothModel& m, const Constants<R>& c, State<R>& s) {
+  for (int y = 0; y < m.nh; ++y)
+    for (int x = 0; x < m.nw; ++x) {
+      const int i = m.index(x, y);
+      const Vec3<R> xi(s.pos[i]);
+      Vec3<R> f = c.gravity * c.mass;
+      for (const SpringRef& ref : kGatherOrder) {
+        const Direction& d = kDirections[ref.direction];
+        int j = -1;
+        const R rest = R(rest_of(m, x, y, ref, &j));
+        if (j < 0 || !c.enabled[int(d.type)]) continue;
+        const R k = d.type == SpringType::Bending ? c.ks_bending : c.ks;
+        const Vec3<R> e = Vec3<R>(s.pos[j]) - xi;
+        const R len = length3(e);
+        if (len > R(0)) f += e * (k * (len - rest) / len);
+      }
+      s.force[i] = Vec4<R>(f, R(0));
+    }
+}
+
+template <class R> void integrate(const Constants<R>& c, State<R>& s) {
+  for (size_t i = 0; i < s.pos.size(); ++i) {
+    const R w = s.pos[i].w;
+    if (w == R(0)) continue;  // pinned: keeps its position
+    const Vec3<R> x(s.pos[i]), xp(s.prev[i]);
+    const Vec3<R> a = Vec3<R>(s.force[i]) * w;
+    const Vec3<R> next = x + (x - xp) * c.keep_velocity + a * c.dt2;
+    s.prev[i] = Vec4<R>(x, w);
+    s.pos[i] = Vec4<R>(next, w);
+  }
+}
+
+template <class R> void collide_self(const Constants<R>& c, State<R>& s) {
+  const size_t n = s.pos.size();
+  SpatialHash& h = s.hash;
+  std::vector<uint32_t> buckets(n);
+  for (size_t i = 0; i < n; ++i)
+    buckets[i] = hash_cell(cell_coord(s.pos[i].x, c.inv_cell), cell_coord(s.pos[i].y, c.inv_cell),
+                           cell_coord(s.pos[i].z, c.inv_cell), h.table_size);
+  std::vector<uint32_t> order(n);
+  std::iota(order.begin(), order.end(), 0u);
+  count_cells(buckets, h);
+  scan_cells(h);
+  fill_cells(buckets, order, h);
+  collide_self_from_hash(c, s);
+}
+
+template <class R> void collide_self_from_hash(const Constants<R>& c, State<R>& s) {
+  const SpatialHash& h = s.hash;
+  for (size_t i = 0; i < s.pos.size(); ++i) {
+    s.pos_out[i] = s.pos[i];
+    if (s.pos[i].w == R(0)) continue;
+    const Vec3<R> xi(s.pos[i]);
+    const int32_t cx = cell_coord(xi.x, c.inv_cell), cy = cell_coord(xi.y, c.inv_cell), cz = cell_coord(xi.z, c.inv_cell);
+    Vec3<R> sum(0);
+    uint32_t hits = 0;
+    for (int dz = -1; dz <= 1; ++dz)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          const uint32_t b = hash_cell(cx + dx, cy + dy, cz + dz, h.table_size);
+          for (uint32_t e = h.start[b]; e < h.start[b + 1]; ++e) {
+            const uint32_t j = h.entries[e];
+            const Vec3<R> xj(s.pos[j]);
+            // A bucket holds every cell that hashes to it: keep only j really in this cell,
+            // so each neighbour is counted once however the 27 cells collide in the table.
+            if (j == i || cell_coord(xj.x, c.inv_cell) != cx + dx || cell_coord(xj.y, c.inv_cell) != cy + dy ||
+                cell_coord(xj.z, c.inv_cell) != cz + dz)
+              continue;
+            const Vec3<R> e3 = xi - xj;
+            const R d = length3(e3);
+            // Coincident masses have no direction to separate along; they are skipped.
+            if (d >= c.contact_distance || d == R(0)) continue;
+            sum += e3 * ((c.contact_distance - d) / d);
+            ++hits;
+          }
+        }
+    if (hits > 0) s.pos_out[i] = Vec4<R>(xi + sum / (R(hits) * c.steps), s.pos[i].w);
+  }
+  s.pos.swap(s.pos_out);
+}
+
+template <class R> void collide_objects(const Constants<R>& c, State<R>& s) {
+  for (size_t i = 0; i < s.pos.size(); ++i) {
+    if (s.pos[i].w == R(0)) continue;
+    Vec3<R> x(s.pos[i]);
+    const Vec3<R> xp(s.prev[i]);
+    for (const SphereC<R>& sp : c.spheres) {
+      const Vec3<R> e = x - sp.origin;
+      const R d = length3(e);
+      if (d > sp.radius) continue;
+      // A mass exactly at the centre has no outward direction: push it up.
+      const Vec3<R> t = d > R(0) ? sp.origin + e * (sp.radius / d) : sp.origin + Vec3<R>(0, sp.radius, 0);
+      x = xp + (t - xp) * sp.keep;
+    }
+    for (const PlaneC<R>& pl : c.planes) {
+      const R d = dot3(x - pl.point, pl.normal);
+      const R dp = dot3(xp - pl.point, pl.normal);
+      if (d * dp > R(0)) continue;
+      const R side = dp > R(0) ? R(1) : (dp < R(0) ? R(-1) : R(0));
+      const Vec3<R> t = x - pl.normal * d + pl.normal * (R(1e-4) * side);
+      x = xp + (t - xp) * pl.keep;
+    }
+    s.pos[i] = Vec4<R>(x, s.pos[i].w);
+  }
+}
+
+template <class R>
+void solve_length_constraint_colour(const ClothModel& m, const Constants<R>& c, int colour, State<R>& s) {
+  const int dir = colour / 2;
+  const Direction& d = kDirections[dir];
+  if (!c.enabled[int(d.type)]) return;
+  for (int y = 0; y < m.nh; ++y)
+    for (int x = 0; x < m.nw; ++x) {
+      if (spring_colour(dir, x, y) != colour || !in_grid(x + d.dx, y + d.dy, m.nw, m.nh)) continue;
+      const int i = m.index(x, y), j = m.index(x + d.dx, y + d.dy);
+      const R wi = s.pos[i].w, wj = s.pos[j].w, wsum = wi + wj;
+      if (wsum == R(0)) continue;
+      const Vec3<R> xi(s.pos[i]), xj(s.pos[j]);
+      const Vec3<R> e = xj - xi;
+      const R len = length3(e);
+      const R limit = c.stretch_limit * R(m.rest[i][dir]);
+      if (!(len > limit)) continue;
+      const Vec3<R> corr = e * ((len - limit) / len);
+      s.pos[i] = Vec4<R>(xi + corr * (wi / wsum), wi);
+      s.pos[j] = Vec4<R>(xj - corr * (wj / wsum), wj);
+    }
+}
+
+template <class R> void solve_length_constraints(const ClothModel& m, const Constants<R>& c, State<R>& s) {
+  for (int it = 0; it < c.iterations; ++it)
+    for (int colour = 0; colour < NUM_COLOURS; ++colour) solve_length_constraint_colour(m, c, colour, s);
+}
+
+template <class R> void compute_normals(const ClothModel& m, State<R>& s) {
+  for (int y = 0; y < m.nh; ++y)
+    for (int x = 0; x < m.nw; ++x) {
+      Vec3<R> sum(0);
+      // The up to four cells around (x, y), each split into (A, C, B) and (B, C, D).
+      for (int cy = y - 1; cy <= y; ++cy)
+        for (int cx = x - 1; cx <= x; ++cx) {
+          if (cx < 0 || cy < 0 || cx + 1 >= m.nw || cy + 1 >= m.nh) continue;
+          const int a = m.index(cx, cy), b = m.index(cx + 1, cy), cc = m.index(cx, cy + 1), dd = m.index(cx + 1, cy + 1);
+          const int tris[2][3] = {{a, cc, b}, {b, cc, dd}};
+          const int self = m.index(x, y);
+          for (auto& t : tris) {
+            if (t[0] != self && t[1] != self && t[2] != self) continue;
+            const Vec3<R> p0(s.pos[t[0]]), p1(s.pos[t[1]]), p2(s.pos[t[2]]);
+            const Vec3<R> u = p1 - p0, v = p2 - p0;
+            // Unnormalised cross product: its length is twice the area, so this is area-weighted.
+            sum += Vec3<R>(u.y * v.z - u.z * v.y, u.z * v.x - u.x * v.z, u.x * v.y - u.y * v.x);
+          }
+        }
+      const R len = length3(sum);
+      s.normal[m.index(x, y)] = len > R(0) ? Vec4<R>(sum / len, R(0)) : Vec4<R>(0, 1, 0, 0);
+    }
+}
+
+#define CLOTHSIM_INSTANTIATE(R)                                                                         \
+  template Constants<R> make_constants<R>(const Scene&, const ClothModel&);                           \
+  template State<R> initial_state<R>(const ClothModel&);                                              \
+  template void accumulate_forces<R>(const ClothModel&, const Constants<R>&, State<R>&);              \
+  template void integrate<R>(const Constants<R>&, State<R>&);                                         \
+  template void collide_self<R>(const Constants<R>&, State<R>&);                                      \
+  template void collide_self_from_hash<R>(const Constants<R>&, State<R>&);                            \
+  template void collide_objects<R>(const Constants<R>&, State<R>&);                                   \
+  template void solve_length_constraint_colour<R>(const ClothModel&, const Constants<R>&, int, State<R>&); \
+  template void solve_length_constraints<R>(const ClothModel&, const Constants<R>&, State<R>&);       \
+  template void compute_normals<R>(const ClothModel&, State<R>&);
+CLOTHSIM_INSTANTIATE(float)
+CLOTHSIM_INSTANTIATE(double)
+
+}  // namespace clothsim

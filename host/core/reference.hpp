@@ -1,0 +1,78 @@
+// The CPU reference: DESIGN.md §1, one function per pass, named like the compute shader
+// that mirrors it. Templated on the scalar so the same code runs in float (compared with
+// the GPU bit for bit on llvmpipe) and in double (the noise floor of a float32 run).
+// Every expression is written in the same operation order as its GLSL twin.
+#pragma once
+
+#include <cmath>
+#include <vector>
+
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+
+#include "cloth.hpp"
+#include "scene.hpp"
+#include "spatial_hash.hpp"
+
+namespace clothsim {
+
+template <class R> using Vec3 = glm::vec<3, R>;
+template <class R> using Vec4 = glm::vec<4, R>;
+
+// |v| summed as (x*x + y*y) + z*z, the order the shaders use (compute/common.glsl).
+template <class R> R length3(const Vec3<R>& v) { return std::sqrt(v.x * v.x + v.y * v.y + v.z * v.z); }
+template <class R> R dot3(const Vec3<R>& a, const Vec3<R>& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+
+template <class R> struct SphereC { Vec3<R> origin; R radius; R keep; };  // keep = 1 - friction
+template <class R> struct PlaneC { Vec3<R> point; Vec3<R> normal; R keep; };
+
+// Scene parameters converted once to R: the GPU uploads exactly Constants<float>.
+template <class R> struct Constants {
+  Vec3<R> gravity;
+  R mass, ks, ks_bending, keep_velocity, dt2;
+  R stretch_limit;      // 1 + max_stretch
+  R contact_distance;   // 2 * thickness
+  R inv_cell;           // 1 / cell edge (cell edge = 2 * thickness)
+  R steps;              // simulation_steps
+  bool enabled[3];      // by SpringType
+  int iterations;
+  bool self_collision;
+  std::vector<SphereC<R>> spheres;
+  std::vector<PlaneC<R>> planes;
+};
+
+template <class R> Constants<R> make_constants(const Scene& scene, const ClothModel& model);
+
+// What changes during a run: positions (w = inverse mass, 0 = pinned), previous positions,
+// forces and normals, all vec4 like the GPU buffers.
+template <class R> struct State {
+  std::vector<Vec4<R>> pos, prev, force, normal;
+  SpatialHash hash;                 // self-collision scratch, sized once
+  std::vector<Vec4<R>> pos_out;     // self-collision Jacobi output
+};
+
+template <class R> State<R> initial_state(const ClothModel& model);
+
+// The passes, in step order.
+template <class R> void accumulate_forces(const ClothModel& m, const Constants<R>& c, State<R>& s);
+template <class R> void integrate(const Constants<R>& c, State<R>& s);
+template <class R> void collide_self(const Constants<R>& c, State<R>& s);
+// The response half of collide_self, on a hash already built (tests build it in a shuffled order).
+template <class R> void collide_self_from_hash(const Constants<R>& c, State<R>& s);
+template <class R> void collide_objects(const Constants<R>& c, State<R>& s);
+template <class R> void solve_length_constraints(const ClothModel& m, const Constants<R>& c, State<R>& s);
+template <class R> void compute_normals(const ClothModel& m, State<R>& s);
+
+// One constraint colour (used by the per-pass check that dispatches colours one by one).
+template <class R> void solve_length_constraint_colour(const ClothModel& m, const Constants<R>& c, int colour, State<R>& s);
+
+// One substep: the pass list of DESIGN.md §1.
+template <class R> void step(const ClothModel& m, const Constants<R>& c, State<R>& s) {
+  accumulate_forces(m, c, s);
+  integrate(c, s);
+  if (c.self_collision) collide_self(c, s);
+  collide_objects(c, s);
+  solve_length_constraints(m, c, s);
+}
+
+}  // namespace clothsim

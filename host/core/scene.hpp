@@ -1,0 +1,84 @@
+// Scene description: what a scene JSON file says, validated (DESIGN.md §4).
+#pragma once
+
+#include <array>
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+namespace clothsim {
+
+enum class Orientation { Horizontal = 0, Vertical = 1 };
+
+// Field names are the JSON keys (one name end to end: file, code, GUI).
+struct ClothParams {
+  double width = 1.0;
+  double height = 1.0;
+  int num_width_points = 50;
+  int num_height_points = 50;
+  double thickness = 0.0095;
+  Orientation orientation = Orientation::Horizontal;
+  std::vector<std::array<int, 2>> pinned;  // [x, y] grid indices
+  bool enable_structural = true;
+  bool enable_shearing = true;
+  bool enable_bending = true;
+  double damping = 0.2;   // percent
+  double density = 150;   // kg/m^2
+  double ks = 5000;       // N/m
+};
+
+struct SphereParams {
+  glm::dvec3 origin{0.0};
+  double radius = 0;
+  double friction = 0;
+};
+
+struct PlaneParams {
+  glm::dvec3 point{0.0};
+  glm::dvec3 normal{0, 1, 0};  // unit length after loading
+  double friction = 0;
+};
+
+struct SimulationParams {
+  double frames_per_sec = 90;
+  int simulation_steps = 30;
+  glm::dvec3 gravity{0, -9.8, 0};
+  double max_stretch = 0.1;
+  int constraint_iterations = 1;
+  bool self_collision = true;
+};
+
+struct Scene {
+  std::string source;  // file name used in messages ("<built-in>" for the default scene)
+  ClothParams cloth;
+  std::vector<SphereParams> spheres;  // applied in file order
+  std::vector<PlaneParams> planes;    // applied in file order
+  SimulationParams simulation;
+
+  std::string name() const;  // file stem, for titles and output names
+  double dt() const { return 1.0 / simulation.frames_per_sec / simulation.simulation_steps; }
+  int particle_count() const { return cloth.num_width_points * cloth.num_height_points; }
+};
+
+// Bad input: the message already names the file, the key path and what was expected.
+struct SceneError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// Largest grid accepted: keeps every buffer of the GPU and CPU paths well inside memory
+// and 32-bit indices (4096 x 4096 particles, about 1.3 GiB of simulation state on the CPU).
+inline constexpr long long kMaxParticles = 4096LL * 4096LL;
+
+// `overrides` are "key.path=value" strings from --set, applied before validation.
+Scene load_scene(const std::filesystem::path& file, const std::vector<std::string>& overrides = {});
+Scene parse_scene(const std::string& json_text, const std::string& source,
+                  const std::vector<std::string>& overrides = {});
+// The classic pinned2 scene, used when no scene is given.
+Scene default_scene(const std::vector<std::string>& overrides = {});
+// The scene as JSON in the extended format (loads back to the same Scene).
+std::string scene_to_json(const Scene& scene);
+
+}  // namespace clothsim

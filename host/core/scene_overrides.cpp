@@ -1,0 +1,77 @@
+#include "scene_overrides.hpp"
+
+#include <cctype>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "scene.hpp"
+
+namespace clothsim {
+namespace {
+
+struct Segment {
+  std::string key;  // empty for an array index
+  long index = -1;
+};
+
+std::vector<Segment> split_path(const std::string& path, const std::string& where) {
+  std::vector<Segment> out;
+  size_t i = 0;
+  auto bad = [&](const char* why) -> std::vector<Segment> {
+    throw SceneError(fmt::format("{}: {}", where, why));
+  };
+  while (i < path.size()) {
+    if (path[i] == '[') {
+      size_t close = path.find(']', i);
+      if (close == std::string::npos || close == i + 1) return bad("unclosed or empty [index] in the key path");
+      std::string num = path.substr(i + 1, close - i - 1);
+      for (char c : num) if (!std::isdigit((unsigned char)c)) return bad("an [index] must be a non-negative integer");
+      if (num.size() > 6) return bad("an [index] is out of range");
+      out.push_back({"", std::stol(num)});
+      i = close + 1;
+      if (i < path.size() && path[i] == '.') ++i;
+    } else {
+      size_t end = path.find_first_of(".[", i);
+      if (end == std::string::npos) end = path.size();
+      if (end == i) return bad("empty key in the key path");
+      out.push_back({path.substr(i, end - i), -1});
+      i = end;
+      if (i < path.size() && path[i] == '.') ++i;
+    }
+  }
+  if (out.empty()) return bad("empty key path");
+  return out;
+}
+
+}  // namespace
+
+void apply_overrides(nlohmann::json& scene, const std::vector<std::string>& overrides, const std::string& source) {
+  for (const std::string& o : overrides) {
+    std::string where = fmt::format("{}: --set {}", source, o);
+    size_t eq = o.find('=');
+    if (eq == std::string::npos || eq == 0)
+      throw SceneError(fmt::format("{}: expected key.path=value (e.g. --set cloth.ks=500)", where));
+    std::vector<Segment> path = split_path(o.substr(0, eq), where);
+    std::string text = o.substr(eq + 1);
+    nlohmann::json value = nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
+    if (value.is_discarded()) value = text;
+
+    nlohmann::json* node = &scene;
+    for (const Segment& s : path) {
+      if (s.index >= 0) {
+        if (!node->is_array() || size_t(s.index) >= node->size())
+          throw SceneError(fmt::format("{}: [{}] does not name an existing array element", where, s.index));
+        node = &(*node)[size_t(s.index)];
+      } else {
+        if (node->is_null()) *node = nlohmann::json::object();
+        if (!node->is_object())
+          throw SceneError(fmt::format("{}: '{}' is inside a value that is not an object", where, s.key));
+        node = &(*node)[s.key];
+      }
+    }
+    *node = value;
+  }
+}
+
+}  // namespace clothsim

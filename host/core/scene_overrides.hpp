@@ -1,0 +1,18 @@
+// `--set key.path=value` overrides, applied to the scene JSON before validation so an
+// override is checked exactly like the file (DESIGN.md §3).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <nlohmann/json_fwd.hpp>
+
+namespace clothsim {
+
+// Path syntax: dot-separated keys, with [i] to index an array: `cloth.ks`,
+// `sphere[0].radius`, `simulation.gravity[1]`. The value is JSON (`500`, `false`,
+// `[0, -9.8, 0]`); anything that is not JSON is taken as a string, which validation rejects
+// with the key's expected type. Missing objects along the path are created.
+void apply_overrides(nlohmann::json& scene, const std::vector<std::string>& overrides, const std::string& source);
+
+}  // namespace clothsim

@@ -1,0 +1,37 @@
+// A hashed uniform grid built by counting sort, the layout the GPU builds too:
+// count per bucket -> exclusive prefix sum -> scatter ids -> sort ids within each bucket.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+namespace clothsim {
+
+struct SpatialHash {
+  uint32_t table_size = 0;         // power of two >= 2 * particles
+  std::vector<uint32_t> count;     // particles per bucket
+  std::vector<uint32_t> start;     // exclusive prefix sum of count, table_size + 1 entries
+  std::vector<uint32_t> entries;   // particle ids in bucket order, ascending within a bucket
+};
+
+uint32_t hash_table_size(uint32_t particles);
+
+// The bucket of integer cell (ix, iy, iz); same arithmetic as compute/spatial_hash.glsl
+// (32-bit wrap-around products, xor, mask).
+inline uint32_t hash_cell(int32_t ix, int32_t iy, int32_t iz, uint32_t table_size) {
+  uint32_t h = (uint32_t(ix) * 73856093u) ^ (uint32_t(iy) * 19349663u) ^ (uint32_t(iz) * 83492791u);
+  return h & (table_size - 1u);
+}
+
+// Integer cell of a coordinate: floor(x * inv_cell), a multiplication so both sides round alike.
+template <class R> int32_t cell_coord(R x, R inv_cell) { return int32_t(std::floor(x * inv_cell)); }
+
+// The stages, each mirrored by a compute shader of the same name. `buckets[i]` is particle
+// i's bucket. `fill_order` is the order particles are scattered in (identity normally; tests
+// shuffle it to show the result does not depend on it).
+void count_cells(const std::vector<uint32_t>& buckets, SpatialHash& h);
+void scan_cells(SpatialHash& h);
+void fill_cells(const std::vector<uint32_t>& buckets, const std::vector<uint32_t>& fill_order, SpatialHash& h);
+
+}  // namespace clothsim
