@@ -1,0 +1,31 @@
+// Small builders shared by the CPU-tier tests.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "backend.hpp"
+#include "scene.hpp"
+
+namespace clothsim::test {
+
+// A classic-style scene with the given grid and JSON fragments merged in by --set overrides.
+inline Scene make_scene(int nw, int nh, int orientation, std::vector<std::string> sets = {},
+                        const std::string& extra_top = "") {
+  std::string text = fmt::format(
+      R"({{"cloth": {{"width": 1.0, "height": 1.0, "num_width_points": {}, "num_height_points": {},
+          "thickness": 0.0095, "orientation": {}}}{}}})",
+      nw, nh, orientation, extra_top);
+  return parse_scene(text, "<test>", sets);
+}
+
+inline double max_abs_diff(const std::vector<glm::dvec4>& a, const std::vector<glm::dvec4>& b) {
+  double m = 0;
+  for (size_t i = 0; i < a.size(); ++i)
+    for (int c = 0; c < 3; ++c) m = std::max(m, std::abs(a[i][c] - b[i][c]));
+  return m;
+}
+
+}  // namespace clothsim::test
