@@ -1,10 +1,29 @@
+#include <fmt/format.h>
+
 #include "cli_common.hpp"
+#include "gpu_simulator.hpp"
+#include "pass_check.hpp"
 
 namespace clothsim {
 
+std::unique_ptr<gl::GlContext> require_headless_context() {
+  std::string why;
+  auto context = gl::create_headless_context(&why);
+  if (!context)
+    throw ExitError(kExitNoContext,
+                    fmt::format("no OpenGL 4.3 context could be created: {}\n"
+                                "  Headless runs need EGL with an OpenGL 4.3 driver: on Debian install "
+                                "libegl-mesa0 and libgl1-mesa-dri (llvmpipe, no GPU needed), or a GPU driver.\n"
+                                "  Or run on the CPU reference: --backend cpu",
+                                why));
+  return context;
+}
+
 std::unique_ptr<Backend> make_backend(BackendKind kind, const Scene& scene, const ClothModel& model) {
   if (kind == BackendKind::Cpu) return std::make_unique<CpuBackend<double>>(scene, model);
-  throw ExitError(kExitBadInput, "--backend gpu: the GPU backend is not available in this build yet; use --backend cpu");
+  require_gpu_support(scene);
+  auto context = require_headless_context();
+  return std::make_unique<GpuBackend>(std::move(context), scene, model, find_project_root() / "compute");
 }
 
 }  // namespace clothsim

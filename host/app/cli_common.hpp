@@ -11,6 +11,7 @@
 #include <CLI/CLI.hpp>
 
 #include "backend.hpp"
+#include "context.hpp"
 #include "scene.hpp"
 
 namespace clothsim {
@@ -35,6 +36,8 @@ enum class BackendKind { Cpu, Gpu };
 BackendKind parse_backend(const std::string& name);
 // The backend for a scene; the GPU one needs a GL 4.3 context (exit 3 when none).
 std::unique_ptr<Backend> make_backend(BackendKind kind, const Scene& scene, const ClothModel& model);
+// A headless GL 4.3 context, or ExitError with exit code 3 and what to do.
+std::unique_ptr<gl::GlContext> require_headless_context();
 
 // "frame 120/300  45.1 frames/s  ETA 4 s" on one refreshed line of a terminal; silent when
 // stderr is not a TTY so logs and pipes stay clean.

@@ -8,5 +8,6 @@
 namespace clothsim {
 
 void add_simulate_command(CLI::App& app, std::function<int()>& run);
+void add_validate_command(CLI::App& app, std::function<int()>& run);
 
 }  // namespace clothsim

@@ -66,7 +66,11 @@ void add_simulate_command(CLI::App& app, std::function<int()>& run) {
       const ClothSnapshot snap = backend->snapshot();
       if (o->stats) print_stats(scene, measure(scene, model, snap), o->frames, wall);
       if (!o->export_path.empty()) {
-        write_obj(o->export_path, model, snap);
+        try {
+          write_obj(o->export_path, model, snap);
+        } catch (const std::runtime_error& e) {
+          throw ExitError(kExitBadInput, fmt::format("--export {}", e.what()));
+        }
         fmt::print("wrote {}\n", o->export_path);
       }
       return kExitOk;

@@ -70,7 +70,11 @@ template <class R> void accumulate_forces(const ClothModel& m, const Constants<R
         const R k = d.type == SpringType::Bending ? c.ks_bending : c.ks;
         const Vec3<R> e = Vec3<R>(s.pos[j]) - xi;
         const R len = length3(e);
-        if (len > R(0)) f += e * (k * (len - rest) / len);
+        if (len > R(0)) {
+          // Divisions are written as x * (1 / y): the GLSL compiler lowers a / b that way.
+          const R inv = R(1) / len;
+          f += e * (k * (len - rest) * inv);
+        }
       }
       s.force[i] = Vec4<R>(f, R(0));
     }
@@ -128,11 +132,11 @@ template <class R> void collide_self_from_hash(const Constants<R>& c, State<R>& 
             const R d = length3(e3);
             // Coincident masses have no direction to separate along; they are skipped.
             if (d >= c.contact_distance || d == R(0)) continue;
-            sum += e3 * ((c.contact_distance - d) / d);
+            sum += e3 * ((c.contact_distance - d) * (R(1) / d));
             ++hits;
           }
         }
-    if (hits > 0) s.pos_out[i] = Vec4<R>(xi + sum / (R(hits) * c.steps), s.pos[i].w);
+    if (hits > 0) s.pos_out[i] = Vec4<R>(xi + sum * (R(1) / (R(hits) * c.steps)), s.pos[i].w);
   }
   s.pos.swap(s.pos_out);
 }
@@ -147,7 +151,7 @@ template <class R> void collide_objects(const Constants<R>& c, State<R>& s) {
       const R d = length3(e);
       if (d > sp.radius) continue;
       // A mass exactly at the centre has no outward direction: push it up.
-      const Vec3<R> t = d > R(0) ? sp.origin + e * (sp.radius / d) : sp.origin + Vec3<R>(0, sp.radius, 0);
+      const Vec3<R> t = d > R(0) ? sp.origin + e * (sp.radius * (R(1) / d)) : sp.origin + Vec3<R>(0, sp.radius, 0);
       x = xp + (t - xp) * sp.keep;
     }
     for (const PlaneC<R>& pl : c.planes) {
@@ -178,9 +182,10 @@ void solve_length_constraint_colour(const ClothModel& m, const Constants<R>& c, 
       const R len = length3(e);
       const R limit = c.stretch_limit * R(m.rest[i][dir]);
       if (!(len > limit)) continue;
-      const Vec3<R> corr = e * ((len - limit) / len);
-      s.pos[i] = Vec4<R>(xi + corr * (wi / wsum), wi);
-      s.pos[j] = Vec4<R>(xj - corr * (wj / wsum), wj);
+      const Vec3<R> corr = e * ((len - limit) * (R(1) / len));
+      const R inv_wsum = R(1) / wsum;
+      s.pos[i] = Vec4<R>(xi + corr * (wi * inv_wsum), wi);
+      s.pos[j] = Vec4<R>(xj - corr * (wj * inv_wsum), wj);
     }
 }
 
@@ -209,7 +214,7 @@ template <class R> void compute_normals(const ClothModel& m, State<R>& s) {
           }
         }
       const R len = length3(sum);
-      s.normal[m.index(x, y)] = len > R(0) ? Vec4<R>(sum / len, R(0)) : Vec4<R>(0, 1, 0, 0);
+      s.normal[m.index(x, y)] = len > R(0) ? Vec4<R>(sum * (R(1) / len), R(0)) : Vec4<R>(0, 1, 0, 0);
     }
 }
 

@@ -2,8 +2,10 @@
 // and every error names the file and the key path (DESIGN.md §4).
 #include "scene.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <set>
 #include <sstream>
 
@@ -27,6 +29,7 @@ class ObjectReader {
   }
 
   [[noreturn]] void fail(const std::string& key_path, const std::string& what) const {
+    if (key_path.empty()) throw SceneError(fmt::format("{}: {}", source_, what));  // the top level
     throw SceneError(fmt::format("{}: {}: {}", source_, key_path, what));
   }
   std::string key(const std::string& k) const { return path_.empty() ? k : path_ + "." + k; }
@@ -150,10 +153,17 @@ PlaneParams read_plane(ObjectReader r) {
   PlaneParams p;
   p.point = r.vec3("point", true, {});
   glm::dvec3 n = r.vec3("normal", true, {});
-  double len = std::sqrt(n.x * n.x + n.y * n.y + n.z * n.z);
-  if (!(len > 1e-12) || !std::isfinite(len))
-    r.fail(r.key("normal"), "expected a non-zero normal vector, got [0, 0, 0]");
-  p.normal = n / len;
+  // Scale by the largest component first: |n| of a finite n such as [1e200, 0, 0] overflows.
+  const double m = std::max({std::abs(n.x), std::abs(n.y), std::abs(n.z)});
+  if (m == 0) r.fail(r.key("normal"), "expected a non-zero normal vector, got [0, 0, 0]");
+  // A normal that is already unit to rounding is kept as written, so that normalising is
+  // idempotent and scene_to_json's output loads back to the same normal, bit for bit.
+  const double len2 = n.x * n.x + n.y * n.y + n.z * n.z;
+  if (std::abs(len2 - 1) > 4 * std::numeric_limits<double>::epsilon()) {
+    n /= m;
+    n /= std::sqrt(n.x * n.x + n.y * n.y + n.z * n.z);
+  }
+  p.normal = n;
   p.friction = friction(r);
   r.reject_unknown();
   return p;
@@ -185,6 +195,44 @@ std::vector<T> read_colliders(ObjectReader& top, const std::string& k, Read read
   return out;
 }
 
+// nlohmann rejects a number too large for a double (1e999, the only way to write a non-finite
+// number in JSON) as out_of_range 406, with no position. Re-reading the text with this handler
+// finds the key path of that number, so the message names it like every other bad value.
+class KeyPathFinder : public nlohmann::json_sax<json> {
+ public:
+  std::string path, token;  // set when the parse error is reported
+  bool null() override { return value(); }
+  bool boolean(bool) override { return value(); }
+  bool number_integer(number_integer_t) override { return value(); }
+  bool number_unsigned(number_unsigned_t) override { return value(); }
+  bool number_float(number_float_t, const string_t&) override { return value(); }
+  bool string(string_t&) override { return value(); }
+  bool binary(binary_t&) override { return value(); }
+  bool start_object(std::size_t) override { value(); stack_.push_back({false, "", 0, 0}); return true; }
+  bool key(string_t& k) override { stack_.back().key = k; return true; }
+  bool end_object() override { stack_.pop_back(); return true; }
+  bool start_array(std::size_t) override { value(); stack_.push_back({true, "", 0, 0}); return true; }
+  bool end_array() override { stack_.pop_back(); return true; }
+  bool parse_error(std::size_t, const std::string& last_token, const nlohmann::detail::exception&) override {
+    token = last_token;
+    // The failing value has not been counted: in an array its index is `next`.
+    for (size_t i = 0; i < stack_.size(); ++i) {
+      const Frame& f = stack_[i];
+      if (!f.array) path += (path.empty() ? "" : ".") + f.key;
+      else path += fmt::format("[{}]", i + 1 == stack_.size() ? f.next : f.cur);
+    }
+    return false;
+  }
+
+ private:
+  struct Frame { bool array; std::string key; size_t cur, next; };
+  bool value() {
+    if (!stack_.empty() && stack_.back().array) stack_.back().cur = stack_.back().next++;
+    return true;
+  }
+  std::vector<Frame> stack_;
+};
+
 }  // namespace
 
 std::string Scene::name() const {
@@ -201,6 +249,11 @@ Scene parse_scene(const std::string& text, const std::string& source, const std:
     size_t off = std::min<size_t>(e.byte, text.size()), line = 1, col = 1;
     for (size_t i = 0; i + 1 < off; ++i) { if (text[i] == '\n') { ++line; col = 1; } else ++col; }
     throw SceneError(fmt::format("{}:{}:{}: not valid JSON ({})", source, line, col, e.what()));
+  } catch (const json::out_of_range&) {  // 406: a number beyond the range of a double
+    KeyPathFinder finder;
+    json::sax_parse(text, &finder);
+    throw SceneError(fmt::format("{}: {}: expected a finite number, got {} (beyond the range of a double)",
+                                 source, finder.path.empty() ? "(top level)" : finder.path, finder.token));
   }
   apply_overrides(j, overrides, source);
   ObjectReader top(j, source, "");

@@ -39,6 +39,7 @@ std::vector<Segment> split_path(const std::string& path, const std::string& wher
       i = end;
       if (i < path.size() && path[i] == '.') ++i;
     }
+    if (i == path.size() && path.back() == '.') return bad("empty key in the key path");
   }
   if (out.empty()) return bad("empty key path");
   return out;

@@ -1,0 +1,46 @@
+// Per-pass comparison of the GPU simulator with the CPU reference from identical states.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "gpu_simulator.hpp"
+
+namespace clothsim {
+
+struct Deviation {
+  double max = 0, rms = 0;
+  bool bitwise = true;
+};
+// Distance between matching particles (xyz only), max and RMS; a NaN counts as infinite.
+template <class A, class B> Deviation deviation(const std::vector<A>& a, const std::vector<B>& b) {
+  Deviation d;
+  double sum = 0;
+  for (size_t i = 0; i < a.size(); ++i) {
+    const glm::dvec3 e = glm::dvec3(a[i]) - glm::dvec3(b[i]);
+    const double len = std::sqrt(e.x * e.x + e.y * e.y + e.z * e.z);
+    d.max = std::isnan(len) ? INFINITY : std::max(d.max, len);
+    sum += len * len;
+    d.bitwise = d.bitwise && glm::dvec4(a[i]) == glm::dvec4(b[i]);
+  }
+  d.rms = a.empty() ? 0 : std::sqrt(sum / double(a.size()));
+  return d;
+}
+
+struct PassError {
+  std::string pass;
+  double max_error = 0;  // metres; forces are converted to the displacement they cause in one substep
+  bool bitwise = true;
+};
+
+// Runs the CPU (float) for `warmup_frames`, then checks each pass of one substep (and the
+// normals) on the GPU against the CPU, each from the CPU's state before that pass.
+std::vector<PassError> check_passes(const Scene& scene, const ClothModel& model, GpuSimulator& gpu,
+                                    int warmup_frames);
+
+// Exit 2 when the scene needs a GPU pass this build does not have.
+void require_gpu_support(const Scene& scene);
+
+}  // namespace clothsim

@@ -1,0 +1,109 @@
+#include "debug_output.hpp"
+
+#include <glad/gl.h>
+
+#include <fmt/format.h>
+
+#include <cstdio>
+#include <mutex>
+
+namespace clothsim::gl {
+namespace {
+
+// The callback may run on any thread that has the context current, so the list is locked.
+std::mutex g_mutex;
+std::vector<std::string> g_errors;
+DebugMode g_mode = DebugMode::Off;
+#ifdef NDEBUG
+constexpr bool kPrintErrors = false;
+#else
+constexpr bool kPrintErrors = true;  // debug builds show errors as they happen
+#endif
+
+const char* source_name(GLenum source) {
+  switch (source) {
+    case GL_DEBUG_SOURCE_API: return "api";
+    case GL_DEBUG_SOURCE_WINDOW_SYSTEM: return "window system";
+    case GL_DEBUG_SOURCE_SHADER_COMPILER: return "shader compiler";
+    case GL_DEBUG_SOURCE_THIRD_PARTY: return "third party";
+    case GL_DEBUG_SOURCE_APPLICATION: return "application";
+    default: return "other";
+  }
+}
+
+const char* type_name(GLenum type) {
+  switch (type) {
+    case GL_DEBUG_TYPE_ERROR: return "error";
+    case GL_DEBUG_TYPE_DEPRECATED_BEHAVIOR: return "deprecated";
+    case GL_DEBUG_TYPE_UNDEFINED_BEHAVIOR: return "undefined behaviour";
+    case GL_DEBUG_TYPE_PORTABILITY: return "portability";
+    case GL_DEBUG_TYPE_PERFORMANCE: return "performance";
+    case GL_DEBUG_TYPE_MARKER: return "marker";
+    default: return "other";
+  }
+}
+
+const char* error_code_name(GLenum code) {
+  switch (code) {
+    case GL_INVALID_ENUM: return "GL_INVALID_ENUM";
+    case GL_INVALID_VALUE: return "GL_INVALID_VALUE";
+    case GL_INVALID_OPERATION: return "GL_INVALID_OPERATION";
+    case GL_INVALID_FRAMEBUFFER_OPERATION: return "GL_INVALID_FRAMEBUFFER_OPERATION";
+    case GL_OUT_OF_MEMORY: return "GL_OUT_OF_MEMORY";
+    case GL_STACK_OVERFLOW: return "GL_STACK_OVERFLOW";
+    case GL_STACK_UNDERFLOW: return "GL_STACK_UNDERFLOW";
+    default: return "unknown GL error";
+  }
+}
+
+void GLAD_API_PTR on_debug_message(GLenum source, GLenum type, GLuint id, GLenum severity, GLsizei length,
+                                   const GLchar* message, const void*) {
+  if (severity == GL_DEBUG_SEVERITY_NOTIFICATION) return;
+  const std::string text(message, length >= 0 ? std::size_t(length) : std::char_traits<char>::length(message));
+  // Compile errors reach the caller as ShaderError with file:line, so they are not counted twice.
+  const bool error = source != GL_DEBUG_SOURCE_SHADER_COMPILER &&
+                     (type == GL_DEBUG_TYPE_ERROR || severity == GL_DEBUG_SEVERITY_HIGH);
+  const std::string line = fmt::format("GL {} ({}, id {}): {}", type_name(type), source_name(source), id, text);
+  std::lock_guard lock(g_mutex);
+  if (error) g_errors.push_back(line);
+  if (g_mode == DebugMode::Verbose || (error && kPrintErrors)) std::fprintf(stderr, "%s\n", line.c_str());
+}
+
+}  // namespace
+
+void enable_debug_output(DebugMode mode) {
+  {
+    std::lock_guard lock(g_mutex);
+    g_mode = mode;
+  }
+  if (mode == DebugMode::Off) {
+    glDisable(GL_DEBUG_OUTPUT);
+    return;
+  }
+  glEnable(GL_DEBUG_OUTPUT);
+  glEnable(GL_DEBUG_OUTPUT_SYNCHRONOUS);
+  glDebugMessageCallback(on_debug_message, nullptr);
+  glDebugMessageControl(GL_DONT_CARE, GL_DONT_CARE, GL_DONT_CARE, 0, nullptr, GL_TRUE);
+}
+
+std::vector<std::string> gl_errors_since_last_check() {
+  std::vector<std::string> errors;
+  {
+    std::lock_guard lock(g_mutex);
+    errors.swap(g_errors);
+  }
+  // An error KHR_debug already reported also sets the glGetError flag: report the flag
+  // only when the callback saw nothing (debug output off or unsupported).
+  if (glGetError) {
+    const bool reported = !errors.empty();
+    // Bounded: a lost context may report GL_CONTEXT_LOST on every call.
+    for (int i = 0; i < 16; ++i) {
+      const GLenum code = glGetError();
+      if (code == GL_NO_ERROR) break;
+      if (!reported) errors.push_back(fmt::format("glGetError: {} (0x{:04x})", error_code_name(code), code));
+    }
+  }
+  return errors;
+}
+
+}  // namespace clothsim::gl

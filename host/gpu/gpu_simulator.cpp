@@ -1,0 +1,196 @@
+#include "gpu_simulator.hpp"
+
+#include <cstdlib>
+#include <unistd.h>
+
+#include <fmt/format.h>
+
+namespace clothsim {
+namespace {
+
+gl::Program load_pass(const std::filesystem::path& dir, const char* name) {
+  return gl::Program::compute(dir / fmt::format("{}.comp", name),
+                              {{"WORKGROUP_SIZE", std::to_string(WORKGROUP_SIZE)}});
+}
+
+glm::vec4 v4(const Vec3<float>& v, float w) { return {v.x, v.y, v.z, w}; }
+
+layout::StepParams make_params(const Constants<float>& c, const ClothModel& m) {
+  layout::StepParams p{};
+  p.gravity_mass = v4(c.gravity, c.mass);
+  p.springs = {c.ks, c.ks_bending, c.keep_velocity, c.dt2};
+  p.constraint = {c.stretch_limit, c.contact_distance, c.inv_cell, c.steps};
+  p.grid = {uint32_t(m.nw), uint32_t(m.nh), uint32_t(m.count()), hash_table_size(uint32_t(m.count()))};
+  p.enabled = {c.enabled[0], c.enabled[1], c.enabled[2], 0u};
+  p.colliders = {uint32_t(c.spheres.size()), uint32_t(c.planes.size()), 0u, 0u};
+  return p;
+}
+
+// A storage buffer may not be empty when bound: keep one dummy element for zero colliders.
+template <class T> void upload_at_least_one(gl::Buffer& b, std::vector<T> v) {
+  if (v.empty()) v.resize(1);
+  gl::upload_vector(b, v, GL_STATIC_DRAW);
+}
+
+}  // namespace
+
+GpuSimulator::GpuSimulator(const Scene& scene, const ClothModel& model, const std::filesystem::path& dir)
+    : model_(model),
+      constants_(make_constants<float>(scene, model)),
+      params_(make_params(constants_, model)),
+      groups_(gl::workgroups_for(model.count(), WORKGROUP_SIZE)),
+      accumulate_forces_(load_pass(dir, "accumulate_forces")),
+      integrate_(load_pass(dir, "integrate")),
+      collide_objects_(load_pass(dir, "collide_objects")),
+      solve_length_constraints_(load_pass(dir, "solve_length_constraints")),
+      compute_normals_(load_pass(dir, "compute_normals")) {
+  const size_t n = model.count();
+  std::vector<layout::RestLengths> rest(n);
+  for (size_t i = 0; i < n; ++i) {
+    const auto& r = model.rest[i];
+    // Rounded to float once here, exactly as the float reference rounds them.
+    rest[i].near = glm::vec4(float(r[0]), float(r[1]), float(r[2]), float(r[3]));
+    rest[i].far = glm::vec4(float(r[4]), float(r[5]), 0.f, 0.f);
+  }
+  gl::upload_vector(rest_, rest, GL_STATIC_DRAW);
+  std::vector<layout::SphereCollider> spheres;
+  for (auto& s : constants_.spheres) spheres.push_back({v4(s.origin, s.radius), {s.keep, 0.f, 0.f, 0.f}});
+  upload_at_least_one(spheres_, spheres);
+  std::vector<layout::PlaneCollider> planes;
+  for (auto& p : constants_.planes) planes.push_back({v4(p.point, 0.f), v4(p.normal, p.keep)});
+  upload_at_least_one(planes_, planes);
+  step_params_.allocate(sizeof(params_), &params_, GL_STATIC_DRAW);
+  forces_.allocate(n * sizeof(glm::vec4));
+  normals_.allocate(n * sizeof(glm::vec4));
+  upload(initial_state<float>(model));
+  compute_normals();
+}
+
+void GpuSimulator::bind_all() const {
+  positions_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_POSITIONS);
+  previous_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_PREVIOUS);
+  forces_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_FORCES);
+  normals_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_NORMALS);
+  rest_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_REST);
+  spheres_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_SPHERES);
+  planes_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_PLANES);
+  step_params_.bind_base(GL_UNIFORM_BUFFER, BINDING_STEP_PARAMS);
+}
+
+void GpuSimulator::dispatch(gl::Program& program) {
+  // Bindings are global GL state another user of the context (the renderer) may change, so
+  // every pass re-asserts them: a handful of cheap calls next to a dispatch.
+  bind_all();
+  program.dispatch(groups_);
+}
+
+void GpuSimulator::accumulate_forces() {
+  dispatch(accumulate_forces_);
+  // integrate reads the forces next.
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
+void GpuSimulator::integrate() {
+  dispatch(integrate_);
+  // collide_self / collide_objects read the new positions and previous positions next.
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
+void GpuSimulator::collide_objects() {
+  if (constants_.spheres.empty() && constants_.planes.empty()) return;
+  dispatch(collide_objects_);
+  // solve_length_constraints reads the projected positions next.
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
+void GpuSimulator::solve_length_constraint_colour(int colour) {
+  solve_length_constraints_.set("u_colour", colour);
+  dispatch(solve_length_constraints_);
+  // The next colour (or the next substep's accumulate_forces) reads these positions.
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
+void GpuSimulator::solve_length_constraints() {
+  for (int it = 0; it < constants_.iterations; ++it)
+    for (int colour = 0; colour < NUM_COLOURS; ++colour) {
+      if (!constants_.enabled[int(kDirections[colour / 2].type)]) continue;
+      solve_length_constraint_colour(colour);
+    }
+}
+
+void GpuSimulator::compute_normals() {
+  dispatch(compute_normals_);
+  // The vertex shader pulls normals (and a read-back may follow).
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+}
+
+void GpuSimulator::step() {
+  accumulate_forces();
+  integrate();
+  collide_objects();
+  solve_length_constraints();
+}
+
+void GpuSimulator::step_frame() {
+  for (int k = 0; k < int(constants_.steps); ++k) step();
+  compute_normals();
+}
+
+int GpuSimulator::dispatches_per_substep() const {
+  int enabled_colours = 0;
+  for (int colour = 0; colour < NUM_COLOURS; ++colour)
+    enabled_colours += constants_.enabled[int(kDirections[colour / 2].type)];
+  const bool colliders = !constants_.spheres.empty() || !constants_.planes.empty();
+  return 2 + int(colliders) + constants_.iterations * enabled_colours;
+}
+
+void GpuSimulator::upload(const State<float>& s) {
+  gl::upload_vector(positions_, s.pos);
+  gl::upload_vector(previous_, s.prev);
+  if (s.force.size() == s.pos.size()) gl::upload_vector(forces_, s.force);
+}
+
+void GpuSimulator::download(State<float>& s) {
+  // Shader writes must be visible to glGetBufferSubData.
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  s.pos = gl::download_vector<Vec4<float>>(positions_);
+  s.prev = gl::download_vector<Vec4<float>>(previous_);
+  s.force = gl::download_vector<Vec4<float>>(forces_);
+  s.normal = gl::download_vector<Vec4<float>>(normals_);
+}
+
+GpuBackend::GpuBackend(std::unique_ptr<gl::GlContext> context, const Scene& scene, const ClothModel& model,
+                       const std::filesystem::path& compute_dir)
+    : context_(std::move(context)), model_(model),
+      sim_(std::make_unique<GpuSimulator>(scene, model, compute_dir)) {}
+
+ClothSnapshot GpuBackend::snapshot() {
+  State<float> s;
+  sim_->download(s);
+  ClothSnapshot out;
+  for (auto& p : s.pos) out.pos.emplace_back(p);
+  for (auto& p : s.prev) out.prev.emplace_back(p);
+  for (auto& p : s.normal) out.normal.emplace_back(p);
+  return out;
+}
+
+std::string GpuBackend::name() const { return fmt::format("gpu ({})", gl::gl_renderer_string()); }
+
+std::filesystem::path find_project_root(const std::filesystem::path& hint) {
+  namespace fs = std::filesystem;
+  auto has_compute = [](const fs::path& p) { return !p.empty() && fs::exists(p / "compute" / "layout.glsl"); };
+  if (!hint.empty()) return hint;
+  if (const char* env = std::getenv("CLOTHSIM_ROOT"); env && has_compute(env)) return env;
+  std::error_code ec;
+  fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+  if (!ec) {
+    for (fs::path p = exe.parent_path(); !p.empty() && p != p.root_path(); p = p.parent_path())
+      if (has_compute(p)) return p;
+  }
+  if (has_compute(CLOTHSIM_SOURCE_DIR)) return CLOTHSIM_SOURCE_DIR;
+  throw std::runtime_error(
+      "cannot find the project's shader files (compute/layout.glsl): run from the source tree, "
+      "pass -r ROOT, or set CLOTHSIM_ROOT");
+}
+
+}  // namespace clothsim

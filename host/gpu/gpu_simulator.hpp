@@ -1,0 +1,75 @@
+// The model of DESIGN.md §1 as compute passes over shader-storage buffers. The passes have
+// the names of the CPU reference functions they mirror; step() is the same pass list.
+// Positions stay on the GPU: the only read-backs are download() and snapshot(), on request.
+#pragma once
+
+#include <filesystem>
+#include <memory>
+
+#include "backend.hpp"
+#include "context.hpp"
+#include "objects.hpp"
+#include "program.hpp"
+#include "../../compute/layout.glsl"
+
+namespace clothsim {
+
+class GpuSimulator {
+ public:
+  // Needs a current GL 4.3 context. `compute_dir` holds the .comp files.
+  GpuSimulator(const Scene& scene, const ClothModel& model, const std::filesystem::path& compute_dir);
+
+  // The passes, one dispatch each (the length constraint: one per colour and iteration).
+  void accumulate_forces();
+  void integrate();
+  void collide_objects();
+  void solve_length_constraint_colour(int colour);
+  void solve_length_constraints();
+  void compute_normals();
+
+  void step();        // one substep, the pass list of §1
+  void step_frame();  // simulation_steps substeps, then normals
+
+  // Explicit transfers for export, validation and tests.
+  void upload(const State<float>& state);  // pos, prev, and force when present
+  void download(State<float>& state);  // pos, prev, force, normal
+
+  // The buffers the renderer reads in place.
+  const gl::Buffer& positions() const { return positions_; }
+  const gl::Buffer& normals() const { return normals_; }
+  int dispatches_per_substep() const;
+
+ private:
+  void bind_all() const;
+  void dispatch(gl::Program& program);
+
+  const ClothModel& model_;
+  Constants<float> constants_;
+  layout::StepParams params_{};
+  GLuint groups_ = 0;
+  gl::Buffer positions_{"positions"}, previous_{"previous"}, forces_{"forces"}, normals_{"normals"};
+  gl::Buffer rest_{"rest lengths"}, spheres_{"spheres"}, planes_{"planes"}, step_params_{"step params"};
+  gl::Program accumulate_forces_, integrate_, collide_objects_, solve_length_constraints_, compute_normals_;
+};
+
+// The GPU simulator as a Backend: owns the headless context it runs in.
+class GpuBackend final : public Backend {
+ public:
+  GpuBackend(std::unique_ptr<gl::GlContext> context, const Scene& scene, const ClothModel& model,
+             const std::filesystem::path& compute_dir);
+  void step_frame() override { sim_->step_frame(); }
+  ClothSnapshot snapshot() override;
+  std::string name() const override;
+  GpuSimulator& simulator() { return *sim_; }
+
+ private:
+  std::unique_ptr<gl::GlContext> context_;
+  const ClothModel& model_;
+  std::unique_ptr<GpuSimulator> sim_;
+};
+
+// Where the GLSL files are: $CLOTHSIM_ROOT, then the directory above the executable
+// (build/ in a source tree), then the source tree the binary was built from.
+std::filesystem::path find_project_root(const std::filesystem::path& hint = {});
+
+}  // namespace clothsim

@@ -1,0 +1,2 @@
+// Test fixture: half of an include cycle.
+#include "cycle_b.glsl"
