@@ -27,6 +27,7 @@ using uvec4 = glm::uvec4;
 #define BINDING_CELL_START 9     // uint per hash bucket (+1 sentinel)
 #define BINDING_CELL_ENTRIES 10  // uint particle id, in cell order
 #define BINDING_SCAN_SUMS 11     // uint per scan block (multi-level prefix sum)
+#define BINDING_SCAN_DATA 12     // uint array being scanned in place
 // Uniform block binding.
 #define BINDING_STEP_PARAMS 0
 

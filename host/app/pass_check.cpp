@@ -9,14 +9,6 @@
 
 namespace clothsim {
 
-void require_gpu_support(const Scene& scene) {
-  if (scene.simulation.self_collision)
-    throw ExitError(kExitBadInput,
-                    fmt::format("{}: simulation.self_collision: self-collision is not available on the GPU "
-                                "backend yet; use --set simulation.self_collision=false or --backend cpu",
-                                scene.source));
-}
-
 std::vector<PassError> check_passes(const Scene& scene, const ClothModel& model, GpuSimulator& gpu, int warmup) {
   CpuBackend<float> cpu(scene, model);
   for (int f = 0; f < warmup; ++f) cpu.step_frame();
@@ -49,6 +41,7 @@ std::vector<PassError> check_passes(const Scene& scene, const ClothModel& model,
   };
   check("accumulate_forces", [&] { accumulate_forces(model, c, s); }, [&] { gpu.accumulate_forces(); }, displacement);
   check("integrate", [&] { integrate(c, s); }, [&] { gpu.integrate(); }, both);
+  if (c.self_collision) check("collide_self", [&] { collide_self(c, s); }, [&] { gpu.collide_self(); }, positions);
   check("collide_objects", [&] { collide_objects(c, s); }, [&] { gpu.collide_objects(); }, positions);
   check("solve_length_constraints", [&] { solve_length_constraints(model, c, s); },
         [&] { gpu.solve_length_constraints(); }, positions);

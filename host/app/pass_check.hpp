@@ -40,7 +40,4 @@ struct PassError {
 std::vector<PassError> check_passes(const Scene& scene, const ClothModel& model, GpuSimulator& gpu,
                                     int warmup_frames);
 
-// Exit 2 when the scene needs a GPU pass this build does not have.
-void require_gpu_support(const Scene& scene);
-
 }  // namespace clothsim

@@ -27,7 +27,6 @@ int run_validate(const Opts& o) {
   const Scene scene = o.scene.load();
   const ClothModel model = build_cloth(scene.cloth);
   auto context = require_headless_context();
-  require_gpu_support(scene);
   GpuSimulator gpu(scene, model, find_project_root() / "compute");
   fmt::print("{}: {}x{} cloth, {} substeps/frame, {}\n", scene.source, model.nw, model.nh,
              scene.simulation.simulation_steps, gl::gl_renderer_string());

@@ -43,7 +43,12 @@ GpuSimulator::GpuSimulator(const Scene& scene, const ClothModel& model, const st
       integrate_(load_pass(dir, "integrate")),
       collide_objects_(load_pass(dir, "collide_objects")),
       solve_length_constraints_(load_pass(dir, "solve_length_constraints")),
-      compute_normals_(load_pass(dir, "compute_normals")) {
+      compute_normals_(load_pass(dir, "compute_normals")),
+      count_cells_(load_pass(dir, "count_cells")),
+      fill_cells_(load_pass(dir, "fill_cells")),
+      sort_cells_(load_pass(dir, "sort_cells")),
+      collide_self_(load_pass(dir, "collide_self")),
+      scan_(dir, hash_table_size(uint32_t(model.count()))) {
   const size_t n = model.count();
   std::vector<layout::RestLengths> rest(n);
   for (size_t i = 0; i < n; ++i) {
@@ -61,6 +66,14 @@ GpuSimulator::GpuSimulator(const Scene& scene, const ClothModel& model, const st
   upload_at_least_one(planes_, planes);
   step_params_.allocate(sizeof(params_), &params_, GL_STATIC_DRAW);
   forces_.allocate(n * sizeof(glm::vec4));
+  // The hash table is sized once; start[table_size] is the total, always n.
+  table_size_ = params_.grid.w;
+  positions_out_.allocate(n * sizeof(glm::vec4));
+  cell_count_.allocate(table_size_ * sizeof(uint32_t));
+  std::vector<uint32_t> start(table_size_ + 1, 0);
+  start.back() = uint32_t(n);
+  gl::upload_vector(cell_start_, start);
+  cell_entries_.allocate(n * sizeof(uint32_t));
   normals_.allocate(n * sizeof(glm::vec4));
   upload(initial_state<float>(model));
   compute_normals();
@@ -75,6 +88,10 @@ void GpuSimulator::bind_all() const {
   spheres_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_SPHERES);
   planes_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_PLANES);
   step_params_.bind_base(GL_UNIFORM_BUFFER, BINDING_STEP_PARAMS);
+  positions_out_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_POSITIONS_OUT);
+  cell_count_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_CELL_COUNT);
+  cell_start_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_CELL_START);
+  cell_entries_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_CELL_ENTRIES);
 }
 
 void GpuSimulator::dispatch(gl::Program& program) {
@@ -94,6 +111,51 @@ void GpuSimulator::integrate() {
   dispatch(integrate_);
   // collide_self / collide_objects read the new positions and previous positions next.
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
+void GpuSimulator::count_cells() {
+  cell_count_.clear_to_zero();
+  dispatch(count_cells_);
+  // scan_cells copies the counts next (a buffer copy, hence BUFFER_UPDATE).
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+}
+
+void GpuSimulator::scan_cells() {
+  cell_start_.copy_from(cell_count_, 0, 0, table_size_ * sizeof(uint32_t));
+  scan_.scan(cell_start_, table_size_);  // ends with a barrier for fill_cells
+}
+
+void GpuSimulator::fill_cells() {
+  cell_count_.clear_to_zero();  // reused as the per-bucket cursors
+  dispatch(fill_cells_);
+  // sort_cells reads the entries next.
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
+void GpuSimulator::sort_cells() {
+  bind_all();
+  sort_cells_.dispatch(gl::workgroups_for(table_size_, WORKGROUP_SIZE));
+  // collide_self reads the sorted entries next.
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
+void GpuSimulator::collide_self() {
+  count_cells();
+  scan_cells();
+  fill_cells();
+  sort_cells();
+  dispatch(collide_self_);
+  // Jacobi: the output becomes the positions; collide_objects reads them next.
+  std::swap(positions_, positions_out_);
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
+void GpuSimulator::download_hash(SpatialHash& h) {
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  h.table_size = table_size_;
+  h.count = gl::download_vector<uint32_t>(cell_count_);
+  h.start = gl::download_vector<uint32_t>(cell_start_);
+  h.entries = gl::download_vector<uint32_t>(cell_entries_);
 }
 
 void GpuSimulator::collide_objects() {
@@ -127,6 +189,7 @@ void GpuSimulator::compute_normals() {
 void GpuSimulator::step() {
   accumulate_forces();
   integrate();
+  if (constants_.self_collision) collide_self();
   collide_objects();
   solve_length_constraints();
 }
@@ -141,7 +204,8 @@ int GpuSimulator::dispatches_per_substep() const {
   for (int colour = 0; colour < NUM_COLOURS; ++colour)
     enabled_colours += constants_.enabled[int(kDirections[colour / 2].type)];
   const bool colliders = !constants_.spheres.empty() || !constants_.planes.empty();
-  return 2 + int(colliders) + constants_.iterations * enabled_colours;
+  const int self = constants_.self_collision ? 4 + scan_.dispatches(table_size_) + 1 : 0;
+  return 2 + self + int(colliders) + constants_.iterations * enabled_colours;
 }
 
 void GpuSimulator::upload(const State<float>& s) {

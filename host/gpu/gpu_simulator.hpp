@@ -9,6 +9,7 @@
 #include "backend.hpp"
 #include "context.hpp"
 #include "objects.hpp"
+#include "prefix_scan.hpp"
 #include "program.hpp"
 #include "../../compute/layout.glsl"
 
@@ -22,10 +23,20 @@ class GpuSimulator {
   // The passes, one dispatch each (the length constraint: one per colour and iteration).
   void accumulate_forces();
   void integrate();
+  void collide_self();  // the four hash stages below, then the Jacobi response
   void collide_objects();
   void solve_length_constraint_colour(int colour);
   void solve_length_constraints();
   void compute_normals();
+
+  // The stages of collide_self, named like their shaders and CPU twins.
+  void count_cells();
+  void scan_cells();
+  void fill_cells();
+  void sort_cells();
+  void download_hash(SpatialHash& hash);  // count (cursors after fill), start, entries
+  // The scanner, for tests of arbitrary lengths (up to the hash table size).
+  PrefixScan& prefix_scan() { return scan_; }
 
   void step();        // one substep, the pass list of §1
   void step_frame();  // simulation_steps substeps, then normals
@@ -49,7 +60,12 @@ class GpuSimulator {
   GLuint groups_ = 0;
   gl::Buffer positions_{"positions"}, previous_{"previous"}, forces_{"forces"}, normals_{"normals"};
   gl::Buffer rest_{"rest lengths"}, spheres_{"spheres"}, planes_{"planes"}, step_params_{"step params"};
+  gl::Buffer positions_out_{"positions out"}, cell_count_{"cell count"}, cell_start_{"cell start"};
+  gl::Buffer cell_entries_{"cell entries"};
+  uint32_t table_size_ = 0;
   gl::Program accumulate_forces_, integrate_, collide_objects_, solve_length_constraints_, compute_normals_;
+  gl::Program count_cells_, fill_cells_, sort_cells_, collide_self_;
+  PrefixScan scan_;
 };
 
 // The GPU simulator as a Backend: owns the headless context it runs in.

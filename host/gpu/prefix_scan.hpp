@@ -1,0 +1,31 @@
+// Exclusive prefix sum of a uint buffer on the GPU, any length: a work-efficient block scan
+// (scan_cells.comp) per level, the block totals scanned recursively, then added back
+// (add_scan_offsets.comp). Level buffers are sized once for the largest length.
+#pragma once
+
+#include <filesystem>
+#include <vector>
+
+#include "objects.hpp"
+#include "../../compute/layout.glsl"
+#include "program.hpp"
+
+namespace clothsim {
+
+class PrefixScan {
+ public:
+  static constexpr unsigned kBlock = 2 * WORKGROUP_SIZE;  // elements per workgroup
+
+  PrefixScan(const std::filesystem::path& compute_dir, size_t max_count);
+  // Scans the first `count` uints of `data` in place (count <= max_count).
+  void scan(const gl::Buffer& data, size_t count);
+  int dispatches(size_t count) const;  // for the dispatch/barrier count of a frame
+
+ private:
+  void scan_level(const gl::Buffer& data, size_t count, size_t level);
+
+  gl::Program scan_, add_offsets_;
+  std::vector<gl::Buffer> sums_;  // sums_[k]: block totals of level k
+};
+
+}  // namespace clothsim
