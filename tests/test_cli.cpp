@@ -2,6 +2,8 @@
 // exit codes, messages and the OBJ export.
 #include <catch2/catch.hpp>
 
+#include "bad_scenes.hpp"
+
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -20,7 +22,7 @@ namespace {
 
 const fs::path kSource = CLOTHSIM_SOURCE_DIR;
 const fs::path kBinary = CLOTHSIM_BINARY;
-const fs::path kBad = kSource / "tests" / "scenes_bad";
+const fs::path kBad = clothsim::test::kBadScenes;
 
 std::string quote(const std::string& s) {
   std::string q = "'";
@@ -71,26 +73,13 @@ Result run(const std::vector<std::string>& args) {
   return r;
 }
 
-std::vector<std::pair<std::string, std::string>> read_manifest() {
-  std::ifstream in(kBad / "expected.txt");
-  REQUIRE(in);
-  std::vector<std::pair<std::string, std::string>> out;
-  std::string line;
-  while (std::getline(in, line)) {
-    if (line.empty() || line[0] == '#') continue;
-    auto tab = line.find('\t');
-    REQUIRE(tab != std::string::npos);
-    out.emplace_back(line.substr(0, tab), line.substr(tab + 1));
-  }
-  return out;
-}
 
 }  // namespace
 
 TEST_CASE("the clothsim binary has been built", "[cli]") { REQUIRE(fs::exists(kBinary)); }
 
 TEST_CASE("every malformed scene exits 2 naming the file and the key", "[cli]") {
-  const auto manifest = read_manifest();
+  const auto manifest = clothsim::test::read_bad_scene_manifest();
   REQUIRE(manifest.size() >= 40);
   for (const auto& [file, expected] : manifest) {
     const std::string path = (kBad / file).string();

@@ -2,6 +2,8 @@
 // kind of bad input is a SceneError that names the file and the key path.
 #include <catch2/catch.hpp>
 
+#include "bad_scenes.hpp"
+
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -18,22 +20,8 @@ using namespace clothsim;
 namespace {
 
 const fs::path kSource = CLOTHSIM_SOURCE_DIR;
-const fs::path kBad = kSource / "tests" / "scenes_bad";
+const fs::path kBad = test::kBadScenes;
 
-// tests/scenes_bad/expected.txt: "file.json<TAB>substring", '#' comments.
-std::vector<std::pair<std::string, std::string>> read_manifest() {
-  std::ifstream in(kBad / "expected.txt");
-  REQUIRE(in);
-  std::vector<std::pair<std::string, std::string>> out;
-  std::string line;
-  while (std::getline(in, line)) {
-    if (line.empty() || line[0] == '#') continue;
-    auto tab = line.find('\t');
-    REQUIRE(tab != std::string::npos);
-    out.emplace_back(line.substr(0, tab), line.substr(tab + 1));
-  }
-  return out;
-}
 
 // The SceneError message of `f`, or fails the test when `f` does not throw one.
 template <class F>
@@ -95,7 +83,7 @@ void require_same(const Scene& a, const Scene& b) {
 }  // namespace
 
 TEST_CASE("every malformed scene in the corpus is rejected naming the file and the key", "[scene]") {
-  const auto manifest = read_manifest();
+  const auto manifest = test::read_bad_scene_manifest();
   REQUIRE(manifest.size() >= 40);
   for (const auto& [file, expected] : manifest) {
     INFO(file);
@@ -109,7 +97,7 @@ TEST_CASE("every malformed scene in the corpus is rejected naming the file and t
 
 TEST_CASE("the bad-scene manifest lists every file of the corpus", "[scene]") {
   std::set<std::string> listed;
-  for (const auto& entry : read_manifest()) CHECK(listed.insert(entry.first).second);
+  for (const auto& entry : test::read_bad_scene_manifest()) CHECK(listed.insert(entry.first).second);
   for (const auto& entry : fs::directory_iterator(kBad)) {
     if (entry.path().extension() != ".json") continue;
     INFO(entry.path().filename().string());
