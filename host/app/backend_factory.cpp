@@ -1,6 +1,7 @@
 #include <fmt/format.h>
 
 #include "cli_common.hpp"
+#include "debug_output.hpp"
 #include "gpu_simulator.hpp"
 #include "pass_check.hpp"
 
@@ -8,7 +9,11 @@ namespace clothsim {
 
 std::unique_ptr<gl::GlContext> require_headless_context() {
   std::string why;
-  auto context = gl::create_headless_context(&why);
+  gl::ContextOptions options;
+#ifndef NDEBUG
+  options.debug = true;  // debug builds report every GL error as it happens (KHR_debug)
+#endif
+  auto context = gl::create_headless_context(&why, options);
   if (!context)
     throw ExitError(kExitNoContext,
                     fmt::format("no OpenGL 4.3 context could be created: {}\n"
@@ -16,6 +21,9 @@ std::unique_ptr<gl::GlContext> require_headless_context() {
                                 "libegl-mesa0 and libgl1-mesa-dri (llvmpipe, no GPU needed), or a GPU driver.\n"
                                 "  Or run on the CPU reference: --backend cpu",
                                 why));
+#ifndef NDEBUG
+  gl::enable_debug_output(gl::DebugMode::Errors);
+#endif
   return context;
 }
 
