@@ -28,6 +28,7 @@ using uvec4 = glm::uvec4;
 #define BINDING_CELL_ENTRIES 10  // uint particle id, in cell order
 #define BINDING_SCAN_SUMS 11     // uint per scan block (multi-level prefix sum)
 #define BINDING_SCAN_DATA 12     // uint array being scanned in place
+#define BINDING_MESH_EXTRA 13    // MeshVertex extras (uv, tangent) of collider meshes, for the render shaders
 // Uniform block binding.
 #define BINDING_STEP_PARAMS 0
 
@@ -62,6 +63,12 @@ struct SphereCollider {
 struct PlaneCollider {
   vec4 point;   // xyz a point on the plane
   vec4 normal;  // xyz unit normal, w = 1 - friction
+};
+
+// Per-vertex extras of a collider mesh (the cloth derives them from its grid instead).
+struct MeshVertex {
+  vec4 uv;       // xy texture coordinates
+  vec4 tangent;  // xyz unit tangent along +u
 };
 
 // Everything a pass needs that is constant over a substep. Built on the host from the

@@ -3,7 +3,6 @@
 #include "cli_common.hpp"
 #include "debug_output.hpp"
 #include "gpu_simulator.hpp"
-#include "pass_check.hpp"
 
 namespace clothsim {
 

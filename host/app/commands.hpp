@@ -9,5 +9,6 @@ namespace clothsim {
 
 void add_simulate_command(CLI::App& app, std::function<int()>& run);
 void add_validate_command(CLI::App& app, std::function<int()>& run);
+void add_render_command(CLI::App& app, std::function<int()>& run);
 
 }  // namespace clothsim

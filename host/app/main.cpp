@@ -13,6 +13,7 @@ int main(int argc, char** argv) {
   std::function<int()> run;
   add_simulate_command(app, run);
   add_validate_command(app, run);
+  add_render_command(app, run);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -124,6 +124,12 @@ void Program::set(std::string_view name, int value) { glProgramUniform1i(program
 void Program::set(std::string_view name, unsigned value) {
   glProgramUniform1ui(program_.get(), location(name), value);
 }
+void Program::set(std::string_view name, const glm::vec2& value) {
+  glProgramUniform2fv(program_.get(), location(name), 1, glm::value_ptr(value));
+}
+void Program::set(std::string_view name, const glm::ivec2& value) {
+  glProgramUniform2iv(program_.get(), location(name), 1, glm::value_ptr(value));
+}
 void Program::set(std::string_view name, const glm::vec3& value) {
   glProgramUniform3fv(program_.get(), location(name), 1, glm::value_ptr(value));
 }

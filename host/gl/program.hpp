@@ -5,6 +5,7 @@
 #include <glad/gl.h>
 
 #include <glm/mat4x4.hpp>
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
@@ -34,6 +35,8 @@ class Program {
   void set(std::string_view name, float value);
   void set(std::string_view name, int value);
   void set(std::string_view name, unsigned value);
+  void set(std::string_view name, const glm::vec2& value);
+  void set(std::string_view name, const glm::ivec2& value);
   void set(std::string_view name, const glm::vec3& value);
   void set(std::string_view name, const glm::vec4& value);
   void set(std::string_view name, const glm::mat4& value);

@@ -145,9 +145,11 @@ void GpuSimulator::collide_self() {
   fill_cells();
   sort_cells();
   dispatch(collide_self_);
-  // Jacobi: the output becomes the positions; collide_objects reads them next.
+  // Jacobi: the output becomes the positions; collide_objects reads them next. The next
+  // substep's count_cells clears the cursors fill_cells wrote, and scan_cells copies over the
+  // starts the scan wrote: buffer updates after shader writes (BUFFER_UPDATE).
   std::swap(positions_, positions_out_);
-  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
 }
 
 void GpuSimulator::download_hash(SpatialHash& h) {
@@ -204,7 +206,7 @@ int GpuSimulator::dispatches_per_substep() const {
   for (int colour = 0; colour < NUM_COLOURS; ++colour)
     enabled_colours += constants_.enabled[int(kDirections[colour / 2].type)];
   const bool colliders = !constants_.spheres.empty() || !constants_.planes.empty();
-  const int self = constants_.self_collision ? 4 + scan_.dispatches(table_size_) + 1 : 0;
+  const int self = constants_.self_collision ? 4 + scan_.dispatches(table_size_) : 0;  // count, fill, sort, collide + scan
   return 2 + self + int(colliders) + constants_.iterations * enabled_colours;
 }
 

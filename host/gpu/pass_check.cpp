@@ -3,10 +3,6 @@
 #include <cmath>
 #include <functional>
 
-#include <fmt/format.h>
-
-#include "cli_common.hpp"
-
 namespace clothsim {
 
 std::vector<PassError> check_passes(const Scene& scene, const ClothModel& model, GpuSimulator& gpu, int warmup) {

@@ -1,0 +1,113 @@
+// `clothsim render SCENE --frames N --out DIR|FILE.png|FILE.mp4 [--shader NAME] [--size WxH]`:
+// simulates and draws headless (EGL, an offscreen framebuffer), frame by frame.
+#include <cstdio>
+#include <optional>
+#include <regex>
+
+#include <fmt/format.h>
+
+#include "cli_common.hpp"
+#include "commands.hpp"
+#include "gpu_simulator.hpp"
+#include "image_output.hpp"
+#include "renderer.hpp"
+
+namespace clothsim {
+namespace {
+
+struct Opts {
+  SceneOptions scene;
+  int frames = 90;
+  std::string out, shader = "Phong", size = "800x600", backend = "gpu", root;
+  std::vector<float> camera;  // eye xyz, target xyz
+  int lat = 40, lon = 40;
+};
+
+// The cloth buffers to draw: the GPU simulator's own, or CPU results uploaded per frame
+// (--backend cpu, for comparison).
+struct FrameSource {
+  std::optional<GpuSimulator> gpu;
+  std::optional<CpuBackend<double>> cpu;
+  gl::Buffer cpu_positions{"cpu positions"}, cpu_normals{"cpu normals"};
+
+  void step_frame() {
+    if (gpu) return gpu->step_frame();
+    cpu->step_frame();
+    const ClothSnapshot s = cpu->snapshot();
+    std::vector<glm::vec4> p(s.pos.begin(), s.pos.end()), n(s.normal.begin(), s.normal.end());
+    gl::upload_vector(cpu_positions, p);
+    gl::upload_vector(cpu_normals, n);
+  }
+  const gl::Buffer& positions() const { return gpu ? gpu->positions() : cpu_positions; }
+  const gl::Buffer& normals() const { return gpu ? gpu->normals() : cpu_normals; }
+};
+
+int run_render(const Opts& o) {
+  std::smatch m;
+  if (!std::regex_match(o.size, m, std::regex("([0-9]{1,5})x([0-9]{1,5})")))
+    throw ExitError(kExitBadInput, fmt::format("--size {}: expected WIDTHxHEIGHT, e.g. 800x600", o.size));
+  const int w = std::stoi(m[1]), h = std::stoi(m[2]);
+  if (w < 16 || h < 16 || w > 8192 || h > 8192)
+    throw ExitError(kExitBadInput, fmt::format("--size {}: each side must be in [16, 8192]", o.size));
+  const auto shader = parse_shader(o.shader);
+  if (!shader)
+    throw ExitError(kExitBadInput, fmt::format("--shader {}: expected one of Wireframe, Normal, Diffuse, Phong, "
+                                               "Texture, Bump, Displacement, Mirror", o.shader));
+  if (o.camera.size() != 0 && o.camera.size() != 6)
+    throw ExitError(kExitBadInput, "--camera: expected six numbers: eye x,y,z then target x,y,z");
+
+  const Scene scene = o.scene.load();
+  const ClothModel model = build_cloth(scene.cloth);
+  const BackendKind kind = parse_backend(o.backend);
+  auto context = require_headless_context();
+  const auto root = find_project_root(o.root);
+
+  FrameSource source;
+  if (kind == BackendKind::Gpu) source.gpu.emplace(scene, model, root / "compute");
+  else source.cpu.emplace(scene, model);
+  Renderer renderer(root, scene, model, {o.lat, o.lon});
+  OrbitCamera camera = default_camera(scene, model, float(w) / float(h));
+  if (o.camera.size() == 6)
+    camera.look_from({o.camera[0], o.camera[1], o.camera[2]}, {o.camera[3], o.camera[4], o.camera[5]});
+  Appearance look;
+  look.shader = *shader;
+  gl::RenderTarget target(w, h);
+  FrameSink sink(o.out, w, h, scene.simulation.frames_per_sec);
+
+  fmt::print("{}: {}x{} cloth, {} shader, {}x{}, backend {}\n", scene.source, model.nw, model.nh,
+             kShaderNames[size_t(*shader)], w, h, o.backend);
+  Progress progress("render frame", o.frames);
+  for (int f = 1; f <= o.frames; ++f) {
+    source.step_frame();
+    target.bind();
+    renderer.draw(source.positions(), source.normals(), camera, look);
+    sink.add(target.read_rgba());
+    progress.update(f);
+  }
+  progress.finish();
+  fmt::print("{}\n", sink.finish());
+  return kExitOk;
+}
+
+}  // namespace
+
+void add_render_command(CLI::App& app, std::function<int()>& run) {
+  auto o = std::make_shared<Opts>();
+  CLI::App* cmd = app.add_subcommand("render", "simulate and render headless to PNGs or an MP4");
+  o->scene.add_to(*cmd, true);
+  cmd->add_option("--frames", o->frames, "frames to simulate and render")->check(CLI::PositiveNumber)->capture_default_str();
+  cmd->add_option("--out", o->out, "DIR (frame_0000.png ...), FILE.png (the last frame) or FILE.mp4")->required();
+  cmd->add_option("--shader", o->shader, "Wireframe, Normal, Diffuse, Phong, Texture, Bump, Displacement or Mirror")
+      ->capture_default_str();
+  cmd->add_option("--size", o->size, "image size WIDTHxHEIGHT")->capture_default_str();
+  cmd->add_option("--backend", o->backend, "gpu, or cpu (reference positions uploaded per frame)")
+      ->check(CLI::IsMember({"gpu", "cpu"}))
+      ->capture_default_str();
+  cmd->add_option("--camera", o->camera, "eye and target: EX,EY,EZ,TX,TY,TZ")->delimiter(',')->expected(6);
+  cmd->add_option("-a", o->lat, "sphere latitude resolution")->check(CLI::Range(3, 1000))->capture_default_str();
+  cmd->add_option("-o", o->lon, "sphere longitude resolution")->check(CLI::Range(3, 1000))->capture_default_str();
+  cmd->add_option("-r,--root", o->root, "project root (shaders/, compute/, textures/)");
+  cmd->callback([o, &run] { run = [o] { return run_render(*o); }; });
+}
+
+}  // namespace clothsim

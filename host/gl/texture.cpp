@@ -1,0 +1,126 @@
+#include "texture.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+
+#include <fmt/format.h>
+#include <stb/stb_image.h>
+
+namespace clothsim::gl {
+
+void detail::delete_texture(GLuint id) { glDeleteTextures(1, &id); }
+void detail::delete_framebuffer(GLuint id) { glDeleteFramebuffers(1, &id); }
+void detail::delete_renderbuffer(GLuint id) { glDeleteRenderbuffers(1, &id); }
+
+namespace {
+
+struct Image {
+  int w = 0, h = 0;
+  std::vector<uint8_t> rgba;
+};
+
+Image read_png(const std::filesystem::path& path) {
+  Image im;
+  int channels = 0;
+  stbi_uc* data = stbi_load(path.string().c_str(), &im.w, &im.h, &channels, 4);
+  if (!data)
+    throw std::runtime_error(fmt::format("{}: cannot load the image ({})", path.string(), stbi_failure_reason()));
+  im.rgba.assign(data, data + size_t(im.w) * im.h * 4);
+  stbi_image_free(data);
+  return im;
+}
+
+GLuint gen(void (*f)(GLsizei, GLuint*)) {
+  GLuint id = 0;
+  f(1, &id);
+  return id;
+}
+
+GLuint new_renderbuffer(GLenum format, int w, int h, int samples) {
+  GLuint id = gen(glGenRenderbuffers);
+  glBindRenderbuffer(GL_RENDERBUFFER, id);
+  glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples, format, w, h);
+  return id;
+}
+
+}  // namespace
+
+Texture::Texture(GLenum target) : name_(gen(glGenTextures)), target_(target) {}
+
+void Texture::bind(GLuint unit) const {
+  glActiveTexture(GL_TEXTURE0 + unit);
+  glBindTexture(target_, name_.get());
+}
+
+Texture Texture::load_2d(const std::filesystem::path& png) {
+  Image im = read_png(png);
+  Texture t(GL_TEXTURE_2D);
+  t.width_ = im.w;
+  t.height_ = im.h;
+  glBindTexture(GL_TEXTURE_2D, t.name_.get());
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, im.w, im.h, 0, GL_RGBA, GL_UNSIGNED_BYTE, im.rgba.data());
+  glGenerateMipmap(GL_TEXTURE_2D);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
+  return t;
+}
+
+Texture Texture::load_cube(const std::array<std::filesystem::path, 6>& faces) {
+  Texture t(GL_TEXTURE_CUBE_MAP);
+  glBindTexture(GL_TEXTURE_CUBE_MAP, t.name_.get());
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  for (int f = 0; f < 6; ++f) {
+    Image im = read_png(faces[f]);
+    t.width_ = im.w;
+    t.height_ = im.h;
+    glTexImage2D(GL_TEXTURE_CUBE_MAP_POSITIVE_X + f, 0, GL_RGBA8, im.w, im.h, 0, GL_RGBA, GL_UNSIGNED_BYTE,
+                 im.rgba.data());
+  }
+  glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  for (GLenum w : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R})
+    glTexParameteri(GL_TEXTURE_CUBE_MAP, w, GL_CLAMP_TO_EDGE);
+  glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
+  return t;
+}
+
+RenderTarget::RenderTarget(int w, int h, int samples)
+    : width_(w), height_(h), msaa_fbo_(gen(glGenFramebuffers)), resolve_fbo_(gen(glGenFramebuffers)),
+      msaa_color_(new_renderbuffer(GL_RGBA8, w, h, samples)),
+      msaa_depth_(new_renderbuffer(GL_DEPTH_COMPONENT24, w, h, samples)),
+      resolve_color_(new_renderbuffer(GL_RGBA8, w, h, 0)) {
+  glBindFramebuffer(GL_FRAMEBUFFER, msaa_fbo_.get());
+  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, msaa_color_.get());
+  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, msaa_depth_.get());
+  if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+    throw std::runtime_error(fmt::format("offscreen framebuffer {}x{} ({} samples) is incomplete", w, h, samples));
+  glBindFramebuffer(GL_FRAMEBUFFER, resolve_fbo_.get());
+  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, resolve_color_.get());
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+void RenderTarget::bind() const {
+  glBindFramebuffer(GL_FRAMEBUFFER, msaa_fbo_.get());
+  glViewport(0, 0, width_, height_);
+}
+
+std::vector<uint8_t> RenderTarget::read_rgba() const {
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, msaa_fbo_.get());
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, resolve_fbo_.get());
+  glBlitFramebuffer(0, 0, width_, height_, 0, 0, width_, height_, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, resolve_fbo_.get());
+  std::vector<uint8_t> rows(size_t(width_) * height_ * 4), flipped(rows.size());
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadPixels(0, 0, width_, height_, GL_RGBA, GL_UNSIGNED_BYTE, rows.data());
+  const size_t stride = size_t(width_) * 4;
+  // GL's first row is the bottom one; image files start at the top.
+  for (int y = 0; y < height_; ++y)
+    std::copy_n(rows.data() + size_t(height_ - 1 - y) * stride, stride, flipped.data() + size_t(y) * stride);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  return flipped;
+}
+
+}  // namespace clothsim::gl

@@ -1,0 +1,55 @@
+// Textures and an offscreen render target, RAII like objects.hpp.
+#pragma once
+
+#include <glad/gl.h>
+
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <vector>
+
+#include "objects.hpp"
+
+namespace clothsim::gl {
+
+namespace detail {
+void delete_texture(GLuint id);
+void delete_framebuffer(GLuint id);
+void delete_renderbuffer(GLuint id);
+}  // namespace detail
+
+class Texture {
+ public:
+  // A 2D RGBA8 texture from a PNG (mipmapped, repeating); throws std::runtime_error naming the file.
+  static Texture load_2d(const std::filesystem::path& png);
+  // A cube map from six PNGs in GL face order +x, -x, +y, -y, +z, -z.
+  static Texture load_cube(const std::array<std::filesystem::path, 6>& faces);
+  void bind(GLuint unit) const;
+  int width() const { return width_; }
+  int height() const { return height_; }
+
+ private:
+  Texture(GLenum target);
+  detail::Name<detail::delete_texture> name_;
+  GLenum target_;
+  int width_ = 0, height_ = 0;
+};
+
+// An offscreen colour + depth target (multisampled, resolved on read-back), for headless
+// rendering and screenshots.
+class RenderTarget {
+ public:
+  RenderTarget(int width, int height, int samples = 4);
+  void bind() const;  // as the draw framebuffer, with the viewport set
+  // Resolves and reads RGBA8, top row first (ready for an image file).
+  std::vector<uint8_t> read_rgba() const;
+  int width() const { return width_; }
+  int height() const { return height_; }
+
+ private:
+  int width_, height_;
+  detail::Name<detail::delete_framebuffer> msaa_fbo_, resolve_fbo_;
+  detail::Name<detail::delete_renderbuffer> msaa_color_, msaa_depth_, resolve_color_;
+};
+
+}  // namespace clothsim::gl

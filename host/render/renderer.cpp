@@ -1,0 +1,170 @@
+#include "renderer.hpp"
+
+#include <algorithm>
+#include <cctype>
+
+#include <glm/geometric.hpp>
+
+#include "meshes.hpp"
+
+namespace clothsim {
+
+// A drawable: an index buffer recorded in a VAO, and (for colliders) its own vertex buffers
+// bound where the cloth's SSBOs go.
+struct Renderer::Mesh {
+  gl::VertexArray vao{"mesh"};
+  gl::Buffer indices{"mesh indices"};
+  GLsizei count = 0;
+  std::optional<gl::Buffer> positions, normals, extras;  // absent for the cloth
+};
+
+namespace {
+
+gl::Texture load_cube(const std::filesystem::path& dir) {
+  std::array<std::filesystem::path, 6> faces;
+  const char* names[6] = {"posx", "negx", "posy", "negy", "posz", "negz"};
+  for (int f = 0; f < 6; ++f) faces[f] = dir / ("sky_" + std::string(names[f]) + ".png");
+  return gl::Texture::load_cube(faces);
+}
+
+}  // namespace
+
+std::optional<ShaderKind> parse_shader(const std::string& name) {
+  auto lower = [](std::string s) {
+    for (char& c : s) c = char(std::tolower((unsigned char)c));
+    return s;
+  };
+  for (size_t k = 0; k < kShaderNames.size(); ++k)
+    if (lower(kShaderNames[k]) == lower(name)) return ShaderKind(k);
+  return std::nullopt;
+}
+
+namespace {
+std::unique_ptr<Renderer::Mesh> make_indexed(const std::vector<uint32_t>& idx) {
+  auto m = std::make_unique<Renderer::Mesh>();
+  gl::upload_vector(m->indices, idx, GL_STATIC_DRAW);
+  m->vao.set_element_buffer(m->indices);
+  glBindVertexArray(0);
+  m->count = GLsizei(idx.size());
+  return m;
+}
+
+std::unique_ptr<Renderer::Mesh> make_mesh(const MeshData& d) {
+  auto m = make_indexed(d.indices);
+  m->positions.emplace("collider positions");
+  m->normals.emplace("collider normals");
+  m->extras.emplace("collider extras");
+  gl::upload_vector(*m->positions, d.positions, GL_STATIC_DRAW);
+  gl::upload_vector(*m->normals, d.normals, GL_STATIC_DRAW);
+  gl::upload_vector(*m->extras, d.extras, GL_STATIC_DRAW);
+  return m;
+}
+}  // namespace
+
+Renderer::Renderer(const std::filesystem::path& root, const Scene& scene, const ClothModel& model,
+                   const RendererOptions& options)
+    : model_(model), root_(root), programs_(kShaderNames.size()),
+      fabric_(gl::Texture::load_2d(root / "textures" / "fabric.png")),
+      weave_height_(gl::Texture::load_2d(root / "textures" / "height_weave.png")),
+      bumps_height_(gl::Texture::load_2d(root / "textures" / "height_bumps.png")),
+      sky_(load_cube(root / "textures")),
+      scene_size_(float(std::max(scene.cloth.width, scene.cloth.height))) {
+  cloth_ = make_indexed(cloth_triangle_indices(model));
+  for (int t = 0; t < 3; ++t) springs_[t] = make_indexed(cloth_spring_indices(model, SpringType(t)));
+  for (auto& s : scene.spheres)
+    spheres_.push_back(make_mesh(sphere_mesh(glm::vec3(s.origin), float(s.radius) * options.sphere_shrink,
+                                             options.sphere_lat, options.sphere_lon)));
+  glm::dvec3 centre(0);
+  for (auto& p : model.initial) centre += p;
+  centre /= double(model.count());
+  for (auto& pl : scene.planes) {
+    // A square around the cloth's shadow on the plane, big enough to look endless.
+    const glm::dvec3 foot = centre - pl.normal * glm::dot(centre - pl.point, pl.normal);
+    planes_.push_back(make_mesh(plane_mesh(glm::vec3(foot), glm::vec3(pl.normal), 3.f * scene_size_)));
+  }
+  no_extras_.allocate(sizeof(layout::MeshVertex));
+}
+
+Renderer::~Renderer() = default;
+
+gl::Program& Renderer::program(ShaderKind kind) {
+  auto& slot = programs_[size_t(kind)];
+  if (!slot) {
+    std::string name = kShaderNames[size_t(kind)];
+    for (char& c : name) c = char(std::tolower((unsigned char)c));
+    const auto dir = root_ / "shaders";
+    const auto vert = kind == ShaderKind::Displacement ? dir / "displacement.vert" : dir / "default.vert";
+    slot = gl::Program::graphics(vert, dir / (name + ".frag"), {{"WORKGROUP_SIZE", std::to_string(WORKGROUP_SIZE)}});
+  }
+  return *slot;
+}
+
+void Renderer::draw_mesh(const Mesh& mesh, gl::Program& prog, bool lines) const {
+  prog.use();
+  mesh.vao.bind();
+  glDrawElements(lines ? GL_LINES : GL_TRIANGLES, mesh.count, GL_UNSIGNED_INT, nullptr);
+  glBindVertexArray(0);
+}
+
+void Renderer::draw(const gl::Buffer& positions, const gl::Buffer& normals, const OrbitCamera& camera,
+                    const Appearance& look) {
+  glClearColor(0.16f, 0.17f, 0.2f, 1.f);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  glEnable(GL_DEPTH_TEST);
+  glEnable(GL_MULTISAMPLE);
+  gl::Program& prog = program(look.shader);
+  // A light above, behind and to the side of the camera, bright enough for irradiance ~1 at the target.
+  const glm::vec3 eye = camera.eye();
+  const glm::vec3 light = camera.target + glm::vec3(0.6f, 1.4f, 0.9f) * std::max(camera.distance, scene_size_);
+  const float d2 = glm::dot(light - camera.target, light - camera.target);
+  prog.set("u_model", glm::mat4(1.f));
+  prog.set("u_view_projection", camera.view_projection());
+  prog.set("u_camera_position", eye);
+  prog.set("u_light_position", light);
+  prog.set("u_light_intensity", glm::vec3(d2 * 1.1f));
+  prog.set("u_normal_scaling", look.normal_scaling);
+  prog.set("u_height_scaling", look.height_scaling);
+  // Bump shows the fabric weave; Displacement moves vertices, so it uses the smooth bumps a
+  // 50x50 mesh can follow without jaggies.
+  const gl::Texture& height = look.shader == ShaderKind::Displacement ? bumps_height_ : weave_height_;
+  prog.set("u_texture_size", glm::vec2(height.width(), height.height()));
+  prog.set("u_texture", 0);
+  prog.set("u_height_texture", 1);
+  prog.set("u_environment", 2);
+  fabric_.bind(0);
+  height.bind(1);
+  sky_.bind(2);
+
+  // The cloth: the simulation's own buffers, read in place by the vertex shader.
+  positions.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_POSITIONS);
+  normals.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_NORMALS);
+  no_extras_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_MESH_EXTRA);
+  prog.set("u_is_cloth", 1);
+  prog.set("u_grid", glm::ivec2(model_.nw, model_.nh));
+  const bool wire = look.shader == ShaderKind::Wireframe;
+  prog.set("u_color", wire ? glm::vec4(0.95f, 0.95f, 0.95f, 1.f) : look.color);
+  if (wire) {
+    for (int t = 0; t < 3; ++t)
+      if (look.wire_springs[t]) draw_mesh(*springs_[t], prog, true);
+  } else {
+    draw_mesh(*cloth_, prog, false);
+  }
+
+  // Colliders: their own buffers at the same bindings, shaded with the same program.
+  prog.set("u_is_cloth", 0);
+  auto draw_collider = [&](const Mesh& m, glm::vec4 colour) {
+    m.positions->bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_POSITIONS);
+    m.normals->bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_NORMALS);
+    m.extras->bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_MESH_EXTRA);
+    prog.set("u_color", colour);
+    if (wire) glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
+    draw_mesh(m, prog, false);
+    if (wire) glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+  };
+  if (look.show_spheres)
+    for (auto& s : spheres_) draw_collider(*s, wire ? glm::vec4(0.45f, 0.6f, 0.9f, 1.f) : glm::vec4(0.35f, 0.5f, 0.8f, 1.f));
+  if (look.show_planes)
+    for (auto& p : planes_) draw_collider(*p, wire ? glm::vec4(0.4f, 0.4f, 0.4f, 1.f) : glm::vec4(0.55f, 0.55f, 0.52f, 1.f));
+}
+
+}  // namespace clothsim

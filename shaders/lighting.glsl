@@ -1,0 +1,69 @@
+// Shared lighting terms: one point light, Blinn-Phong. Uniform names are the same in
+// every shader (u_camera_position, u_light_position, u_light_intensity, u_color).
+#ifndef CLOTHSIM_LIGHTING_GLSL
+#define CLOTHSIM_LIGHTING_GLSL
+
+uniform vec3 u_camera_position;
+uniform vec3 u_light_position;
+uniform vec3 u_light_intensity;
+uniform vec4 u_color;
+uniform sampler2D u_texture;      // colour texture (Texture), unit 0
+uniform samplerCube u_environment;  // sky cube map (Mirror), unit 2
+
+in vec3 v_position;
+in vec3 v_normal;
+in vec3 v_tangent;
+in vec2 v_uv;
+
+out vec4 out_color;
+
+// The cloth is two-sided: light the side facing the camera, so the back of a fold is not black.
+vec3 facing_normal(vec3 n) {
+  return gl_FrontFacing ? normalize(n) : -normalize(n);
+}
+
+// Irradiance of the point light at p (inverse-square falloff).
+vec3 light_irradiance(vec3 p) {
+  vec3 d = u_light_position - p;
+  return u_light_intensity / max(dot(d, d), 1e-6);
+}
+
+vec3 lambert(vec3 n, vec3 albedo) {
+  vec3 l = normalize(u_light_position - v_position);
+  return albedo * light_irradiance(v_position) * max(dot(n, l), 0.0);
+}
+
+vec3 blinn_phong(vec3 n, vec3 albedo, float ks, float shininess) {
+  vec3 l = normalize(u_light_position - v_position);
+  vec3 v = normalize(u_camera_position - v_position);
+  vec3 h = normalize(l + v);
+  vec3 irradiance = light_irradiance(v_position);
+  vec3 ambient = 0.12 * albedo;
+  vec3 diffuse = albedo * irradiance * max(dot(n, l), 0.0);
+  vec3 specular = ks * irradiance * pow(max(dot(n, h), 0.0), shininess);
+  return ambient + diffuse + specular;
+}
+
+// Normal perturbed by the height texture's gradient in tangent space (Bump, Displacement).
+uniform sampler2D u_height_texture;
+uniform float u_normal_scaling;
+uniform float u_height_scaling;
+uniform vec2 u_texture_size;  // height texture size in texels
+
+vec3 bumped_normal(vec3 n) {
+  vec3 t = normalize(v_tangent - n * dot(v_tangent, n));
+  vec3 b = cross(n, t);
+  float h = texture(u_height_texture, v_uv).r;
+  float hu = texture(u_height_texture, v_uv + vec2(1.0 / u_texture_size.x, 0.0)).r;
+  float hv = texture(u_height_texture, v_uv + vec2(0.0, 1.0 / u_texture_size.y)).r;
+  // Per-texel height differences scaled by u_normal_scaling give the slope (the classic
+  // formulation scales by the height scale too, which makes bumps invisible at sane values).
+  float du = (hu - h) * u_normal_scaling;
+  float dv = (hv - h) * u_normal_scaling;
+  vec3 local = normalize(vec3(-du, -dv, 1.0));
+  return normalize(mat3(t, b, n) * local);
+}
+
+vec4 gamma_encode(vec3 c) { return vec4(pow(clamp(c, 0.0, 1.0), vec3(1.0 / 2.2)), u_color.a); }
+
+#endif

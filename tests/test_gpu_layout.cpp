@@ -1,0 +1,176 @@
+// The shared layout header (compute/layout.glsl) against what GL actually made of it: the
+// offsets, strides and block sizes a compiled shader reports through the program interface
+// queries must be C++'s offsetof/sizeof, and values written through the C++ structs must be
+// the values the shader reads. Fixture: tests/shaders/layout_probe.comp.
+#include <glad/gl.h>
+
+#include <cstddef>
+#include <cstring>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+#include "gl_test_support.hpp"
+#include "objects.hpp"
+#include "program.hpp"
+#include "../compute/layout.glsl"
+
+using namespace clothsim;
+
+namespace {
+
+static_assert(std::is_standard_layout_v<layout::RestLengths> && std::is_standard_layout_v<layout::SphereCollider> &&
+                  std::is_standard_layout_v<layout::PlaneCollider> && std::is_standard_layout_v<layout::StepParams>,
+              "offsetof needs standard-layout structs");
+
+constexpr GLuint kBindingProbeUints = 15;  // BINDING_PROBE_UINTS in the fixture
+
+gl::Program probe_program() {
+  return gl::Program::compute(test::source_path("tests/shaders/layout_probe.comp"),
+                              {{"WORKGROUP_SIZE", std::to_string(WORKGROUP_SIZE)}});
+}
+
+template <class T> GLenum gl_type_of() {
+  if constexpr (std::is_same_v<T, glm::vec4>) return GL_FLOAT_VEC4;
+  if constexpr (std::is_same_v<T, glm::uvec4>) return GL_UNSIGNED_INT_VEC4;
+  return GL_NONE;
+}
+
+// One struct member as C++ lays it out, under the name GL gives it.
+struct Member {
+  std::string name;  // e.g. "rest[0].far" or "params.grid"
+  GLint offset;      // offsetof in C++
+  GLenum type;       // the GL type its C++ type stands for
+};
+#define MEMBER(Struct, prefix, member) \
+  Member { prefix #member, GLint(offsetof(layout::Struct, member)), gl_type_of<decltype(layout::Struct::member)>() }
+
+// One property of a named resource of `interface`; fails the test if the compiler dropped it.
+GLint resource_property(const gl::Program& program, GLenum interface, const std::string& name, GLenum property) {
+  const GLuint index = glGetProgramResourceIndex(program.id(), interface, name.c_str());
+  INFO("resource " << name);
+  REQUIRE(index != GL_INVALID_INDEX);
+  GLint value = -1;
+  glGetProgramResourceiv(program.id(), interface, index, 1, &property, 1, nullptr, &value);
+  return value;
+}
+
+// Every member of an array-of-structs storage block: offset and type as C++, the array's
+// stride and the block's minimum size (one element) both sizeof(the struct).
+void check_storage_array(const gl::Program& program, const std::string& block, GLint binding, GLint stride,
+                         const std::vector<Member>& members) {
+  for (const Member& m : members) {
+    INFO("buffer variable " << m.name);
+    CHECK(resource_property(program, GL_BUFFER_VARIABLE, m.name, GL_OFFSET) == m.offset);
+    CHECK(resource_property(program, GL_BUFFER_VARIABLE, m.name, GL_TOP_LEVEL_ARRAY_STRIDE) == stride);
+    CHECK(resource_property(program, GL_BUFFER_VARIABLE, m.name, GL_TYPE) == GLint(m.type));
+  }
+  INFO("storage block " << block);
+  CHECK(resource_property(program, GL_SHADER_STORAGE_BLOCK, block, GL_BUFFER_DATA_SIZE) == stride);
+  CHECK(resource_property(program, GL_SHADER_STORAGE_BLOCK, block, GL_BUFFER_BINDING) == binding);
+}
+
+template <class T> std::vector<T> two_of(const T& first, const T& second) { return {first, second}; }
+
+}  // namespace
+
+TEST_CASE("rest lengths and colliders have the C++ offsets and strides in std430 storage buffers", "[gpu]") {
+  REQUIRE_GL_CONTEXT();
+  const gl::Program program = probe_program();
+  check_storage_array(program, "Rest", BINDING_REST, sizeof(layout::RestLengths),
+                      {MEMBER(RestLengths, "rest[0].", near), MEMBER(RestLengths, "rest[0].", far)});
+  check_storage_array(program, "Spheres", BINDING_SPHERES, sizeof(layout::SphereCollider),
+                      {MEMBER(SphereCollider, "spheres[0].", origin_radius), MEMBER(SphereCollider, "spheres[0].", keep)});
+  check_storage_array(program, "Planes", BINDING_PLANES, sizeof(layout::PlaneCollider),
+                      {MEMBER(PlaneCollider, "planes[0].", point), MEMBER(PlaneCollider, "planes[0].", normal)});
+  CHECK_NO_GL_ERRORS();
+}
+
+TEST_CASE("the step parameters have the C++ offsets and size in the std140 uniform block", "[gpu]") {
+  REQUIRE_GL_CONTEXT();
+  const gl::Program program = probe_program();
+  const std::vector<Member> members = {
+      MEMBER(StepParams, "params.", gravity_mass), MEMBER(StepParams, "params.", springs),
+      MEMBER(StepParams, "params.", constraint),   MEMBER(StepParams, "params.", grid),
+      MEMBER(StepParams, "params.", enabled),      MEMBER(StepParams, "params.", colliders)};
+  for (const Member& m : members) {
+    INFO("uniform " << m.name);
+    CHECK(resource_property(program, GL_UNIFORM, m.name, GL_OFFSET) == m.offset);
+    CHECK(resource_property(program, GL_UNIFORM, m.name, GL_TYPE) == GLint(m.type));
+  }
+  CHECK(resource_property(program, GL_UNIFORM_BLOCK, "StepParamsBlock", GL_BUFFER_DATA_SIZE) ==
+        GLint(sizeof(layout::StepParams)));
+  CHECK(resource_property(program, GL_UNIFORM_BLOCK, "StepParamsBlock", GL_BUFFER_BINDING) == BINDING_STEP_PARAMS);
+  CHECK_NO_GL_ERRORS();
+}
+
+TEST_CASE("a positions buffer is an array of vec4 with a 16-byte stride", "[gpu]") {
+  REQUIRE_GL_CONTEXT();
+  const gl::Program program = probe_program();
+  static_assert(sizeof(glm::vec4) == 16);
+  // GL_ARRAY_STRIDE, not GL_TOP_LEVEL_ARRAY_STRIDE: the latter is only defined (non-zero) for
+  // top-level arrays of structures or of arrays, like rest[] above.
+  CHECK(resource_property(program, GL_BUFFER_VARIABLE, "pos[0]", GL_OFFSET) == 0);
+  CHECK(resource_property(program, GL_BUFFER_VARIABLE, "pos[0]", GL_ARRAY_STRIDE) == 16);
+  CHECK(resource_property(program, GL_BUFFER_VARIABLE, "pos[0]", GL_TYPE) == GL_FLOAT_VEC4);
+  CHECK(resource_property(program, GL_SHADER_STORAGE_BLOCK, "Positions", GL_BUFFER_DATA_SIZE) == 16);
+  CHECK(resource_property(program, GL_SHADER_STORAGE_BLOCK, "Positions", GL_BUFFER_BINDING) == BINDING_POSITIONS);
+  GLint size[3] = {};
+  glGetProgramiv(program.id(), GL_COMPUTE_WORK_GROUP_SIZE, size);
+  CHECK(size[0] == WORKGROUP_SIZE);
+  CHECK_NO_GL_ERRORS();
+}
+
+TEST_CASE("values written through the C++ layout structs are the values the shader reads", "[gpu]") {
+  REQUIRE_GL_CONTEXT();
+  gl::Program program = probe_program();
+  // Distinct values everywhere, so a member read from its neighbour's place shows.
+  layout::StepParams params{};
+  params.gravity_mass = {0.5f, -9.75f, 0.25f, 1.125f};
+  params.springs = {5000.f, 1000.f, 0.998f, 1.5e-7f};
+  params.constraint = {1.1f, 0.019f, 52.5f, 30.f};
+  params.grid = {7u, 5u, 35u, 128u};
+  params.enabled = {1u, 0u, 1u, 77u};
+  params.colliders = {2u, 3u, 0xdeadbeefu, 9u};
+  const auto rest = two_of<layout::RestLengths>({{-1, -2, -3, -4}, {-5, -6, -7, -8}}, {{1, 2, 3, 4}, {5, 6, 7, 8}});
+  const auto spheres =
+      two_of<layout::SphereCollider>({{-1, -1, -1, -1}, {-1, -1, -1, -1}}, {{11, 12, 13, 14}, {15, 16, 17, 18}});
+  const auto planes =
+      two_of<layout::PlaneCollider>({{-1, -1, -1, -1}, {-1, -1, -1, -1}}, {{21, 22, 23, 24}, {25, 26, 27, 28}});
+
+  gl::Buffer params_buffer("probe params"), rest_buffer("probe rest"), spheres_buffer("probe spheres"),
+      planes_buffer("probe planes"), floats("probe floats"), uints("probe uints");
+  params_buffer.allocate(sizeof(params), &params, GL_STATIC_DRAW);
+  gl::upload_vector(rest_buffer, rest);
+  gl::upload_vector(spheres_buffer, spheres);
+  gl::upload_vector(planes_buffer, planes);
+  floats.allocate(9 * sizeof(glm::vec4));
+  uints.allocate(3 * sizeof(glm::uvec4));
+  params_buffer.bind_base(GL_UNIFORM_BUFFER, BINDING_STEP_PARAMS);
+  rest_buffer.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_REST);
+  spheres_buffer.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_SPHERES);
+  planes_buffer.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_PLANES);
+  floats.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_POSITIONS);
+  uints.bind_base(GL_SHADER_STORAGE_BUFFER, kBindingProbeUints);
+  program.dispatch(1);
+  // The read-backs below come next.
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+
+  const std::vector<glm::vec4> want_floats = {params.gravity_mass, params.springs,           params.constraint,
+                                              rest[1].near,        rest[1].far,              spheres[1].origin_radius,
+                                              spheres[1].keep,     planes[1].point,          planes[1].normal};
+  const std::vector<glm::uvec4> want_uints = {params.grid, params.enabled, params.colliders};
+  const auto got_floats = gl::download_vector<glm::vec4>(floats);
+  const auto got_uints = gl::download_vector<glm::uvec4>(uints);
+  REQUIRE(got_floats.size() == want_floats.size());
+  REQUIRE(got_uints.size() == want_uints.size());
+  for (size_t k = 0; k < want_floats.size(); ++k) {
+    INFO("float vec4 " << k);
+    CHECK(std::memcmp(&got_floats[k], &want_floats[k], sizeof(glm::vec4)) == 0);
+  }
+  for (size_t k = 0; k < want_uints.size(); ++k) {
+    INFO("uint vec4 " << k);
+    CHECK(got_uints[k] == want_uints[k]);
+  }
+  CHECK_NO_GL_ERRORS();
+}

@@ -1,0 +1,334 @@
+// Every compute pass of the GPU simulator against its CPU twin (DESIGN.md §1, §6): each pass
+// alone from an identical state, on grids smaller than, equal to the edge of, and larger than
+// a workgroup; whole runs; pins; collider arrays; disabled spring types. On llvmpipe the
+// reference rounds exactly like the shaders, so "matches" means bit for bit there; on other
+// GPUs (FMA, approximate sqrt and division) it means within the stated tolerances.
+#include <glad/gl.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "gl_test_support.hpp"
+#include "gpu_simulator.hpp"
+#include "pass_check.hpp"
+#include "reference.hpp"
+#include "test_helpers.hpp"
+
+using namespace clothsim;
+
+namespace {
+
+using Vec4s = std::vector<Vec4<float>>;
+
+// Off llvmpipe: one pass from an identical state (the `validate` default), and a short run,
+// whose few-ULP differences the Verlet velocity carries on for a while (DESIGN.md §6).
+constexpr double kPassTolerance = 1e-5;  // m
+constexpr double kRunTolerance = 1e-4;   // m, after at most 50 substeps
+
+std::filesystem::path compute_dir() { return test::source_path("compute"); }
+
+// A horizontal cloth (y = 1) pinned at the middles of its four edges, with self-collision
+// off. A sphere pokes up through its middle and presses it against a ceiling plane (normal
+// down) a little lower than the sphere's top, so in every substep the sphere pushes particles
+// up through the plane, the plane pushes them back, and the springs around are stretched past
+// max_stretch; the corners sag under gravity. exercised() below counts all three. The last
+// particle, in the last (partial) workgroup, is a free corner: a pinned one would hide a
+// missing force there.
+const char* kSphereAndPlane = R"(,
+  "sphere": {"origin": [0.5, 0.95, 0.5], "radius": 0.2, "friction": 0.3},
+  "plane": {"point": [0.0, 1.1, 0.0], "normal": [0.0, -1.0, 0.0], "friction": 0.5})";
+// The same, plus a second, smaller sphere and a sloping ceiling over it.
+const char* kTwoSpheresTwoPlanes = R"(,
+  "sphere": [{"origin": [0.5, 0.95, 0.5], "radius": 0.2, "friction": 0.3},
+             {"origin": [0.2, 0.9, 0.8], "radius": 0.15, "friction": 0.0}],
+  "plane": [{"point": [0.0, 1.1, 0.0], "normal": [0.0, -1.0, 0.0], "friction": 0.5},
+            {"point": [0.2, 1.02, 0.8], "normal": [0.2, -1.0, -0.2], "friction": 0.0}])";
+constexpr int kWarmupFrames = 4;  // velocities and stretched springs, not just the start
+
+Scene pressed_cloth(int nw, int nh, std::vector<std::string> sets = {}, const char* colliders = kSphereAndPlane,
+                    int orientation = 0) {
+  sets.push_back(fmt::format("cloth.pinned=[[{},0],[0,{}],[{},{}],[{},{}]]", nw / 2, nh / 2, nw - 1, nh / 2, nw / 2, nh - 1));
+  sets.push_back("simulation.self_collision=false");
+  return test::make_scene(nw, nh, orientation, sets, colliders);
+}
+
+// Elements that differ bit for bit (so -0 vs 0 and NaN payloads count too).
+size_t mismatches(const Vec4s& a, const Vec4s& b) {
+  if (a.size() != b.size()) return std::max(a.size(), b.size());
+  size_t n = 0;
+  for (size_t i = 0; i < a.size(); ++i) n += std::memcmp(&a[i], &b[i], sizeof(a[i])) != 0;
+  return n;
+}
+
+// Particles a CPU pass moved: a pass that changes nothing checks nothing.
+size_t changed(const Vec4s& before, const Vec4s& after) { return mismatches(before, after); }
+
+// GPU == CPU bit for bit on llvmpipe, else within `tolerance` metres per particle.
+void check_same(const char* what, const Vec4s& gpu, const Vec4s& cpu, double tolerance) {
+  const Deviation d = deviation(gpu, cpu);
+  INFO(what << ": max |GPU - CPU| = " << d.max << " m, RMS " << d.rms << " m, " << mismatches(gpu, cpu) << " of "
+            << cpu.size() << " differ in some bit");
+  REQUIRE(gpu.size() == cpu.size());
+  if (gl::gl_renderer_is_llvmpipe())
+    CHECK(mismatches(gpu, cpu) == 0);
+  else
+    CHECK(d.max <= tolerance);
+}
+
+// Runs pass_check (what `validate` runs) after `warmup_frames` CPU frames and checks each
+// of the five passes of a substep without self-collision, and the normals.
+void check_each_pass(const Scene& scene, int warmup_frames) {
+  const ClothModel model = build_cloth(scene.cloth);
+  GpuSimulator gpu(scene, model, compute_dir());
+  const std::vector<PassError> errors = check_passes(scene, model, gpu, warmup_frames);
+  std::vector<std::string> names;
+  for (const PassError& e : errors) {
+    names.push_back(e.pass);
+    INFO(e.pass << ": max |GPU - CPU| = " << e.max_error << " m" << (e.bitwise ? " (bitwise equal)" : ""));
+    if (gl::gl_renderer_is_llvmpipe()) {
+      CHECK(e.max_error == 0);
+      CHECK(e.bitwise);
+    } else {
+      CHECK(e.max_error <= kPassTolerance);
+    }
+  }
+  CHECK(names == std::vector<std::string>{"accumulate_forces", "integrate", "collide_objects",
+                                          "solve_length_constraints", "compute_normals"});
+}
+
+// How many particles each collider (spheres, then planes, in file order) and the length
+// constraint move in the substep after `frames` frames on the CPU: a pass that moves nothing
+// checks nothing.
+struct Exercised {
+  std::vector<size_t> by_sphere, by_plane;
+  size_t constrained = 0;
+};
+Exercised exercised(const Scene& scene, const ClothModel& model, int frames) {
+  CpuBackend<float> cpu(scene, model);
+  for (int f = 0; f < frames; ++f) cpu.step_frame();
+  const Constants<float>& c = cpu.constants();
+  State<float> s = cpu.state();
+  accumulate_forces(model, c, s);
+  integrate(c, s);
+  // collide_objects with all colliders is each collider alone, one after the other.
+  Exercised e;
+  auto count = [&](Constants<float> one) {
+    const Vec4s before = s.pos;
+    collide_objects(one, s);
+    return changed(before, s.pos);
+  };
+  for (const auto& sphere : c.spheres) {
+    Constants<float> one = c;
+    one.spheres = {sphere};
+    one.planes.clear();
+    e.by_sphere.push_back(count(one));
+  }
+  for (const auto& plane : c.planes) {
+    Constants<float> one = c;
+    one.spheres.clear();
+    one.planes = {plane};
+    e.by_plane.push_back(count(one));
+  }
+  const Vec4s before = s.pos;
+  solve_length_constraints(model, c, s);
+  e.constrained = changed(before, s.pos);
+  return e;
+}
+
+// Every collider and the length constraint move some particle in the checked substep.
+void check_exercised(const Scene& scene, const ClothModel& model, int frames) {
+  const Exercised e = exercised(scene, model, frames);
+  for (size_t k = 0; k < e.by_sphere.size(); ++k) {
+    INFO("sphere " << k << " moves " << e.by_sphere[k] << " particles in the substep after " << frames << " frames");
+    CHECK(e.by_sphere[k] > 0);
+  }
+  for (size_t k = 0; k < e.by_plane.size(); ++k) {
+    INFO("plane " << k << " moves " << e.by_plane[k] << " particles in the substep after " << frames << " frames");
+    CHECK(e.by_plane[k] > 0);
+  }
+  INFO("the length constraint moves " << e.constrained << " particles in the substep after " << frames << " frames");
+  CHECK(e.constrained > 0);
+}
+
+void check_passes_on_grid(int nw, int nh) {
+  const Scene scene = pressed_cloth(nw, nh);
+  const ClothModel model = build_cloth(scene.cloth);
+  INFO(nw << "x" << nh << " cloth");
+  check_exercised(scene, model, kWarmupFrames);
+  check_each_pass(scene, kWarmupFrames);
+}
+
+// The CPU reference (float) after `frames` frames of a scene: where a run is compared from.
+struct CpuCloth {
+  Scene scene;
+  ClothModel model = build_cloth(scene.cloth);
+  Constants<float> c = make_constants<float>(scene, model);
+  State<float> s = initial_state<float>(model);
+  int frames = 0;
+  CpuCloth(Scene sc, int warmup_frames) : scene(std::move(sc)), frames(warmup_frames) {
+    for (int k = 0; k < frames * int(c.steps); ++k) step(model, c, s);
+  }
+  void run(int substeps) {
+    for (int k = 0; k < substeps; ++k) step(model, c, s);
+    compute_normals(model, s);
+  }
+};
+
+// GpuSimulator::step() `substeps` times, then the normals, from the CPU cloth's state (from
+// the simulator's own initial upload when there was no warm-up); `cpu` does the same.
+State<float> run_gpu(const CpuCloth& cpu, int substeps) {
+  GpuSimulator gpu(cpu.scene, cpu.model, compute_dir());
+  if (cpu.frames > 0) gpu.upload(cpu.s);
+  for (int k = 0; k < substeps; ++k) gpu.step();
+  gpu.compute_normals();
+  State<float> g;
+  gpu.download(g);
+  return g;
+}
+
+void check_run(const Scene& scene, int warmup_frames, int substeps) {
+  CpuCloth cpu(scene, warmup_frames);
+  const State<float> g = run_gpu(cpu, substeps);
+  cpu.run(substeps);
+  check_same("positions", g.pos, cpu.s.pos, kRunTolerance);
+  check_same("previous positions", g.prev, cpu.s.prev, kRunTolerance);
+  check_same("normals", g.normal, cpu.s.normal, kRunTolerance);
+}
+
+}  // namespace
+
+TEST_CASE("each GPU pass matches the reference from an identical state on a 7x5 cloth", "[gpu]") {
+  REQUIRE_GL_CONTEXT();
+  check_passes_on_grid(7, 5);
+  CHECK_NO_GL_ERRORS();
+}
+
+TEST_CASE("each GPU pass matches the reference from an identical state on a 33x17 cloth", "[gpu]") {
+  REQUIRE_GL_CONTEXT();
+  check_passes_on_grid(33, 17);
+  CHECK_NO_GL_ERRORS();
+}
+
+TEST_CASE("each GPU pass matches the reference from an identical state on a 131x129 cloth, "
+          "wider and taller than a workgroup",
+          "[gpu]") {
+  REQUIRE_GL_CONTEXT();
+  static_assert(WORKGROUP_SIZE < 129, "the grid must be larger than a workgroup in both directions");
+  check_passes_on_grid(131, 129);
+  CHECK_NO_GL_ERRORS();
+}
+
+TEST_CASE("50 GPU substeps match 50 reference substeps on a 33x17 cloth", "[gpu]") {
+  REQUIRE_GL_CONTEXT();
+  SECTION("from the initial state the simulator uploads itself") { check_run(pressed_cloth(33, 17), 0, 50); }
+  SECTION("from a state in contact with the sphere and the plane") {
+    check_run(pressed_cloth(33, 17), kWarmupFrames, 50);
+  }
+  CHECK_NO_GL_ERRORS();
+}
+
+TEST_CASE("4 GPU substeps match 4 reference substeps on a 131x129 cloth in contact", "[gpu]") {
+  REQUIRE_GL_CONTEXT();
+  check_run(pressed_cloth(131, 129), kWarmupFrames, 4);
+  CHECK_NO_GL_ERRORS();
+}
+
+TEST_CASE("pinned masses are bitwise unchanged after a GPU run, inside a sphere and on a plane too", "[gpu]") {
+  REQUIRE_GL_CONTEXT();
+  // Pins at the two corners of the z = 0 edge and in the middle; the middle one sits inside
+  // a small sphere, the (1, 1, 0) corner exactly on a plane, where both would move it.
+  const Scene scene = test::make_scene(
+      33, 17, 0, {"cloth.pinned=[[0,0],[32,0],[16,8]]", "simulation.self_collision=false"},
+      R"(, "sphere": {"origin": [0.51, 1.0, 0.5], "radius": 0.05, "friction": 0.3},
+           "plane": {"point": [1.0, 0.0, 0.0], "normal": [1.0, 0.0, 0.0], "friction": 0.5})");
+  const ClothModel model = build_cloth(scene.cloth);
+  const State<float> initial = initial_state<float>(model);
+  GpuSimulator gpu(scene, model, compute_dir());
+  for (int f = 0; f < 2; ++f) gpu.step_frame();
+  State<float> g;
+  gpu.download(g);
+  const std::vector<int> pins = {model.index(0, 0), model.index(32, 0), model.index(16, 8)};
+  for (int i : pins) {
+    INFO("pinned particle " << i);
+    CHECK(initial.pos[i].w == 0.f);
+    CHECK(std::memcmp(&g.pos[i], &initial.pos[i], sizeof(g.pos[i])) == 0);
+    CHECK(std::memcmp(&g.prev[i], &initial.pos[i], sizeof(g.prev[i])) == 0);
+  }
+  CHECK(changed(initial.pos, g.pos) == initial.pos.size() - pins.size());  // everything else moved
+  CHECK_NO_GL_ERRORS();
+}
+
+TEST_CASE("two GPU runs from the same scene give bitwise identical buffers", "[gpu]") {
+  REQUIRE_GL_CONTEXT();
+  const Scene scene = pressed_cloth(33, 17);
+  const ClothModel model = build_cloth(scene.cloth);
+  State<float> runs[2];
+  for (State<float>& run : runs) {
+    GpuSimulator gpu(scene, model, compute_dir());
+    for (int f = 0; f < kWarmupFrames + 1; ++f) gpu.step_frame();
+    gpu.download(run);
+  }
+  CHECK(mismatches(runs[0].pos, runs[1].pos) == 0);
+  CHECK(mismatches(runs[0].prev, runs[1].prev) == 0);
+  CHECK(mismatches(runs[0].force, runs[1].force) == 0);
+  CHECK(mismatches(runs[0].normal, runs[1].normal) == 0);
+  CHECK(changed(initial_state<float>(model).pos, runs[0].pos) > 0);
+  CHECK_NO_GL_ERRORS();
+}
+
+TEST_CASE("a second sphere and a second plane act on the GPU as on the CPU", "[gpu]") {
+  REQUIRE_GL_CONTEXT();
+  const Scene scene = pressed_cloth(33, 17, {}, kTwoSpheresTwoPlanes);
+  check_exercised(scene, build_cloth(scene.cloth), kWarmupFrames);
+  check_each_pass(scene, kWarmupFrames);
+  const int warmup = kWarmupFrames - 1, substeps = 50;
+  check_run(scene, warmup, substeps);
+  // Each collider changes that run on the CPU, so a GPU that skipped one would not match.
+  CpuCloth all(scene, warmup);
+  all.run(substeps);
+  for (int k = 0; k < 4; ++k) {
+    CpuCloth without(scene, warmup);
+    if (k < 2)
+      without.c.spheres.erase(without.c.spheres.begin() + k);
+    else
+      without.c.planes.erase(without.c.planes.begin() + (k - 2));
+    without.run(substeps);
+    INFO((k < 2 ? "sphere " : "plane ") << k % 2);
+    CHECK(changed(all.s.pos, without.s.pos) > 0);
+  }
+  CHECK_NO_GL_ERRORS();
+}
+
+TEST_CASE("the GPU matches the reference with spring types off, more constraint iterations, "
+          "no damping, no colliders, or a vertical cloth",
+          "[gpu]") {
+  REQUIRE_GL_CONTEXT();
+  struct Variant {
+    const char* name;
+    std::vector<std::string> sets;
+    const char* colliders = kSphereAndPlane;
+    int orientation = 0;
+  };
+  const Variant v = GENERATE(values<Variant>({
+      {"bending springs off", {"cloth.enable_bending=false"}},
+      {"shearing springs off", {"cloth.enable_shearing=false"}},
+      {"only bending springs", {"cloth.enable_structural=false", "cloth.enable_shearing=false"}},
+      {"three constraint iterations, max_stretch 0.02",
+       {"simulation.constraint_iterations=3", "simulation.max_stretch=0.02"}},
+      {"no damping, sideways gravity", {"cloth.damping=0", "simulation.gravity=[1.5, -9.8, 2.5]"}},
+      {"no colliders", {}, ""},
+      {"vertical cloth",
+       {},
+       R"(, "sphere": {"origin": [0.5, 0.5, 0.1], "radius": 0.15, "friction": 0.2},
+            "plane": {"point": [0.0, 0.3, 0.0], "normal": [0.0, 1.0, 0.0], "friction": 0.5})",
+       1},
+  }));
+  INFO(v.name);
+  const Scene scene = pressed_cloth(17, 11, v.sets, v.colliders, v.orientation);
+  check_each_pass(scene, 6);
+  check_run(scene, 5, 30);
+  CHECK_NO_GL_ERRORS();
+}
