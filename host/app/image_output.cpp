@@ -4,16 +4,19 @@
 #include <filesystem>
 
 #include <fmt/format.h>
-#include <stb/stb_image_write.h>
 
 #include "cli_common.hpp"
+#include "png.hpp"
 
 namespace clothsim {
 namespace fs = std::filesystem;
 
 void write_png(const std::string& path, int w, int h, const std::vector<uint8_t>& rgba) {
-  if (!stbi_write_png(path.c_str(), w, h, 4, rgba.data(), w * 4))
-    throw ExitError(kExitBadInput, fmt::format("{}: cannot write the PNG", path));
+  try {
+    write_png_file(path, w, h, rgba);
+  } catch (const std::runtime_error& e) {
+    throw ExitError(kExitBadInput, e.what());
+  }
 }
 
 FrameSink::FrameSink(const std::string& out, int w, int h, double fps) : out_(out), width_(w), height_(h) {

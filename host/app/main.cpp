@@ -8,12 +8,13 @@
 int main(int argc, char** argv) {
   using namespace clothsim;
   CLI::App app{"clothsim: a GPU cloth simulator (OpenGL 4.3 compute shaders) with a CPU reference", "clothsim"};
-  app.require_subcommand(1);
+  app.require_subcommand(0, 1);
   app.failure_message(CLI::FailureMessage::help);  // a usage error shows the usage
   std::function<int()> run;
   add_simulate_command(app, run);
   add_validate_command(app, run);
   add_render_command(app, run);
+  add_viewer_options(app, run);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

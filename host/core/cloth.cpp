@@ -14,12 +14,16 @@ double vertical_offset(uint32_t i) {
   return (2.0 * u - 1.0) * 1e-3;
 }
 
+double particle_mass(const ClothParams& p) {
+  return p.width * p.height * p.density / (double(p.num_width_points) * double(p.num_height_points));
+}
+
 ClothModel build_cloth(const ClothParams& p) {
   ClothModel m;
   m.nw = p.num_width_points;
   m.nh = p.num_height_points;
   const int n = m.count();
-  m.mass = p.width * p.height * p.density / double(n);
+  m.mass = particle_mass(p);
   const double sx = p.width / (m.nw - 1), sy = p.height / (m.nh - 1);
 
   m.initial.resize(n);

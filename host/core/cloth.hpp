@@ -36,6 +36,9 @@ struct ClothModel {
 
 ClothModel build_cloth(const ClothParams& params);
 
+// Mass of every particle: width * height * density / particle count (kg).
+double particle_mass(const ClothParams& params);
+
 // The z offset of a vertical cloth's particle i, in [-1e-3, 1e-3]: a hash of the index, so
 // the same cloth comes out on every machine and both backends (no std:: distribution).
 double vertical_offset(uint32_t i);

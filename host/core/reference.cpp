@@ -11,7 +11,8 @@ template <class R> Constants<R> make_constants(const Scene& scene, const ClothMo
   const double dt = scene.dt();
   // Derived values are formed in double and rounded once, identically for the GPU upload.
   c.gravity = Vec3<R>(sp.gravity);
-  c.mass = R(model.mass);
+  c.mass = R(particle_mass(cp));  // from the scene, so a live density edit takes effect
+  (void)model;
   c.ks = R(cp.ks);
   c.ks_bending = R(0.2 * cp.ks);
   c.keep_velocity = R(1.0 - cp.damping / 100.0);

@@ -36,8 +36,10 @@ template <class T> void upload_at_least_one(gl::Buffer& b, std::vector<T> v) {
 
 GpuSimulator::GpuSimulator(const Scene& scene, const ClothModel& model, const std::filesystem::path& dir)
     : model_(model),
+      dir_(dir),
       constants_(make_constants<float>(scene, model)),
       params_(make_params(constants_, model)),
+      inverse_mass_(float(1.0 / model.mass)),
       groups_(gl::workgroups_for(model.count(), WORKGROUP_SIZE)),
       accumulate_forces_(load_pass(dir, "accumulate_forces")),
       integrate_(load_pass(dir, "integrate")),
@@ -64,7 +66,7 @@ GpuSimulator::GpuSimulator(const Scene& scene, const ClothModel& model, const st
   std::vector<layout::PlaneCollider> planes;
   for (auto& p : constants_.planes) planes.push_back({v4(p.point, 0.f), v4(p.normal, p.keep)});
   upload_at_least_one(planes_, planes);
-  step_params_.allocate(sizeof(params_), &params_, GL_STATIC_DRAW);
+  step_params_.allocate(sizeof(params_), &params_, GL_DYNAMIC_DRAW);
   forces_.allocate(n * sizeof(glm::vec4));
   // The hash table is sized once; start[table_size] is the total, always n.
   table_size_ = params_.grid.w;
@@ -76,6 +78,50 @@ GpuSimulator::GpuSimulator(const Scene& scene, const ClothModel& model, const st
   cell_entries_.allocate(n * sizeof(uint32_t));
   normals_.allocate(n * sizeof(glm::vec4));
   upload(initial_state<float>(model));
+  compute_normals();
+}
+
+void GpuSimulator::set_parameters(const Scene& scene) {
+  const float old_mass = constants_.mass;
+  constants_ = make_constants<float>(scene, model_);
+  inverse_mass_ = float(1.0 / particle_mass(scene.cloth));
+  params_ = make_params(constants_, model_);
+  step_params_.upload(0, sizeof(params_), &params_);
+  std::vector<layout::SphereCollider> spheres;
+  for (auto& s : constants_.spheres) spheres.push_back({v4(s.origin, s.radius), {s.keep, 0.f, 0.f, 0.f}});
+  upload_at_least_one(spheres_, spheres);
+  std::vector<layout::PlaneCollider> planes;
+  for (auto& p : constants_.planes) planes.push_back({v4(p.point, 0.f), v4(p.normal, p.keep)});
+  upload_at_least_one(planes_, planes);
+  if (constants_.mass != old_mass) {
+    // Density changed: every free particle's inverse mass follows (an edit-time read-back).
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    auto pos = gl::download_vector<glm::vec4>(positions_);
+    for (auto& p : pos) if (p.w != 0.f) p.w = inverse_mass_;
+    positions_.upload(0, pos.size() * sizeof(glm::vec4), pos.data());
+  }
+}
+
+void GpuSimulator::hold_particle(int i, const glm::vec3& position) {
+  const glm::vec4 p(position, 0.f);
+  // Both buffers, so the held particle has no velocity; shaders read them next substep.
+  positions_.upload(size_t(i) * sizeof(glm::vec4), sizeof(p), &p);
+  previous_.upload(size_t(i) * sizeof(glm::vec4), sizeof(p), &p);
+}
+
+void GpuSimulator::release_particle(int i) {
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  glm::vec4 p;
+  positions_.download(size_t(i) * sizeof(glm::vec4), sizeof(p), &p);
+  p.w = model_.pinned[i] ? 0.f : inverse_mass_;
+  positions_.upload(size_t(i) * sizeof(glm::vec4), sizeof(p), &p);
+}
+
+void GpuSimulator::reset() {
+  State<float> s = initial_state<float>(model_);
+  for (auto& p : s.pos) if (p.w != 0.f) p.w = inverse_mass_;
+  s.prev = s.pos;
+  upload(s);
   compute_normals();
 }
 

@@ -45,18 +45,30 @@ class GpuSimulator {
   void upload(const State<float>& state);  // pos, prev, and force when present
   void download(State<float>& state);  // pos, prev, force, normal
 
+  // Live edits from the viewer. Parameters that keep the grid (stiffness, damping, density,
+  // gravity, steps, thickness, ...) apply without a restart; a changed mass rescales every
+  // inverse mass in place. The grid itself (size, points, orientation, pins) needs a new simulator.
+  void set_parameters(const Scene& scene);
+  // Holds particle i at `position` (pos and prev, inverse mass 0) until release_particle.
+  void hold_particle(int i, const glm::vec3& position);
+  void release_particle(int i);  // back to its own inverse mass (0 if it is pinned)
+  void reset();                  // back to the initial state
+
   // The buffers the renderer reads in place.
   const gl::Buffer& positions() const { return positions_; }
   const gl::Buffer& normals() const { return normals_; }
   int dispatches_per_substep() const;
+  const Constants<float>& constants() const { return constants_; }
 
  private:
   void bind_all() const;
   void dispatch(gl::Program& program);
 
   const ClothModel& model_;
+  const std::filesystem::path dir_;
   Constants<float> constants_;
   layout::StepParams params_{};
+  float inverse_mass_;  // of a free particle, for the current density
   GLuint groups_ = 0;
   gl::Buffer positions_{"positions"}, previous_{"previous"}, forces_{"forces"}, normals_{"normals"};
   gl::Buffer rest_{"rest lengths"}, spheres_{"spheres"}, planes_{"planes"}, step_params_{"step params"};

@@ -58,8 +58,8 @@ OrbitCamera default_camera(const Scene& scene, const ClothModel& model, float as
   cam.target = glm::vec3((lo + hi) * 0.5);
   const float radius = float(glm::length(hi - lo) * 0.5);
   const float half_fov = std::min(cam.fov_y, 2.f * std::atan(std::tan(cam.fov_y / 2) * aspect)) / 2;
-  // The bounding sphere of a box is loose for a flat cloth: 0.85 of it still frames everything.
-  cam.distance = radius / std::sin(half_fov) * 0.85f;
+  // The bounding sphere of a box is loose for a flat cloth: 0.95 of it still frames everything.
+  cam.distance = radius / std::sin(half_fov) * 0.95f;
   return cam;
 }
 

@@ -1,0 +1,53 @@
+// `clothsim [SCENE] [-f SCENE] [-a LAT] [-o LON] [-r ROOT] [--frames N --screenshot FILE.png]`:
+// the interactive viewer, the default command, with the classic flags.
+#include <fmt/format.h>
+
+#include "cli_common.hpp"
+#include "commands.hpp"
+#include "gpu_simulator.hpp"
+#include "viewer.hpp"
+
+namespace clothsim {
+
+void add_viewer_options(CLI::App& app, std::function<int()>& run) {
+  struct Opts {
+    std::string positional, file, root, screenshot, size = "1280x800";
+    std::vector<std::string> sets;
+    int lat = 40, lon = 40, frames = -1;
+  };
+  auto o = std::make_shared<Opts>();
+  app.add_option("scene", o->positional, "scene JSON file for the viewer (default: the built-in pinned2)");
+  app.add_option("-f", o->file, "scene JSON file (the classic flag)");
+  app.add_option("-a", o->lat, "sphere latitude resolution")->check(CLI::Range(3, 1000))->capture_default_str();
+  app.add_option("-o", o->lon, "sphere longitude resolution")->check(CLI::Range(3, 1000))->capture_default_str();
+  app.add_option("-r", o->root, "project root with shaders/, compute/, textures/ (found automatically)");
+  app.add_option("--set", o->sets, "override a scene value, e.g. --set cloth.ks=500 (repeatable)")
+      ->type_name("KEY=VALUE")
+      ->allow_extra_args(false);
+  app.add_option("--frames", o->frames, "scripted: run N frames unpaused, save --screenshot, exit")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--screenshot", o->screenshot, "scripted: PNG of the window (panels included) after --frames");
+  app.add_option("--window", o->size, "window size WIDTHxHEIGHT")->capture_default_str();
+  app.final_callback([o, &app, &run] {
+    if (app.get_subcommands().size() > 0) return;  // a subcommand ran its own callback
+    run = [o]() -> int {
+      if (!o->positional.empty() && !o->file.empty())
+        throw ExitError(kExitBadInput, "give the scene once: either SCENE or -f SCENE");
+      if ((o->frames >= 0) != !o->screenshot.empty())
+        throw ExitError(kExitBadInput, "--frames and --screenshot go together (scripted mode)");
+      ViewerOptions v;
+      v.root = find_project_root(o->root);
+      v.scene_path = o->file.empty() ? o->positional : o->file;
+      v.sets = o->sets;
+      v.sphere_lat = o->lat;
+      v.sphere_lon = o->lon;
+      v.frames = o->frames;
+      v.screenshot = o->screenshot;
+      if (std::sscanf(o->size.c_str(), "%dx%d", &v.width, &v.height) != 2 || v.width < 64 || v.height < 64)
+        throw ExitError(kExitBadInput, fmt::format("--window {}: expected WIDTHxHEIGHT, at least 64x64", o->size));
+      return run_viewer(v);
+    };
+  });
+}
+
+}  // namespace clothsim

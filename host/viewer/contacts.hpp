@@ -1,0 +1,13 @@
+// Self-collision contacts of a cloth state (pairs closer than the contact distance), found
+// with the same hashed grid as the reference; the viewer's Stats panel shows the count.
+#pragma once
+
+#include <vector>
+
+#include <glm/vec4.hpp>
+
+namespace clothsim {
+
+int count_self_contacts(const std::vector<glm::vec4>& positions, float contact_distance);
+
+}  // namespace clothsim

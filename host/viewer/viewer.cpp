@@ -1,0 +1,29 @@
+#include "viewer.hpp"
+
+#include <fmt/format.h>
+
+#include "viewer_app.hpp"
+
+namespace clothsim {
+
+int run_viewer(const ViewerOptions& o) {
+  std::string why;
+  auto window = GlfwWindow::create("clothsim", o.width, o.height, true, &why);
+  if (!window) {
+    fmt::print(stderr,
+               "error: {}\n  The viewer needs a display and an OpenGL 4.3 driver. Without a display, render "
+               "headless instead, e.g.\n    clothsim render scenes/pinned2.json --frames 90 --out pinned2.mp4\n",
+               why);
+    return 3;
+  }
+  Viewer viewer(o, std::move(window));
+  try {
+    viewer.load(o.scene_path.empty() ? default_scene(o.sets) : load_scene(o.scene_path, o.sets));
+  } catch (const SceneError& e) {
+    fmt::print(stderr, "error: {}\n", e.what());
+    return 2;
+  }
+  return viewer.run();
+}
+
+}  // namespace clothsim
