@@ -14,7 +14,12 @@ int main(int argc, char** argv) {
   add_simulate_command(app, run);
   add_validate_command(app, run);
   add_render_command(app, run);
+  add_bench_command(app, run);
+#ifdef CLOTHSIM_WITH_VIEWER
   add_viewer_options(app, run);
+#else
+  app.require_subcommand(1);  // the headless build has no viewer to default to
+#endif
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -125,6 +125,23 @@ void GpuSimulator::reset() {
   compute_normals();
 }
 
+void GpuSimulator::barrier(GLbitfield bits) {
+  glMemoryBarrier(bits);
+  ++counters_.barriers;
+}
+
+GpuCounters GpuSimulator::counters() const {
+  return {counters_.dispatches + scan_.counters().dispatches, counters_.barriers + scan_.counters().barriers};
+}
+
+size_t GpuSimulator::memory_bytes() const {
+  size_t total = 0;
+  for (const gl::Buffer* b : {&positions_, &previous_, &forces_, &normals_, &rest_, &spheres_, &planes_,
+                              &step_params_, &positions_out_, &cell_count_, &cell_start_, &cell_entries_})
+    total += b->size();
+  return total + scan_.memory_bytes();
+}
+
 void GpuSimulator::bind_all() const {
   positions_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_POSITIONS);
   previous_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_PREVIOUS);
@@ -145,25 +162,26 @@ void GpuSimulator::dispatch(gl::Program& program) {
   // every pass re-asserts them: a handful of cheap calls next to a dispatch.
   bind_all();
   program.dispatch(groups_);
+  ++counters_.dispatches;
 }
 
 void GpuSimulator::accumulate_forces() {
   dispatch(accumulate_forces_);
   // integrate reads the forces next.
-  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  barrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }
 
 void GpuSimulator::integrate() {
   dispatch(integrate_);
   // collide_self / collide_objects read the new positions and previous positions next.
-  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  barrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }
 
 void GpuSimulator::count_cells() {
   cell_count_.clear_to_zero();
   dispatch(count_cells_);
   // scan_cells copies the counts next (a buffer copy, hence BUFFER_UPDATE).
-  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  barrier(GL_BUFFER_UPDATE_BARRIER_BIT);
 }
 
 void GpuSimulator::scan_cells() {
@@ -175,14 +193,15 @@ void GpuSimulator::fill_cells() {
   cell_count_.clear_to_zero();  // reused as the per-bucket cursors
   dispatch(fill_cells_);
   // sort_cells reads the entries next.
-  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  barrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }
 
 void GpuSimulator::sort_cells() {
   bind_all();
   sort_cells_.dispatch(gl::workgroups_for(table_size_, WORKGROUP_SIZE));
+  ++counters_.dispatches;
   // collide_self reads the sorted entries next.
-  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  barrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }
 
 void GpuSimulator::collide_self() {
@@ -195,11 +214,11 @@ void GpuSimulator::collide_self() {
   // substep's count_cells clears the cursors fill_cells wrote, and scan_cells copies over the
   // starts the scan wrote: buffer updates after shader writes (BUFFER_UPDATE).
   std::swap(positions_, positions_out_);
-  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+  barrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
 }
 
 void GpuSimulator::download_hash(SpatialHash& h) {
-  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);  // a read-back, not part of a step
   h.table_size = table_size_;
   h.count = gl::download_vector<uint32_t>(cell_count_);
   h.start = gl::download_vector<uint32_t>(cell_start_);
@@ -210,14 +229,14 @@ void GpuSimulator::collide_objects() {
   if (constants_.spheres.empty() && constants_.planes.empty()) return;
   dispatch(collide_objects_);
   // solve_length_constraints reads the projected positions next.
-  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  barrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }
 
 void GpuSimulator::solve_length_constraint_colour(int colour) {
   solve_length_constraints_.set("u_colour", colour);
   dispatch(solve_length_constraints_);
   // The next colour (or the next substep's accumulate_forces) reads these positions.
-  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  barrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }
 
 void GpuSimulator::solve_length_constraints() {
@@ -231,7 +250,7 @@ void GpuSimulator::solve_length_constraints() {
 void GpuSimulator::compute_normals() {
   dispatch(compute_normals_);
   // The vertex shader pulls normals (and a read-back may follow).
-  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+  barrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
 }
 
 void GpuSimulator::step() {

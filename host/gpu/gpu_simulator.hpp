@@ -58,17 +58,21 @@ class GpuSimulator {
   const gl::Buffer& positions() const { return positions_; }
   const gl::Buffer& normals() const { return normals_; }
   int dispatches_per_substep() const;
+  GpuCounters counters() const;   // dispatches and barriers issued so far
+  size_t memory_bytes() const;    // GPU buffer memory this simulator owns
   const Constants<float>& constants() const { return constants_; }
 
  private:
   void bind_all() const;
+  void barrier(GLbitfield bits);  // glMemoryBarrier, counted
   void dispatch(gl::Program& program);
 
   const ClothModel& model_;
   const std::filesystem::path dir_;
   Constants<float> constants_;
   layout::StepParams params_{};
-  float inverse_mass_;  // of a free particle, for the current density
+  float inverse_mass_;
+  GpuCounters counters_;  // of a free particle, for the current density
   GLuint groups_ = 0;
   gl::Buffer positions_{"positions"}, previous_{"previous"}, forces_{"forces"}, normals_{"normals"};
   gl::Buffer rest_{"rest lengths"}, spheres_{"spheres"}, planes_{"planes"}, step_params_{"step params"};

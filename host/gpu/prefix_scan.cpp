@@ -36,6 +36,8 @@ void PrefixScan::scan_level(const gl::Buffer& data, size_t count, size_t level) 
   sums_[level].bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_SCAN_SUMS);
   scan_.set("u_count", unsigned(count));
   scan_.dispatch(GLuint(blocks));
+  counters_.dispatches += 1;
+  counters_.barriers += 1;
   // The next level scans the block sums (or add_scan_offsets reads them).
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
   if (blocks == 1) return;
@@ -44,8 +46,16 @@ void PrefixScan::scan_level(const gl::Buffer& data, size_t count, size_t level) 
   sums_[level].bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_SCAN_SUMS);
   add_offsets_.set("u_count", unsigned(count));
   add_offsets_.dispatch(gl::workgroups_for(count, WORKGROUP_SIZE));
+  counters_.dispatches += 1;
+  counters_.barriers += 1;
   // fill_cells (or the level above) reads the finished prefix sums next.
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
+size_t PrefixScan::memory_bytes() const {
+  size_t total = 0;
+  for (const auto& b : sums_) total += b.size();
+  return total;
 }
 
 int PrefixScan::dispatches(size_t count) const {

@@ -12,6 +12,11 @@
 
 namespace clothsim {
 
+// Work issued to the GPU, for the bench's dispatch and barrier counts.
+struct GpuCounters {
+  long dispatches = 0, barriers = 0;
+};
+
 class PrefixScan {
  public:
   static constexpr unsigned kBlock = 2 * WORKGROUP_SIZE;  // elements per workgroup
@@ -20,12 +25,15 @@ class PrefixScan {
   // Scans the first `count` uints of `data` in place (count <= max_count).
   void scan(const gl::Buffer& data, size_t count);
   int dispatches(size_t count) const;  // for the dispatch/barrier count of a frame
+  const GpuCounters& counters() const { return counters_; }
+  size_t memory_bytes() const;
 
  private:
   void scan_level(const gl::Buffer& data, size_t count, size_t level);
 
   gl::Program scan_, add_offsets_;
   std::vector<gl::Buffer> sums_;  // sums_[k]: block totals of level k
+  GpuCounters counters_;
 };
 
 }  // namespace clothsim

@@ -1,0 +1,93 @@
+// `clothsim bench [--sizes ...] [--backend gpu,cpu] [--frames N] [--self-collision on|off|both]
+// [--json FILE]`: throughput of both backends on square cloths (pinned corners, a sphere, a plane).
+#include <chrono>
+#include <fstream>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "bench_runner.hpp"
+#include "cli_common.hpp"
+#include "commands.hpp"
+
+namespace clothsim {
+namespace {
+
+struct Opts {
+  std::vector<int> sizes{32, 64, 128, 256, 512, 1024};
+  std::vector<std::string> backends{"gpu", "cpu"};
+  int frames = 10;
+  std::string self_collision = "both", json_path, root;
+  double cpu_limit_s = 60;
+};
+
+int run_bench(const Opts& o) {
+  std::vector<bool> sc_modes;
+  if (o.self_collision != "on") sc_modes.push_back(false);
+  if (o.self_collision != "off") sc_modes.push_back(true);
+  for (int n : o.sizes)
+    if (n < 3 || n > 4096) throw ExitError(kExitBadInput, fmt::format("--sizes: {} is outside [3, 4096]", n));
+  for (auto& b : o.backends) parse_backend(b);
+
+  BenchRunner runner(o.root, o.frames);
+  nlohmann::json out = {{"gl_renderer", runner.renderer()}, {"frames", o.frames}, {"results", nlohmann::json::array()},
+                        {"skipped", nlohmann::json::array()}};
+  fmt::print("{:>7} {:>5} {:>4} {:>9} {:>10} {:>14} {:>6} {:>6} {:>9}\n", "backend", "size", "self", "particles",
+             "ms/frame", "p-substeps/s", "disp", "barr", "GPU MiB");
+  int done = 0;
+  const int total = int(o.sizes.size() * o.backends.size() * sc_modes.size());
+  Progress progress("bench configuration", total);
+  for (const auto& backend : o.backends)
+    for (bool sc : sc_modes)
+      for (int n : o.sizes) {
+        progress.update(done);
+        const Scene scene = bench_scene(n, sc);
+        if (backend == "cpu") {
+          const double estimate = runner.estimate_cpu_seconds(scene);
+          if (estimate > o.cpu_limit_s) {
+            const std::string why = fmt::format("cpu {}x{} self-collision {}: skipped, estimated {:.0f} s > {:.0f} s",
+                                                n, n, sc ? "on" : "off", estimate, o.cpu_limit_s);
+            progress.finish();
+            fmt::print("{}\n", why);
+            out["skipped"].push_back(why);
+            ++done;
+            continue;
+          }
+        }
+        const BenchResult r = backend == "gpu" ? runner.run_gpu(scene) : runner.run_cpu(scene);
+        progress.finish();
+        fmt::print("{:>7} {:>5} {:>4} {:>9} {:>10.3f} {:>14.3e} {:>6} {:>6} {:>9.1f}\n", backend, n, sc ? "on" : "off",
+                   r.particles, r.ms_per_frame, r.particle_substeps_per_s, r.dispatches_per_frame, r.barriers_per_frame,
+                   r.gpu_memory_bytes / 1048576.0);
+        out["results"].push_back(to_json(r, backend, n, sc));
+        ++done;
+      }
+  progress.finish();
+  if (!o.json_path.empty()) {
+    std::ofstream f(o.json_path);
+    if (!(f << out.dump(2) << "\n")) throw ExitError(kExitBadInput, fmt::format("--json {}: cannot write", o.json_path));
+    fmt::print("wrote {}\n", o.json_path);
+  }
+  return kExitOk;
+}
+
+}  // namespace
+
+void add_bench_command(CLI::App& app, std::function<int()>& run) {
+  auto o = std::make_shared<Opts>();
+  CLI::App* cmd = app.add_subcommand("bench", "measure throughput of the GPU and CPU backends on square cloths");
+  cmd->add_option("--sizes", o->sizes, "cloth sizes (points per side), comma separated")->delimiter(',')->capture_default_str();
+  cmd->add_option("--backend", o->backends, "gpu, cpu or gpu,cpu")->delimiter(',')->capture_default_str();
+  cmd->add_option("--frames", o->frames, "timed frames per configuration (after 2 warm-up frames)")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cmd->add_option("--self-collision", o->self_collision, "on, off or both")
+      ->check(CLI::IsMember({"on", "off", "both"}))
+      ->capture_default_str();
+  cmd->add_option("--json", o->json_path, "write the results as JSON");
+  cmd->add_option("--cpu-limit", o->cpu_limit_s, "skip CPU runs estimated to take longer (seconds)")->capture_default_str();
+  cmd->add_option("-r,--root", o->root, "project root (compute/)");
+  cmd->callback([o, &run] { run = [o] { return run_bench(*o); }; });
+}
+
+}  // namespace clothsim

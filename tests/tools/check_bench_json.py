@@ -1,0 +1,41 @@
+#!/usr/bin/python3
+"""Validates the shape of `clothsim bench --json` output (every field the bench promises).
+
+usage: check_bench_json.py BENCH.json EXPECTED_RESULTS
+"""
+import json
+import math
+import sys
+
+FIELDS = {"backend": str, "size": int, "particles": int, "self_collision": bool, "substeps_per_frame": int,
+          "ms_per_frame": float, "particle_substeps_per_s": float, "pass_ms": dict, "pass_timing": str,
+          "dispatches_per_frame": (int, float), "barriers_per_frame": (int, float), "gpu_memory_bytes": int}
+PASSES = {"accumulate_forces", "integrate", "collide_self", "collide_objects", "solve_length_constraints",
+          "compute_normals"}
+
+
+def main():
+    data = json.load(open(sys.argv[1]))
+    expected = int(sys.argv[2])
+    assert isinstance(data["gl_renderer"], str) and data["gl_renderer"], "gl_renderer missing"
+    results = data["results"]
+    assert len(results) + len(data["skipped"]) == expected, f"{len(results)} results, expected {expected}"
+    for r in results:
+        for key, kind in FIELDS.items():
+            assert key in r, f"missing {key} in {r}"
+            value = r[key]
+            if kind is float:
+                assert isinstance(value, (int, float)) and math.isfinite(value) and value > 0, f"{key} = {value}"
+            else:
+                assert isinstance(value, kind), f"{key} has type {type(value).__name__}"
+        assert r["particles"] == r["size"] ** 2
+        assert set(r["pass_ms"]) == PASSES, sorted(r["pass_ms"])
+        if r["backend"] == "gpu":
+            assert r["dispatches_per_frame"] > 0 and r["barriers_per_frame"] > 0 and r["gpu_memory_bytes"] > 0
+            # one dispatch per pass, per colour: at least forces + integrate + 12 colours per substep
+            assert r["dispatches_per_frame"] >= 14 * r["substeps_per_frame"]
+    print(f"{sys.argv[1]}: {len(results)} results, all fields present")
+
+
+if __name__ == "__main__":
+    main()
