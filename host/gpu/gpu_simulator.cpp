@@ -32,10 +32,30 @@ template <class T> void upload_at_least_one(gl::Buffer& b, std::vector<T> v) {
   gl::upload_vector(b, v, GL_STATIC_DRAW);
 }
 
+// Too large a cloth is bad input, reported before any allocation rather than as a driver
+// failure: every per-particle buffer must fit one storage block, every dispatch the group count.
+void check_gpu_limits(const Scene& scene, const ClothModel& m) {
+  GLint64 max_block = 0;
+  GLint max_groups = 0;
+  glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
+  glGetIntegeri_v(GL_MAX_COMPUTE_WORK_GROUP_COUNT, 0, &max_groups);
+  const uint64_t largest = uint64_t(m.count()) * sizeof(layout::RestLengths);
+  const uint64_t groups = (uint64_t(hash_table_size(uint32_t(m.count()))) + WORKGROUP_SIZE - 1) / WORKGROUP_SIZE;
+  const std::string grid = fmt::format("a {}x{} grid", m.nw, m.nh);
+  if (max_block > 0 && largest > uint64_t(max_block))
+    throw SceneError(fmt::format("{}: cloth.num_width_points: {} needs {} bytes in one storage buffer, more than "
+                                 "this GPU's GL_MAX_SHADER_STORAGE_BLOCK_SIZE ({} bytes)",
+                                 scene.source, grid, largest, max_block));
+  if (max_groups > 0 && groups > uint64_t(max_groups))
+    throw SceneError(fmt::format("{}: cloth.num_width_points: {} needs {} workgroups in one dispatch, more than "
+                                 "this GPU's GL_MAX_COMPUTE_WORK_GROUP_COUNT ({})",
+                                 scene.source, grid, groups, max_groups));
+}
+
 }  // namespace
 
 GpuSimulator::GpuSimulator(const Scene& scene, const ClothModel& model, const std::filesystem::path& dir)
-    : model_(model),
+    : model_((check_gpu_limits(scene, model), model)),
       dir_(dir),
       constants_(make_constants<float>(scene, model)),
       params_(make_params(constants_, model)),
