@@ -15,22 +15,7 @@ gl::Program load_pass(const std::filesystem::path& dir, const char* name) {
 
 glm::vec4 v4(const Vec3<float>& v, float w) { return {v.x, v.y, v.z, w}; }
 
-layout::StepParams make_params(const Constants<float>& c, const ClothModel& m) {
-  layout::StepParams p{};
-  p.gravity_mass = v4(c.gravity, c.mass);
-  p.springs = {c.ks, c.ks_bending, c.keep_velocity, c.dt2};
-  p.constraint = {c.stretch_limit, c.contact_distance, c.inv_cell, c.steps};
-  p.grid = {uint32_t(m.nw), uint32_t(m.nh), uint32_t(m.count()), hash_table_size(uint32_t(m.count()))};
-  p.enabled = {c.enabled[0], c.enabled[1], c.enabled[2], 0u};
-  p.colliders = {uint32_t(c.spheres.size()), uint32_t(c.planes.size()), 0u, 0u};
-  return p;
-}
 
-// A storage buffer may not be empty when bound: keep one dummy element for zero colliders.
-template <class T> void upload_at_least_one(gl::Buffer& b, std::vector<T> v) {
-  if (v.empty()) v.resize(1);
-  gl::upload_vector(b, v, GL_STATIC_DRAW);
-}
 
 // Too large a cloth is bad input, reported before any allocation rather than as a driver
 // failure: every per-particle buffer must fit one storage block, every dispatch the group count.
@@ -54,11 +39,22 @@ void check_gpu_limits(const Scene& scene, const ClothModel& m) {
 
 }  // namespace
 
+layout::StepParams make_step_params(const Constants<float>& c, const ClothModel& m) {
+  layout::StepParams p{};
+  p.gravity_mass = v4(c.gravity, c.mass);
+  p.springs = {c.ks, c.ks_bending, c.keep_velocity, c.dt2};
+  p.constraint = {c.stretch_limit, c.contact_distance, c.inv_cell, c.steps};
+  p.grid = {uint32_t(m.nw), uint32_t(m.nh), uint32_t(m.count()), hash_table_size(uint32_t(m.count()))};
+  p.enabled = {c.enabled[0], c.enabled[1], c.enabled[2], 0u};
+  p.colliders = {uint32_t(c.spheres.size()), uint32_t(c.planes.size()), 0u, 0u};
+  return p;
+}
+
 GpuSimulator::GpuSimulator(const Scene& scene, const ClothModel& model, const std::filesystem::path& dir)
     : model_((check_gpu_limits(scene, model), model)),
       dir_(dir),
       constants_(make_constants<float>(scene, model)),
-      params_(make_params(constants_, model)),
+      params_(make_step_params(constants_, model)),
       inverse_mass_(float(1.0 / model.mass)),
       groups_(gl::workgroups_for(model.count(), WORKGROUP_SIZE)),
       accumulate_forces_(load_pass(dir, "accumulate_forces")),
@@ -80,12 +76,7 @@ GpuSimulator::GpuSimulator(const Scene& scene, const ClothModel& model, const st
     rest[i].far = glm::vec4(float(r[4]), float(r[5]), 0.f, 0.f);
   }
   gl::upload_vector(rest_, rest, GL_STATIC_DRAW);
-  std::vector<layout::SphereCollider> spheres;
-  for (auto& s : constants_.spheres) spheres.push_back({v4(s.origin, s.radius), {s.keep, 0.f, 0.f, 0.f}});
-  upload_at_least_one(spheres_, spheres);
-  std::vector<layout::PlaneCollider> planes;
-  for (auto& p : constants_.planes) planes.push_back({v4(p.point, 0.f), v4(p.normal, p.keep)});
-  upload_at_least_one(planes_, planes);
+  upload_colliders();
   step_params_.allocate(sizeof(params_), &params_, GL_DYNAMIC_DRAW);
   forces_.allocate(n * sizeof(glm::vec4));
   // The hash table is sized once; start[table_size] is the total, always n.
@@ -98,50 +89,6 @@ GpuSimulator::GpuSimulator(const Scene& scene, const ClothModel& model, const st
   cell_entries_.allocate(n * sizeof(uint32_t));
   normals_.allocate(n * sizeof(glm::vec4));
   upload(initial_state<float>(model));
-  compute_normals();
-}
-
-void GpuSimulator::set_parameters(const Scene& scene) {
-  const float old_mass = constants_.mass;
-  constants_ = make_constants<float>(scene, model_);
-  inverse_mass_ = float(1.0 / particle_mass(scene.cloth));
-  params_ = make_params(constants_, model_);
-  step_params_.upload(0, sizeof(params_), &params_);
-  std::vector<layout::SphereCollider> spheres;
-  for (auto& s : constants_.spheres) spheres.push_back({v4(s.origin, s.radius), {s.keep, 0.f, 0.f, 0.f}});
-  upload_at_least_one(spheres_, spheres);
-  std::vector<layout::PlaneCollider> planes;
-  for (auto& p : constants_.planes) planes.push_back({v4(p.point, 0.f), v4(p.normal, p.keep)});
-  upload_at_least_one(planes_, planes);
-  if (constants_.mass != old_mass) {
-    // Density changed: every free particle's inverse mass follows (an edit-time read-back).
-    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    auto pos = gl::download_vector<glm::vec4>(positions_);
-    for (auto& p : pos) if (p.w != 0.f) p.w = inverse_mass_;
-    positions_.upload(0, pos.size() * sizeof(glm::vec4), pos.data());
-  }
-}
-
-void GpuSimulator::hold_particle(int i, const glm::vec3& position) {
-  const glm::vec4 p(position, 0.f);
-  // Both buffers, so the held particle has no velocity; shaders read them next substep.
-  positions_.upload(size_t(i) * sizeof(glm::vec4), sizeof(p), &p);
-  previous_.upload(size_t(i) * sizeof(glm::vec4), sizeof(p), &p);
-}
-
-void GpuSimulator::release_particle(int i) {
-  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-  glm::vec4 p;
-  positions_.download(size_t(i) * sizeof(glm::vec4), sizeof(p), &p);
-  p.w = model_.pinned[i] ? 0.f : inverse_mass_;
-  positions_.upload(size_t(i) * sizeof(glm::vec4), sizeof(p), &p);
-}
-
-void GpuSimulator::reset() {
-  State<float> s = initial_state<float>(model_);
-  for (auto& p : s.pos) if (p.w != 0.f) p.w = inverse_mass_;
-  s.prev = s.pos;
-  upload(s);
   compute_normals();
 }
 
@@ -237,13 +184,6 @@ void GpuSimulator::collide_self() {
   barrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
 }
 
-void GpuSimulator::download_hash(SpatialHash& h) {
-  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);  // a read-back, not part of a step
-  h.table_size = table_size_;
-  h.count = gl::download_vector<uint32_t>(cell_count_);
-  h.start = gl::download_vector<uint32_t>(cell_start_);
-  h.entries = gl::download_vector<uint32_t>(cell_entries_);
-}
 
 void GpuSimulator::collide_objects() {
   if (constants_.spheres.empty() && constants_.planes.empty()) return;
@@ -295,20 +235,7 @@ int GpuSimulator::dispatches_per_substep() const {
   return 2 + self + int(colliders) + constants_.iterations * enabled_colours;
 }
 
-void GpuSimulator::upload(const State<float>& s) {
-  gl::upload_vector(positions_, s.pos);
-  gl::upload_vector(previous_, s.prev);
-  if (s.force.size() == s.pos.size()) gl::upload_vector(forces_, s.force);
-}
 
-void GpuSimulator::download(State<float>& s) {
-  // Shader writes must be visible to glGetBufferSubData.
-  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-  s.pos = gl::download_vector<Vec4<float>>(positions_);
-  s.prev = gl::download_vector<Vec4<float>>(previous_);
-  s.force = gl::download_vector<Vec4<float>>(forces_);
-  s.normal = gl::download_vector<Vec4<float>>(normals_);
-}
 
 GpuBackend::GpuBackend(std::unique_ptr<gl::GlContext> context, const Scene& scene, const ClothModel& model,
                        const std::filesystem::path& compute_dir)

@@ -64,6 +64,7 @@ class GpuSimulator {
 
  private:
   void bind_all() const;
+  void upload_colliders();  // from constants_
   void barrier(GLbitfield bits);  // glMemoryBarrier, counted
   void dispatch(gl::Program& program);
 
@@ -83,6 +84,9 @@ class GpuSimulator {
   gl::Program count_cells_, fill_cells_, sort_cells_, collide_self_;
   PrefixScan scan_;
 };
+
+// The parameter block of a substep, from the same Constants<float> the reference uses.
+layout::StepParams make_step_params(const Constants<float>& c, const ClothModel& m);
 
 // The GPU simulator as a Backend: owns the headless context it runs in.
 class GpuBackend final : public Backend {
