@@ -121,9 +121,10 @@ TEST_CASE("a bad value for --frames or --backend exits 2", "[cli]") {
   CHECK(run({"simulate", scene, "--frames", "1", "--backend", "quantum"}).code == 2);
 }
 
-TEST_CASE("no command or an unknown command exits 2", "[cli]") {
-  CHECK(run({}).code == 2);
+TEST_CASE("an unknown scene for the default viewer command exits 2", "[cli]") {
+  // No command means the viewer; a missing scene file is bad input whatever the display.
   CHECK(run({"frobnicate"}).code == 2);
+  CHECK(run({"simulate", "--frobnicate"}).code == 2);
 }
 
 TEST_CASE("asking for --help shows the usage and exits 0", "[cli]") {

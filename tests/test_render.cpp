@@ -30,9 +30,12 @@ namespace {
 constexpr int kWidth = 160, kHeight = 120;
 // Renderer::draw's clear colour (0.16, 0.17, 0.2) in 8 bits.
 constexpr int kBackground[3] = {41, 43, 51};
-// Largest RMS difference per channel (of 255) from a golden image. Measured: 0 on the llvmpipe
-// that made them; up to ~2 when the cloth is simulated in double instead (see tests/golden/README.md).
-constexpr double kGoldenRms = 4.0;
+// Largest RMS difference per channel (of 255) from a golden image. On llvmpipe, which made
+// them and simulates bit for bit like the reference, the run is exact: 1.5 leaves room for
+// another Mesa's rounding and still catches a light 19% dimmer (1.9 to 9.1 in the lit
+// scenes). On other drivers float32 rounding moves the cloth by up to a centimetre (about a
+// pixel) by then; simulating in double instead gives up to 5.1 at edges and texture, hence 8.
+constexpr double kGoldenRmsLlvmpipe = 1.5, kGoldenRmsOther = 8.0;
 // Normal shader: largest difference per channel (of 255) between a pixel and its particle's normal.
 constexpr int kNormalTolerance = 10;
 
@@ -137,19 +140,20 @@ void check_golden(const std::string& name, int frames, ShaderKind shader) {
   stbi_image_free(data);
   REQUIRE(golden.w == actual.w);
   REQUIRE(golden.h == actual.h);
+  const std::string renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+  const double tolerance = renderer.find("llvmpipe") != std::string::npos ? kGoldenRmsLlvmpipe : kGoldenRmsOther;
   const auto actual_path = std::filesystem::current_path() / ("golden_" + name + "_actual.png");
   bool all_close = true;
   for (int c = 0; c < 3; ++c) {
     const double d = rms(actual, golden, c);
-    INFO("channel " << "RGB"[c] << ": RMS difference " << d << " of 255 (tolerance " << kGoldenRms << ")");
-    CHECK(d <= kGoldenRms);
-    all_close = all_close && d <= kGoldenRms;
+    INFO(renderer << ", channel " << "RGB"[c] << ": RMS difference " << d << " of 255 (tolerance " << tolerance << ")");
+    CHECK(d <= tolerance);
+    all_close = all_close && d <= tolerance;
   }
   if (!all_close) {
     write_png(actual_path, actual);
     WARN("this run's image: " << actual_path.string());
   }
-  CHECK_NO_GL_ERRORS();
 }
 
 }  // namespace
@@ -181,11 +185,10 @@ TEST_CASE("the Normal shader colours a pixel with the normal the simulation comp
   Stage stage("pinned4");
   stage.run(30);
   stage.camera.look_from({0.5f, 2.2f, 0.9f}, {0.5f, 0.85f, 0.5f});
-  const Image im = stage.draw(ShaderKind::Normal); write_png("/tmp/r/normal.png", im);
+  const Image im = stage.draw(ShaderKind::Normal);
   State<float> s;
   stage.gpu.download(s);
   const glm::vec3 eye = stage.camera.eye();
-  int worst = 0;
   float spread = 0;
   for (int gy : {8, 16, 25, 33, 41})
     for (int gx : {8, 16, 25, 33, 41}) {
@@ -201,10 +204,8 @@ TEST_CASE("the Normal shader colours a pixel with the normal the simulation comp
         INFO("particle (" << gx << ", " << gy << ") at pixel (" << px.x << ", " << px.y << "), channel " << c
                           << ": pixel " << int(got[c]) << ", normal says " << expected);
         CHECK(std::abs(int(got[c]) - expected) <= kNormalTolerance);
-        worst = std::max(worst, std::abs(int(got[c]) - expected));
       }
     }
-  WARN("worst " << worst << " spread " << spread);
   // The samples must not all be the same colour: the sag tilts the normals away from +y.
   CHECK(spread > 0.2f);
   CHECK_NO_GL_ERRORS();
@@ -217,11 +218,9 @@ TEST_CASE("the Wireframe shader leaves the background showing between the spring
                                     "cloth.pinned=[[0, 0], [9, 0]]"});
   stage.run(5);
   stage.camera.look_from({0.5f, 2.2f, 0.9f}, {0.5f, 0.85f, 0.5f});
-  const Image wim = stage.draw(ShaderKind::Wireframe); write_png("/tmp/r/wire.png", wim);
-  const int wire = count_foreground(wim);
+  const int wire = count_foreground(stage.draw(ShaderKind::Wireframe));
   const int diffuse = count_foreground(stage.draw(ShaderKind::Diffuse));
   INFO("cloth pixels: Wireframe " << wire << ", Diffuse " << diffuse);
-  WARN("cloth pixels: Wireframe " << wire << ", Diffuse " << diffuse);
   CHECK(wire > diffuse / 20);
   CHECK(wire < diffuse / 2);
   CHECK_NO_GL_ERRORS();
@@ -230,22 +229,27 @@ TEST_CASE("the Wireframe shader leaves the background showing between the spring
 TEST_CASE("pinned2 renders like its golden image", "[gpu][render][golden]") {
   REQUIRE_GL_CONTEXT();
   check_golden("pinned2", 40, ShaderKind::Phong);
+  CHECK_NO_GL_ERRORS();
 }
 TEST_CASE("pinned4 renders like its golden image", "[gpu][render][golden]") {
   REQUIRE_GL_CONTEXT();
   check_golden("pinned4", 40, ShaderKind::Normal);
+  CHECK_NO_GL_ERRORS();
 }
 TEST_CASE("sphere renders like its golden image", "[gpu][render][golden]") {
   REQUIRE_GL_CONTEXT();
-  check_golden("sphere", 45, ShaderKind::Texture);
+  check_golden("sphere", 60, ShaderKind::Texture);
+  CHECK_NO_GL_ERRORS();
 }
 TEST_CASE("plane renders like its golden image", "[gpu][render][golden]") {
   REQUIRE_GL_CONTEXT();
-  check_golden("plane", 50, ShaderKind::Diffuse);
+  check_golden("plane", 65, ShaderKind::Diffuse);
+  CHECK_NO_GL_ERRORS();
 }
 TEST_CASE("selfCollision renders like its golden image", "[gpu][render][golden]") {
   REQUIRE_GL_CONTEXT();
   check_golden("selfCollision", 40, ShaderKind::Phong);
+  CHECK_NO_GL_ERRORS();
 }
 
 TEST_CASE("the vertex stage reads the simulation's positions buffer in place", "[gpu][render]") {
@@ -263,7 +267,7 @@ TEST_CASE("the vertex stage reads the simulation's positions buffer in place", "
   stage.gpu.positions().bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_POSITIONS);
   move.dispatch(1);
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);  // the vertex shader reads it next
-  const Image after = stage.draw(ShaderKind::Normal); write_png("/tmp/r/before.png", before); write_png("/tmp/r/after.png", after);
+  const Image after = stage.draw(ShaderKind::Normal);
 
   const std::vector<glm::ivec2> changed = changed_pixels(before, after);
   INFO(changed.size() << " pixels changed");
@@ -273,6 +277,7 @@ TEST_CASE("the vertex stage reads the simulation's positions buffer in place", "
   glm::vec2 lo = stage.pixel_of(old_p), hi = lo;
   State<float> s;
   stage.gpu.download(s);
+  CHECK(glm::length(glm::vec3(s.pos[size_t(k)]) - new_p) < 1e-6f);  // the shader did move it
   for (int dy = -1; dy <= 1; ++dy)
     for (int dx = -1; dx <= 1; ++dx) {
       const glm::vec2 q = stage.pixel_of(glm::vec3(s.pos[size_t(stage.model.index(25 + dx, 3 + dy))]));

@@ -31,8 +31,9 @@ struct OrbitCamera {
   void look_from(const glm::vec3& eye, const glm::vec3& target);
 };
 
-// A camera that frames the cloth where it will be (hanging below its pins, lying on a plane),
-// and the spheres, from the front and a little above, like the classic viewer.
+// A camera that frames the cloth where it starts and where it will come to rest (hanging below
+// its pins, draped over a sphere, lying on a plane), and the spheres, from the front and a
+// little above, like the classic viewer.
 OrbitCamera default_camera(const Scene& scene, const ClothModel& model, float aspect);
 
 }  // namespace clothsim

@@ -83,6 +83,11 @@ Renderer::Renderer(const std::filesystem::path& root, const Scene& scene, const 
     planes_.push_back(make_mesh(plane_mesh(glm::vec3(foot), glm::vec3(pl.normal), 3.f * scene_size_)));
   }
   no_extras_.allocate(sizeof(layout::MeshVertex));
+  // Mirror minifies the sky a lot on a folded cloth: without mipmaps the ground grid in the
+  // cube map aliases into sparkles.
+  sky_.bind(2);
+  glGenerateMipmap(GL_TEXTURE_CUBE_MAP);
+  glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
 }
 
 Renderer::~Renderer() = default;
@@ -113,7 +118,8 @@ void Renderer::draw(const gl::Buffer& positions, const gl::Buffer& normals, cons
   glEnable(GL_DEPTH_TEST);
   glEnable(GL_MULTISAMPLE);
   gl::Program& prog = program(look.shader);
-  // A light above, behind and to the side of the camera, bright enough for irradiance ~1 at the target.
+  // A light above, behind and to the side of the camera: irradiance 0.8 at the target, so white
+  // cloth facing it (and nearer to it) is not blown out to pure white.
   const glm::vec3 eye = camera.eye();
   const glm::vec3 light = camera.target + glm::vec3(0.6f, 1.4f, 0.9f) * std::max(camera.distance, scene_size_);
   const float d2 = glm::dot(light - camera.target, light - camera.target);
@@ -121,7 +127,7 @@ void Renderer::draw(const gl::Buffer& positions, const gl::Buffer& normals, cons
   prog.set("u_view_projection", camera.view_projection());
   prog.set("u_camera_position", eye);
   prog.set("u_light_position", light);
-  prog.set("u_light_intensity", glm::vec3(d2 * 1.1f));
+  prog.set("u_light_intensity", glm::vec3(d2 * 0.8f));
   prog.set("u_normal_scaling", look.normal_scaling);
   prog.set("u_height_scaling", look.height_scaling);
   // Bump shows the fabric weave; Displacement moves vertices, so it uses the smooth bumps a
@@ -164,7 +170,7 @@ void Renderer::draw(const gl::Buffer& positions, const gl::Buffer& normals, cons
   if (look.show_spheres)
     for (auto& s : spheres_) draw_collider(*s, wire ? glm::vec4(0.45f, 0.6f, 0.9f, 1.f) : glm::vec4(0.35f, 0.5f, 0.8f, 1.f));
   if (look.show_planes)
-    for (auto& p : planes_) draw_collider(*p, wire ? glm::vec4(0.4f, 0.4f, 0.4f, 1.f) : glm::vec4(0.55f, 0.55f, 0.52f, 1.f));
+    for (auto& p : planes_) draw_collider(*p, wire ? glm::vec4(0.4f, 0.4f, 0.4f, 1.f) : glm::vec4(0.3f, 0.31f, 0.33f, 1.f));
 }
 
 }  // namespace clothsim

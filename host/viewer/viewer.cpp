@@ -7,6 +7,14 @@
 namespace clothsim {
 
 int run_viewer(const ViewerOptions& o) {
+  // The scene first: a bad file is exit 2 whether or not a window can be opened.
+  Scene scene;
+  try {
+    scene = o.scene_path.empty() ? default_scene(o.sets) : load_scene(o.scene_path, o.sets);
+  } catch (const SceneError& e) {
+    fmt::print(stderr, "error: {}\n", e.what());
+    return 2;
+  }
   std::string why;
   auto window = GlfwWindow::create("clothsim", o.width, o.height, true, &why);
   if (!window) {
@@ -17,12 +25,7 @@ int run_viewer(const ViewerOptions& o) {
     return 3;
   }
   Viewer viewer(o, std::move(window));
-  try {
-    viewer.load(o.scene_path.empty() ? default_scene(o.sets) : load_scene(o.scene_path, o.sets));
-  } catch (const SceneError& e) {
-    fmt::print(stderr, "error: {}\n", e.what());
-    return 2;
-  }
+  viewer.load(scene);
   return viewer.run();
 }
 
