@@ -68,7 +68,9 @@ class ObjectReader {
   }
 
   static std::string describe(const json& v) {
-    std::string s = v.dump();
+    // A --set value that is not JSON becomes a string as typed, possibly not UTF-8: plain
+    // dump() would throw json::type_error 316 for it instead of this message naming the key.
+    std::string s = v.dump(-1, ' ', false, json::error_handler_t::replace);
     if (s.size() > 40) s = s.substr(0, 37) + "...";
     return fmt::format("{} {}", v.type_name(), s);
   }
