@@ -1,8 +1,6 @@
-// Reads the scanned block sums; adds each block's prefix to every element of the block in
+// Reads the scanned chunk totals; adds each chunk's prefix to every element of the chunk in
 // place. One invocation per element (the second half of a multi-level scan).
 #include "layout.glsl"
-
-#define SCAN_BLOCK (2 * WORKGROUP_SIZE)
 
 layout(local_size_x = WORKGROUP_SIZE) in;
 layout(std430, binding = BINDING_SCAN_DATA) buffer Data { uint data[]; };
@@ -13,5 +11,5 @@ uniform uint u_count;
 void main() {
   uint i = gl_GlobalInvocationID.x;
   if (i >= u_count) return;
-  data[i] += sums[i / SCAN_BLOCK];
+  data[i] += sums[i / uint(SCAN_CHUNK)];
 }

@@ -1,49 +1,91 @@
-// Reads positions and the sorted hashed grid; writes the Jacobi output positions. One
-// invocation per particle: it visits the 27 cells around it and averages the push-out from
-// every particle closer than 2 * thickness (DESIGN.md §1.3), in the reference's order.
+// Reads positions, the bucket starts and the positions in cell order (sort_cells wrote them,
+// so a candidate costs one read, not an id and then a position); writes the Jacobi output
+// positions. One invocation per particle: it visits the 27 cells around it and averages the
+// push-out from every particle closer than 2 * thickness (DESIGN.md §1.3), in the
+// reference's order. With u_collide_objects the collision objects follow in the same
+// invocation (step 4 reads only the particle's own position and previous position).
 #include "layout.glsl"
 #include "common.glsl"
 #include "spatial_hash.glsl"
+#include "collide_objects.glsl"
 
 layout(local_size_x = WORKGROUP_SIZE) in;
-layout(std430, binding = BINDING_POSITIONS) readonly buffer Positions { vec4 pos[]; };
-layout(std430, binding = BINDING_CELL_START) readonly buffer Starts { uint cell_start[]; };
-layout(std430, binding = BINDING_CELL_ENTRIES) readonly buffer Entries { uint entries[]; };
 layout(std430, binding = BINDING_POSITIONS_OUT) writeonly buffer Output { vec4 pos_out[]; };
 
-void main() {
-  uint i = gl_GlobalInvocationID.x;
-  if (i >= particle_count()) return;
-  vec4 p = pos[i];
-  pos_out[i] = p;
-  if (p.w == 0.0) return;
-  vec3 xi = p.xyz;
-  ivec3 c = cell_of(xi);
+uniform bool u_collide_objects;
+
+struct Contacts {
+  vec3 sum;   // of the push-outs so far
+  uint hits;  // particles within the contact distance so far
+};
+
+// Adds the push-out from every particle among entries [first, last) that lies in one of the
+// three cells (x - 1 .. x + 1, row.y, row.z) and closer than the contact distance.
+Contacts visit_entries(Contacts acc, vec3 xi, ivec3 row, uint first, uint last) {
   float contact = params.constraint.y;
-  precise vec3 sum = vec3(0.0);
-  uint hits = 0u;
-  for (int dz = -1; dz <= 1; ++dz)
-    for (int dy = -1; dy <= 1; ++dy)
-      for (int dx = -1; dx <= 1; ++dx) {
-        ivec3 cell = c + ivec3(dx, dy, dz);
-        uint b = hash_cell(cell);
-        for (uint e = cell_start[b]; e < cell_start[b + 1u]; ++e) {
-          uint j = entries[e];
-          vec3 xj = pos[j].xyz;
-          // A bucket holds every cell that hashes to it: count j only in its own cell, so a
-          // neighbour is never counted twice however the 27 cells collide in the table.
-          if (j == i || cell_of(xj) != cell) continue;
-          vec3 e3 = xi - xj;
-          float d = length3(e3);
-          if (d >= contact || d == 0.0) continue;
-          precise float push = (contact - d) * (1.0 / d);
-          sum = sum + e3 * push;
-          ++hits;
-        }
-      }
+  for (uint e = first; e < last; ++e) {
+    vec3 xj = texelFetch(sorted_positions_view, int(e)).xyz;
+    // Buckets also hold cells of other rows that hash to them: count j only if it is in one
+    // of this row's three cells, so nobody is counted twice however rows collide in the
+    // table. i itself (and any particle exactly on it) has d == 0 and is skipped like the
+    // reference's j == i.
+    ivec3 cj = cell_of(xj);
+    if (cj.yz != row.yz || abs(cj.x - row.x) > 1) continue;
+    vec3 e3 = xi - xj;
+    float d = length3(e3);
+    if (d >= contact || d == 0.0) continue;
+    precise float push = (contact - d) * (1.0 / d);
+    precise vec3 sum = acc.sum + e3 * push;
+    acc.sum = sum;
+    ++acc.hits;
+  }
+  return acc;
+}
+
+uint bucket_start(uint b) { return texelFetch(cell_start_view, int(b)).x; }
+
+// The three cells (x - 1 .. x + 1) of row (y, z) around cell c: three consecutive buckets,
+// so one run of entries, in the reference's order (dx = -1, 0, 1; ascending ids within a
+// cell) -- or two runs when the three buckets wrap around the end of the table.
+Contacts visit_row(Contacts acc, vec3 xi, ivec3 c, int dy, int dz) {
+  ivec3 row = ivec3(c.x, c.y + dy, c.z + dz);
+  uint size = params.grid.w;
+  uint b0 = (hash_row(row.y, row.z) + uint(c.x - 1)) & (size - 1u);
+  uint end = b0 + 3u;
+  acc = visit_entries(acc, xi, row, bucket_start(b0), bucket_start(min(end, size)));
+  if (end > size) acc = visit_entries(acc, xi, row, bucket_start(0u), bucket_start(end - size));
+  return acc;
+}
+
+
+void main() {
+  int i = int(gl_GlobalInvocationID.x);
+  if (i >= int(particle_count())) return;
+  vec4 p = position_of(i);
+  if (p.w == 0.0) {
+    pos_out[i] = p;
+    return;
+  }
+  precise vec3 xi = p.xyz;
+  ivec3 c = cell_of(xi);
+  Contacts acc = Contacts(vec3(0.0), 0u);
+  // The nine rows of three cells, in the reference's order (dz, then dy), written out so
+  // every offset is a constant.
+  acc = visit_row(acc, xi, c, -1, -1);
+  acc = visit_row(acc, xi, c, 0, -1);
+  acc = visit_row(acc, xi, c, 1, -1);
+  acc = visit_row(acc, xi, c, -1, 0);
+  acc = visit_row(acc, xi, c, 0, 0);
+  acc = visit_row(acc, xi, c, 1, 0);
+  acc = visit_row(acc, xi, c, -1, 1);
+  acc = visit_row(acc, xi, c, 0, 1);
+  acc = visit_row(acc, xi, c, 1, 1);
+  precise vec3 sum = acc.sum;
+  uint hits = acc.hits;
   if (hits > 0u) {
     precise float scale = 1.0 / (float(hits) * params.constraint.w);
-    precise vec3 moved = xi + sum * scale;
-    pos_out[i] = vec4(moved, p.w);
+    xi = xi + sum * scale;
   }
+  if (u_collide_objects) xi = collide_with_objects(xi, previous_of(i).xyz);
+  pos_out[i] = vec4(xi, p.w);
 }

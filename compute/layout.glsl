@@ -29,12 +29,32 @@ using uvec4 = glm::uvec4;
 #define BINDING_SCAN_SUMS 11     // uint per scan block (multi-level prefix sum)
 #define BINDING_SCAN_DATA 12     // uint array being scanned in place
 #define BINDING_MESH_EXTRA 13    // MeshVertex extras (uv, tangent) of collider meshes, for the render shaders
+#define BINDING_SORTED_POSITIONS 14  // vec4: positions in cell order (entries order), for collide_self
+// Texture units of the read-only texel views (GL_TEXTURE_BUFFER) of the same buffers, through
+// which the hot passes read (compute/particle_views.glsl says why).
+#define TEXTURE_POSITIONS 0         // RGBA32F, one texel per particle
+#define TEXTURE_PREVIOUS 1          // RGBA32F, one texel per particle
+#define TEXTURE_REST 2              // RGBA32F, two texels per particle (RestLengths)
+#define TEXTURE_SPHERES 3           // RGBA32F, two texels per SphereCollider
+#define TEXTURE_PLANES 4            // RGBA32F, two texels per PlaneCollider
+#define TEXTURE_CELL_START 5        // R32UI, one texel per hash bucket (+1 sentinel)
+#define TEXTURE_SORTED_POSITIONS 6  // RGBA32F, one texel per hash entry
 // Uniform block binding.
 #define BINDING_STEP_PARAMS 0
 
 // Threads per workgroup for every per-particle pass (a 1-D dispatch over the particle index).
 #ifndef WORKGROUP_SIZE
 #define WORKGROUP_SIZE 128
+#endif
+// Elements one invocation of scan_cells sums serially (the block of the multi-level scan).
+#define SCAN_CHUNK 32
+// Workgroup shape of the passes dispatched over the grid (x along a row): 2-D, so no
+// invocation divides its index by the width, and neighbours share a workgroup.
+#ifndef GRID_WORKGROUP_X
+#define GRID_WORKGROUP_X 32
+#endif
+#ifndef GRID_WORKGROUP_Y
+#define GRID_WORKGROUP_Y 4
 #endif
 
 // Spring directions stored at their "first" particle: the rest length of the spring from

@@ -8,9 +8,8 @@ ivec3 cell_of(vec3 p) {
   return ivec3(floor(scaled));
 }
 
-uint hash_cell(ivec3 c) {
-  uint h = (uint(c.x) * 73856093u) ^ (uint(c.y) * 19349663u) ^ (uint(c.z) * 83492791u);
-  return h & (params.grid.w - 1u);
-}
+// Rows (y, z) scattered, consecutive buckets along x (see hash_cell in spatial_hash.hpp).
+uint hash_row(int y, int z) { return (uint(y) * 19349663u) ^ (uint(z) * 83492791u); }
+uint hash_cell(ivec3 c) { return (hash_row(c.y, c.z) + uint(c.x)) & (params.grid.w - 1u); }
 
 #endif

@@ -113,3 +113,23 @@ TEST_CASE("no two springs of one colour share a particle", "[cloth]") {
     CHECK(springs > 0);
   }
 }
+
+TEST_CASE("a colour's span holds exactly the springs of that colour", "[cloth]") {
+  // The GPU dispatches span.x.count by span.y.count invocations per colour; every spring of
+  // the colour must come up once and nothing else. Small, odd and even sizes, 1 included.
+  for (auto [nw, nh] : {std::pair{1, 1}, {2, 3}, {3, 2}, {4, 4}, {5, 6}, {7, 5}, {9, 7}, {33, 17}, {64, 3}}) {
+    for (int colour = 0; colour < NUM_COLOURS; ++colour) {
+      const int dir = colour / 2;
+      const Direction& d = kDirections[dir];
+      std::set<std::pair<int, int>> expected, spanned;
+      for (int y = 0; y < nh; ++y)
+        for (int x = 0; x < nw; ++x)
+          if (spring_colour(dir, x, y) == colour && in_grid(x + d.dx, y + d.dy, nw, nh)) expected.insert({x, y});
+      const ColourSpan s = colour_span(colour, nw, nh);
+      for (int iy = 0; iy < s.y.count; ++iy)
+        for (int ix = 0; ix < s.x.count; ++ix) CHECK(spanned.insert({s.x.at(ix), s.y.at(iy)}).second);
+      INFO(nw << "x" << nh << " colour " << colour);
+      CHECK(spanned == expected);
+    }
+  }
+}

@@ -97,13 +97,13 @@ TEST_CASE("the GPU prefix scan is exclusive at every length and leaves elements 
           "[gpu][self_collision]") {
   REQUIRE_GL_CONTEXT();
   const size_t wg = WORKGROUP_SIZE, block = PrefixScan::kBlock;
-  // One block up to 2*WG; two levels up to (2*WG)^2 = 65536 at WG = 128; three beyond.
+  // One chunk up to SCAN_CHUNK = 32; two levels up to 32^2; 70001 and 2^17 + 5 need four.
   const std::vector<size_t> sizes = {1,         2,         wg - 1,     wg,    wg + 1,           block - 1, block,
                                      block + 1, 2 * block, 65536,      65537, 70001, 100003, (1u << 17) + 5};
   PrefixScan scan(compute_dir(), *std::max_element(sizes.begin(), sizes.end()));
   CHECK(scan.dispatches(block) == 1);
   CHECK(scan.dispatches(block * block) == 3);
-  CHECK(scan.dispatches(70001) == 5);
+  CHECK(scan.dispatches(70001) == 7);  // 70001 -> 2188 -> 69 -> 3 chunk totals: 4 scans, 3 add-backs
   std::mt19937 rng(17);
   for (size_t n : sizes) {
     INFO("count " << n << ", " << scan.dispatches(n) << " dispatches");
@@ -187,14 +187,16 @@ TEST_CASE("a neighbour whose bucket is visited twice is counted once", "[gpu][se
   // A cell A whose +x neighbour's bucket is also the bucket of another of the 27 cells around
   // A (so that bucket is visited twice), while A's own bucket appears once among them.
   std::optional<Cell> a;
-  for (int32_t x = 0; x < 1000 && !a; ++x) {
-    std::vector<uint32_t> around;
-    for (int dz = -1; dz <= 1; ++dz)
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx) around.push_back(bucket_of({x + dx, 3 + dy, 5 + dz}, table));
-    auto times = [&](const Cell& k) { return std::count(around.begin(), around.end(), bucket_of(k, table)); };
-    if (times({x + 1, 3, 5}) >= 2 && times({x, 3, 5}) == 1) a = Cell{x, 3, 5};
-  }
+  // (Buckets run along x within a row, so it is the rows (y, z) that must collide.)
+  for (int32_t z = 0; z < 200 && !a; ++z)
+    for (int32_t y = 0; y < 200 && !a; ++y) {
+      std::vector<uint32_t> around;
+      for (int dz = -1; dz <= 1; ++dz)
+        for (int dy = -1; dy <= 1; ++dy)
+          for (int dx = -1; dx <= 1; ++dx) around.push_back(bucket_of({2 + dx, y + dy, z + dz}, table));
+      auto times = [&](const Cell& k) { return std::count(around.begin(), around.end(), bucket_of(k, table)); };
+      if (times({3, y, z}) >= 2 && times({2, y, z}) == 1) a = Cell{2, y, z};
+    }
   REQUIRE(a.has_value());
   const float h = 1.f / t.c.inv_cell;
   const float bx = float((*a)[0] + 1) * h, cy = (float((*a)[1]) + 0.5f) * h, cz = (float((*a)[2]) + 0.5f) * h;
@@ -214,6 +216,36 @@ TEST_CASE("a neighbour whose bucket is visited twice is counted once", "[gpu][se
   check_pushed(gpu, before, 0, {1, 2}, t.c);
   check_pushed(gpu, before, 1, {0, 2}, t.c);
   check_pushed(gpu, before, 2, {0, 1}, t.c);
+  CHECK_NO_GL_ERRORS();
+}
+
+TEST_CASE("a row of cells whose buckets wrap around the end of the table is searched whole",
+          "[gpu][self_collision]") {
+  REQUIRE_GL_CONTEXT();
+  // collide_self reads the three cells of a row as one run of buckets; where the run passes
+  // the table's end it must continue at bucket 0. Cell A = (2, y, z) with its -x neighbour
+  // in the last bucket, A in bucket 0 and its +x neighbour in bucket 1.
+  Placed t(test::make_scene(8, 8, 0));
+  const uint32_t table = t.s.hash.table_size;
+  std::optional<Cell> a;
+  for (int32_t z = 0; z < 200 && !a; ++z)
+    for (int32_t y = 0; y < 200 && !a; ++y)
+      if (bucket_of({1, y, z}, table) == table - 1) a = Cell{2, y, z};
+  REQUIRE(a.has_value());
+  REQUIRE(bucket_of(*a, table) == 0);
+  const float h = 1.f / t.c.inv_cell;  // the cell edge, equal to the contact distance
+  const float lo = float((*a)[0]) * h, cy = (float((*a)[1]) + 0.5f) * h, cz = (float((*a)[2]) + 0.5f) * h;
+  t.s.pos[0] = Vec4<float>(lo + 0.1f * h, cy, cz, t.s.pos[0].w);   // i in A
+  t.s.pos[1] = Vec4<float>(lo - 0.1f * h, cy, cz, t.s.pos[1].w);   // j in the last bucket
+  t.s.pos[2] = Vec4<float>(lo + 1.05f * h, cy, cz, t.s.pos[2].w);  // k in bucket 1
+  t.park_from(3);
+  INFO("cell A = (" << (*a)[0] << ", " << (*a)[1] << ", " << (*a)[2] << ")");
+  REQUIRE(cell_of(t.s.pos[1], t.c) == Cell{(*a)[0] - 1, (*a)[1], (*a)[2]});
+  REQUIRE(cell_of(t.s.pos[2], t.c) == Cell{(*a)[0] + 1, (*a)[1], (*a)[2]});
+  const Positions before = t.s.pos;
+  const Positions gpu = t.collide();
+  check_same_pass_result(gpu, t.s.pos);
+  check_pushed(gpu, before, 0, {1, 2}, t.c);
   CHECK_NO_GL_ERRORS();
 }
 

@@ -35,8 +35,10 @@ struct TwoSheets {
 };
 }  // namespace
 
-TEST_CASE("the hash table is a power of two at least twice the particle count", "[self_collision]") {
-  CHECK(hash_table_size(1) == 2);
+TEST_CASE("the hash table is a power of two at least twice the particle count, and at least 4", "[self_collision]") {
+  CHECK(hash_table_size(1) == 4);
+  CHECK(hash_table_size(2) == 4);
+  CHECK(hash_table_size(3) == 8);
   CHECK(hash_table_size(35) == 128);
   CHECK(hash_table_size(64) == 128);
 }

@@ -77,10 +77,16 @@ BenchResult BenchRunner::run_gpu(const Scene& scene) {
   r.dispatches_per_frame = double(after.dispatches - before.dispatches) / frames_;
   r.barriers_per_frame = double(after.barriers - before.barriers) / frames_;
   r.gpu_memory_bytes = sim.memory_bytes();
-  PassList passes{{{"accumulate_forces", [&] { sim.accumulate_forces(); }},
-                   {"integrate", [&] { sim.integrate(); }},
-                   {"collide_self", [&] { if (scene.simulation.self_collision) sim.collide_self(); }},
-                   {"collide_objects", [&] { sim.collide_objects(); }},
+  // The passes of GpuSimulator::step, the hash stages one by one ("collide_self" is the
+  // response over the finished hash); collide_objects is fused into advance or collide_self.
+  const bool sc = scene.simulation.self_collision;
+  const bool colliders = !sim.constants().spheres.empty() || !sim.constants().planes.empty();
+  PassList passes{{{"advance", [&] { sim.advance(colliders && !sc); }},
+                   {"count_cells", [&] { if (sc) sim.count_cells(); }},
+                   {"scan_cells", [&] { if (sc) sim.scan_cells(); }},
+                   {"fill_cells", [&] { if (sc) sim.fill_cells(); }},
+                   {"sort_cells", [&] { if (sc) sim.sort_cells(); }},
+                   {"collide_self", [&] { if (sc) sim.resolve_self_contacts(colliders); }},
                    {"solve_length_constraints", [&] { sim.solve_length_constraints(); }}},
                   [&] { sim.compute_normals(); }};
   // llvmpipe has no GPU timer queries, so every pass is timed with glFinish around it, in
@@ -103,8 +109,7 @@ BenchResult BenchRunner::run_cpu(const Scene& scene) {
   r.ms_per_frame = ms_since(t) / frames_;
   const auto& c = cpu.constants();
   auto& s = cpu.state();
-  PassList passes{{{"accumulate_forces", [&] { accumulate_forces(model, c, s); }},
-                   {"integrate", [&] { integrate(c, s); }},
+  PassList passes{{{"advance", [&] { advance(model, c, s); }},
                    {"collide_self", [&] { if (c.self_collision) collide_self(c, s); }},
                    {"collide_objects", [&] { collide_objects(c, s); }},
                    {"solve_length_constraints", [&] { solve_length_constraints(model, c, s); }}},

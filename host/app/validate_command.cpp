@@ -47,7 +47,7 @@ int run_validate(const Opts& o) {
   for (const PassError& e : check_passes(scene, model, gpu, o.warmup)) {
     const bool pass_ok = e.max_error <= pass_tolerance;
     ok = ok && pass_ok;
-    fmt::print("  {:<26} max {:.3e} m{}  {}\n", e.pass, e.max_error, e.bitwise ? " (bitwise equal)" : "",
+    fmt::print("  {:<34} max {:.3e} m{}  {}\n", e.pass, e.max_error, e.bitwise ? " (bitwise equal)" : "",
                pass_ok ? "ok" : "FAILED");
   }
 

@@ -63,13 +63,19 @@ template <class R> void collide_objects(const Constants<R>& c, State<R>& s);
 template <class R> void solve_length_constraints(const ClothModel& m, const Constants<R>& c, State<R>& s);
 template <class R> void compute_normals(const ClothModel& m, State<R>& s);
 
+// Forces then integrate: the CPU twin of the GPU's fused advance pass (which keeps the
+// forces in registers; with collision objects fused in it is advance then collide_objects).
+template <class R> void advance(const ClothModel& m, const Constants<R>& c, State<R>& s) {
+  accumulate_forces(m, c, s);
+  integrate(c, s);
+}
+
 // One constraint colour (used by the per-pass check that dispatches colours one by one).
 template <class R> void solve_length_constraint_colour(const ClothModel& m, const Constants<R>& c, int colour, State<R>& s);
 
 // One substep: the pass list of DESIGN.md §1.
 template <class R> void step(const ClothModel& m, const Constants<R>& c, State<R>& s) {
-  accumulate_forces(m, c, s);
-  integrate(c, s);
+  advance(m, c, s);
   if (c.self_collision) collide_self(c, s);
   collide_objects(c, s);
   solve_length_constraints(m, c, s);

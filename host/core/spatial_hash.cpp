@@ -5,7 +5,7 @@
 namespace clothsim {
 
 uint32_t hash_table_size(uint32_t particles) {
-  uint32_t size = 1;
+  uint32_t size = 4;  // three adjacent buckets must be distinct (hash_cell)
   while (size < 2 * particles) size <<= 1;
   return size;
 }

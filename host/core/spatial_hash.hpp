@@ -9,7 +9,7 @@
 namespace clothsim {
 
 struct SpatialHash {
-  uint32_t table_size = 0;         // power of two >= 2 * particles
+  uint32_t table_size = 0;         // power of two >= 2 * particles, at least 4
   std::vector<uint32_t> count;     // particles per bucket
   std::vector<uint32_t> start;     // exclusive prefix sum of count, table_size + 1 entries
   std::vector<uint32_t> entries;   // particle ids in bucket order, ascending within a bucket
@@ -18,10 +18,13 @@ struct SpatialHash {
 uint32_t hash_table_size(uint32_t particles);
 
 // The bucket of integer cell (ix, iy, iz); same arithmetic as compute/spatial_hash.glsl
-// (32-bit wrap-around products, xor, mask).
+// (32-bit wrap-around products, xor, add, mask). Rows (iy, iz) are scattered by the products;
+// along x consecutive cells get consecutive buckets, so the three cells of a row that a
+// particle visits are three adjacent buckets: one contiguous run of entries (collide_self.comp
+// reads them as one range; the table has at least 4 buckets, so the three are distinct).
+inline uint32_t hash_row(int32_t iy, int32_t iz) { return (uint32_t(iy) * 19349663u) ^ (uint32_t(iz) * 83492791u); }
 inline uint32_t hash_cell(int32_t ix, int32_t iy, int32_t iz, uint32_t table_size) {
-  uint32_t h = (uint32_t(ix) * 73856093u) ^ (uint32_t(iy) * 19349663u) ^ (uint32_t(iz) * 83492791u);
-  return h & (table_size - 1u);
+  return (hash_row(iy, iz) + uint32_t(ix)) & (table_size - 1u);
 }
 
 // Integer cell of a coordinate: floor(x * inv_cell), a multiplication so both sides round alike.

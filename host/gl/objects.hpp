@@ -62,6 +62,7 @@ class Buffer {
   // Binds to a non-indexed target, e.g. GL_ELEMENT_ARRAY_BUFFER or GL_DISPATCH_INDIRECT_BUFFER.
   void bind(GLenum target) const;
   std::size_t size() const { return size_; }
+  GLuint id() const { return name_.get(); }  // for views of it (BufferTexture) and introspection
 
  private:
   detail::Name<detail::delete_buffer> name_;

@@ -130,6 +130,9 @@ void Program::set(std::string_view name, const glm::vec2& value) {
 void Program::set(std::string_view name, const glm::ivec2& value) {
   glProgramUniform2iv(program_.get(), location(name), 1, glm::value_ptr(value));
 }
+void Program::set(std::string_view name, const glm::ivec4& value) {
+  glProgramUniform4iv(program_.get(), location(name), 1, glm::value_ptr(value));
+}
 void Program::set(std::string_view name, const glm::vec3& value) {
   glProgramUniform3fv(program_.get(), location(name), 1, glm::value_ptr(value));
 }

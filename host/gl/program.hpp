@@ -37,6 +37,7 @@ class Program {
   void set(std::string_view name, unsigned value);
   void set(std::string_view name, const glm::vec2& value);
   void set(std::string_view name, const glm::ivec2& value);
+  void set(std::string_view name, const glm::ivec4& value);
   void set(std::string_view name, const glm::vec3& value);
   void set(std::string_view name, const glm::vec4& value);
   void set(std::string_view name, const glm::mat4& value);

@@ -14,6 +14,32 @@ void detail::delete_renderbuffer(GLuint id) { glDeleteRenderbuffers(1, &id); }
 
 namespace {
 
+GLuint new_texture() {
+  GLuint id = 0;
+  glGenTextures(1, &id);
+  return id;
+}
+
+}  // namespace
+
+BufferTexture::BufferTexture(std::string_view label) : name_(new_texture()) {
+  // A texture name becomes an object on first bind; only then can it carry a label.
+  glBindTexture(GL_TEXTURE_BUFFER, name_.get());
+  if (!label.empty()) glObjectLabel(GL_TEXTURE, name_.get(), GLsizei(label.size()), label.data());
+}
+
+void BufferTexture::attach(const Buffer& buffer, GLenum format) {
+  glBindTexture(GL_TEXTURE_BUFFER, name_.get());
+  glTexBuffer(GL_TEXTURE_BUFFER, format, buffer.id());
+}
+
+void BufferTexture::bind(GLuint unit) const {
+  glActiveTexture(GL_TEXTURE0 + unit);
+  glBindTexture(GL_TEXTURE_BUFFER, name_.get());
+}
+
+namespace {
+
 struct Image {
   int w = 0, h = 0;
   std::vector<uint8_t> rgba;

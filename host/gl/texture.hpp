@@ -6,6 +6,7 @@
 #include <array>
 #include <cstdint>
 #include <filesystem>
+#include <string_view>
 #include <vector>
 
 #include "objects.hpp"
@@ -33,6 +34,23 @@ class Texture {
   detail::Name<detail::delete_texture> name_;
   GLenum target_;
   int width_ = 0, height_ = 0;
+};
+
+// A read-only texel view of a Buffer (GL_TEXTURE_BUFFER), same memory, no copy. Compute
+// passes read particle data through these with texelFetch: drivers serve texel fetches from
+// the texture path (on llvmpipe a vectorised gather instead of a per-lane loop, 2-3x fewer
+// instructions per read), while writes stay on the storage-buffer binding of the same buffer.
+// Reads after shader writes need glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT).
+class BufferTexture {
+ public:
+  explicit BufferTexture(std::string_view label = {});
+  // (Re)points the view at `buffer` as texels of `format` (e.g. GL_RGBA32F, GL_R32UI); call
+  // again after the buffer is reallocated.
+  void attach(const Buffer& buffer, GLenum format);
+  void bind(GLuint unit) const;
+
+ private:
+  detail::Name<detail::delete_texture> name_;
 };
 
 // An offscreen colour + depth target (multisampled, resolved on read-back), for headless

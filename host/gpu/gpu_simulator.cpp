@@ -10,20 +10,29 @@ namespace {
 
 gl::Program load_pass(const std::filesystem::path& dir, const char* name) {
   return gl::Program::compute(dir / fmt::format("{}.comp", name),
-                              {{"WORKGROUP_SIZE", std::to_string(WORKGROUP_SIZE)}});
+                              {{"WORKGROUP_SIZE", std::to_string(WORKGROUP_SIZE)},
+                               {"GRID_WORKGROUP_X", std::to_string(GRID_WORKGROUP_X)},
+                               {"GRID_WORKGROUP_Y", std::to_string(GRID_WORKGROUP_Y)}});
 }
+
+glm::ivec4 span_uniform(const AxisSpan& s) { return {s.first, s.period, s.shift, s.count}; }
 
 glm::vec4 v4(const Vec3<float>& v, float w) { return {v.x, v.y, v.z, w}; }
 
+// What a pass's readers need after it wrote: storage-buffer reads and texel fetches (the
+// passes read particle data through texel views, compute/particle_views.glsl).
+constexpr GLbitfield kComputeReads = GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT;
 
 
 // Too large a cloth is bad input, reported before any allocation rather than as a driver
 // failure: every per-particle buffer must fit one storage block, every dispatch the group count.
 void check_gpu_limits(const Scene& scene, const ClothModel& m) {
   GLint64 max_block = 0;
-  GLint max_groups = 0;
+  GLint max_groups = 0, max_texels = 0;
   glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
   glGetIntegeri_v(GL_MAX_COMPUTE_WORK_GROUP_COUNT, 0, &max_groups);
+  glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &max_texels);
+  const uint64_t texels = 2 * uint64_t(m.count());  // the rest-length view, two texels a particle
   const uint64_t largest = uint64_t(m.count()) * sizeof(layout::RestLengths);
   const uint64_t groups = (uint64_t(hash_table_size(uint32_t(m.count()))) + WORKGROUP_SIZE - 1) / WORKGROUP_SIZE;
   const std::string grid = fmt::format("a {}x{} grid", m.nw, m.nh);
@@ -35,6 +44,10 @@ void check_gpu_limits(const Scene& scene, const ClothModel& m) {
     throw SceneError(fmt::format("{}: cloth.num_width_points: {} needs {} workgroups in one dispatch, more than "
                                  "this GPU's GL_MAX_COMPUTE_WORK_GROUP_COUNT ({})",
                                  scene.source, grid, groups, max_groups));
+  if (max_texels > 0 && texels > uint64_t(max_texels))
+    throw SceneError(fmt::format("{}: cloth.num_width_points: {} needs a texel view of {} texels, more than "
+                                 "this GPU's GL_MAX_TEXTURE_BUFFER_SIZE ({})",
+                                 scene.source, grid, texels, max_texels));
 }
 
 }  // namespace
@@ -59,6 +72,7 @@ GpuSimulator::GpuSimulator(const Scene& scene, const ClothModel& model, const st
       groups_(gl::workgroups_for(model.count(), WORKGROUP_SIZE)),
       accumulate_forces_(load_pass(dir, "accumulate_forces")),
       integrate_(load_pass(dir, "integrate")),
+      advance_(load_pass(dir, "advance")),
       collide_objects_(load_pass(dir, "collide_objects")),
       solve_length_constraints_(load_pass(dir, "solve_length_constraints")),
       compute_normals_(load_pass(dir, "compute_normals")),
@@ -81,14 +95,14 @@ GpuSimulator::GpuSimulator(const Scene& scene, const ClothModel& model, const st
   forces_.allocate(n * sizeof(glm::vec4));
   // The hash table is sized once; start[table_size] is the total, always n.
   table_size_ = params_.grid.w;
-  positions_out_.allocate(n * sizeof(glm::vec4));
   cell_count_.allocate(table_size_ * sizeof(uint32_t));
   std::vector<uint32_t> start(table_size_ + 1, 0);
   start.back() = uint32_t(n);
   gl::upload_vector(cell_start_, start);
   cell_entries_.allocate(n * sizeof(uint32_t));
+  sorted_positions_.allocate(n * sizeof(glm::vec4));
   normals_.allocate(n * sizeof(glm::vec4));
-  upload(initial_state<float>(model));
+  upload(initial_state<float>(model));  // attaches the views
   compute_normals();
 }
 
@@ -104,7 +118,8 @@ GpuCounters GpuSimulator::counters() const {
 size_t GpuSimulator::memory_bytes() const {
   size_t total = 0;
   for (const gl::Buffer* b : {&positions_, &previous_, &forces_, &normals_, &rest_, &spheres_, &planes_,
-                              &step_params_, &positions_out_, &cell_count_, &cell_start_, &cell_entries_})
+                              &step_params_, &positions_out_, &cell_count_, &cell_start_, &cell_entries_,
+                              &sorted_positions_})
     total += b->size();
   return total + scan_.memory_bytes();
 }
@@ -122,6 +137,36 @@ void GpuSimulator::bind_all() const {
   cell_count_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_CELL_COUNT);
   cell_start_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_CELL_START);
   cell_entries_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_CELL_ENTRIES);
+  sorted_positions_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_SORTED_POSITIONS);
+  positions_view_.bind(TEXTURE_POSITIONS);
+  previous_view_.bind(TEXTURE_PREVIOUS);
+  rest_view_.bind(TEXTURE_REST);
+  spheres_view_.bind(TEXTURE_SPHERES);
+  planes_view_.bind(TEXTURE_PLANES);
+  cell_start_view_.bind(TEXTURE_CELL_START);
+  sorted_positions_view_.bind(TEXTURE_SORTED_POSITIONS);
+}
+
+void GpuSimulator::attach_views() {
+  positions_view_.attach(positions_, GL_RGBA32F);
+  positions_out_view_.attach(positions_out_, GL_RGBA32F);
+  previous_view_.attach(previous_, GL_RGBA32F);
+  rest_view_.attach(rest_, GL_RGBA32F);
+  spheres_view_.attach(spheres_, GL_RGBA32F);
+  planes_view_.attach(planes_, GL_RGBA32F);
+  cell_start_view_.attach(cell_start_, GL_R32UI);
+  sorted_positions_view_.attach(sorted_positions_, GL_RGBA32F);
+}
+
+void GpuSimulator::swap_positions() {
+  std::swap(positions_, positions_out_);
+  std::swap(positions_view_, positions_out_view_);
+}
+
+void GpuSimulator::dispatch_grid(gl::Program& program) {
+  bind_all();
+  program.dispatch(gl::workgroups_for(model_.nw, GRID_WORKGROUP_X), gl::workgroups_for(model_.nh, GRID_WORKGROUP_Y));
+  ++counters_.dispatches;
 }
 
 void GpuSimulator::dispatch(gl::Program& program) {
@@ -133,7 +178,7 @@ void GpuSimulator::dispatch(gl::Program& program) {
 }
 
 void GpuSimulator::accumulate_forces() {
-  dispatch(accumulate_forces_);
+  dispatch_grid(accumulate_forces_);
   // integrate reads the forces next.
   barrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }
@@ -141,7 +186,16 @@ void GpuSimulator::accumulate_forces() {
 void GpuSimulator::integrate() {
   dispatch(integrate_);
   // collide_self / collide_objects read the new positions and previous positions next.
-  barrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  barrier(kComputeReads);
+}
+
+void GpuSimulator::advance(bool then_collide_objects) {
+  advance_.set("u_collide_objects", then_collide_objects);
+  dispatch_grid(advance_);
+  swap_positions();
+  // The hash passes or the constraints read the new positions next; the next advance
+  // writes the old ones (now the output buffer) after this pass read them.
+  barrier(kComputeReads);
 }
 
 void GpuSimulator::count_cells() {
@@ -167,21 +221,26 @@ void GpuSimulator::sort_cells() {
   bind_all();
   sort_cells_.dispatch(gl::workgroups_for(table_size_, WORKGROUP_SIZE));
   ++counters_.dispatches;
-  // collide_self reads the sorted entries next.
-  barrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  // collide_self reads the starts and the positions in cell order next.
+  barrier(kComputeReads);
 }
 
-void GpuSimulator::collide_self() {
+void GpuSimulator::collide_self(bool then_collide_objects) {
   count_cells();
   scan_cells();
   fill_cells();
   sort_cells();
+  resolve_self_contacts(then_collide_objects);
+}
+
+void GpuSimulator::resolve_self_contacts(bool then_collide_objects) {
+  collide_self_.set("u_collide_objects", then_collide_objects);
   dispatch(collide_self_);
-  // Jacobi: the output becomes the positions; collide_objects reads them next. The next
-  // substep's count_cells clears the cursors fill_cells wrote, and scan_cells copies over the
-  // starts the scan wrote: buffer updates after shader writes (BUFFER_UPDATE).
-  std::swap(positions_, positions_out_);
-  barrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+  // Jacobi: the output becomes the positions; collide_objects or the constraints read them
+  // next. The next substep's count_cells clears the cursors fill_cells wrote, and scan_cells
+  // copies over the starts the scan wrote: buffer updates after shader writes (BUFFER_UPDATE).
+  swap_positions();
+  barrier(kComputeReads | GL_BUFFER_UPDATE_BARRIER_BIT);
 }
 
 
@@ -189,14 +248,21 @@ void GpuSimulator::collide_objects() {
   if (constants_.spheres.empty() && constants_.planes.empty()) return;
   dispatch(collide_objects_);
   // solve_length_constraints reads the projected positions next.
-  barrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  barrier(kComputeReads);
 }
 
 void GpuSimulator::solve_length_constraint_colour(int colour) {
+  const ColourSpan span = colour_span(colour, model_.nw, model_.nh);
+  if (span.x.count == 0 || span.y.count == 0) return;  // a grid too narrow for this colour
   solve_length_constraints_.set("u_colour", colour);
-  dispatch(solve_length_constraints_);
-  // The next colour (or the next substep's accumulate_forces) reads these positions.
-  barrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  solve_length_constraints_.set("u_span_x", span_uniform(span.x));
+  solve_length_constraints_.set("u_span_y", span_uniform(span.y));
+  bind_all();
+  solve_length_constraints_.dispatch(gl::workgroups_for(span.x.count, GRID_WORKGROUP_X),
+                                     gl::workgroups_for(span.y.count, GRID_WORKGROUP_Y));
+  ++counters_.dispatches;
+  // The next colour (or the next substep's advance) reads these positions.
+  barrier(kComputeReads);
 }
 
 void GpuSimulator::solve_length_constraints() {
@@ -214,10 +280,11 @@ void GpuSimulator::compute_normals() {
 }
 
 void GpuSimulator::step() {
-  accumulate_forces();
-  integrate();
-  if (constants_.self_collision) collide_self();
-  collide_objects();
+  // collide_objects reads only a particle's own position and previous position, so it rides
+  // along with the last per-particle pass before the constraints.
+  const bool colliders = !constants_.spheres.empty() || !constants_.planes.empty();
+  advance(colliders && !constants_.self_collision);
+  if (constants_.self_collision) collide_self(colliders);
   solve_length_constraints();
 }
 
@@ -230,9 +297,8 @@ int GpuSimulator::dispatches_per_substep() const {
   int enabled_colours = 0;
   for (int colour = 0; colour < NUM_COLOURS; ++colour)
     enabled_colours += constants_.enabled[int(kDirections[colour / 2].type)];
-  const bool colliders = !constants_.spheres.empty() || !constants_.planes.empty();
   const int self = constants_.self_collision ? 4 + scan_.dispatches(table_size_) : 0;  // count, fill, sort, collide + scan
-  return 2 + self + int(colliders) + constants_.iterations * enabled_colours;
+  return 1 + self + constants_.iterations * enabled_colours;
 }
 
 

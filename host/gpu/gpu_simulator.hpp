@@ -11,6 +11,7 @@
 #include "objects.hpp"
 #include "prefix_scan.hpp"
 #include "program.hpp"
+#include "texture.hpp"
 #include "../../compute/layout.glsl"
 
 namespace clothsim {
@@ -21,9 +22,13 @@ class GpuSimulator {
   GpuSimulator(const Scene& scene, const ClothModel& model, const std::filesystem::path& compute_dir);
 
   // The passes, one dispatch each (the length constraint: one per colour and iteration).
+  // step() runs advance, [collide_self], solve_length_constraints, with collide_objects
+  // fused into the last per-particle pass before the constraints; the unfused passes stay
+  // for the pass-by-pass check against the reference functions of the same names.
   void accumulate_forces();
   void integrate();
-  void collide_self();  // the four hash stages below, then the Jacobi response
+  void advance(bool then_collide_objects = false);  // accumulate_forces + integrate [+ collide_objects]
+  void collide_self(bool then_collide_objects = false);  // the four hash stages below, then the response
   void collide_objects();
   void solve_length_constraint_colour(int colour);
   void solve_length_constraints();
@@ -34,6 +39,8 @@ class GpuSimulator {
   void scan_cells();
   void fill_cells();
   void sort_cells();
+  // The last stage: collide_self.comp over the hash the four stages built.
+  void resolve_self_contacts(bool then_collide_objects = false);
   void download_hash(SpatialHash& hash);  // count (cursors after fill), start, entries
   // The scanner, for tests of arbitrary lengths (up to the hash table size).
   PrefixScan& prefix_scan() { return scan_; }
@@ -64,6 +71,9 @@ class GpuSimulator {
 
  private:
   void bind_all() const;
+  void attach_views();  // after any buffer is (re)allocated
+  void dispatch_grid(gl::Program& program);  // 2-D, one invocation per grid point
+  void swap_positions();  // the Jacobi/ping-pong output becomes the positions
   void upload_colliders();  // from constants_
   void barrier(GLbitfield bits);  // glMemoryBarrier, counted
   void dispatch(gl::Program& program);
@@ -78,9 +88,14 @@ class GpuSimulator {
   gl::Buffer positions_{"positions"}, previous_{"previous"}, forces_{"forces"}, normals_{"normals"};
   gl::Buffer rest_{"rest lengths"}, spheres_{"spheres"}, planes_{"planes"}, step_params_{"step params"};
   gl::Buffer positions_out_{"positions out"}, cell_count_{"cell count"}, cell_start_{"cell start"};
-  gl::Buffer cell_entries_{"cell entries"};
+  gl::Buffer cell_entries_{"cell entries"}, sorted_positions_{"sorted positions"};
+  // Read-only views of the buffers above (compute/particle_views.glsl).
+  gl::BufferTexture positions_view_{"positions view"}, positions_out_view_{"positions out view"};
+  gl::BufferTexture previous_view_{"previous view"}, rest_view_{"rest view"}, spheres_view_{"spheres view"};
+  gl::BufferTexture planes_view_{"planes view"}, cell_start_view_{"cell start view"};
+  gl::BufferTexture sorted_positions_view_{"sorted positions view"};
   uint32_t table_size_ = 0;
-  gl::Program accumulate_forces_, integrate_, collide_objects_, solve_length_constraints_, compute_normals_;
+  gl::Program accumulate_forces_, integrate_, advance_, collide_objects_, solve_length_constraints_, compute_normals_;
   gl::Program count_cells_, fill_cells_, sort_cells_, collide_self_;
   PrefixScan scan_;
 };

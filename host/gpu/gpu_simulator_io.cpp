@@ -15,6 +15,8 @@ void GpuSimulator::upload_colliders() {
   if (planes.empty()) planes.resize(1);
   gl::upload_vector(spheres_, spheres, GL_STATIC_DRAW);
   gl::upload_vector(planes_, planes, GL_STATIC_DRAW);
+  spheres_view_.attach(spheres_, GL_RGBA32F);
+  planes_view_.attach(planes_, GL_RGBA32F);
 }
 
 void GpuSimulator::set_parameters(const Scene& scene) {
@@ -68,6 +70,9 @@ void GpuSimulator::upload(const State<float>& s) {
   gl::upload_vector(positions_, s.pos);
   gl::upload_vector(previous_, s.prev);
   if (s.force.size() == s.pos.size()) gl::upload_vector(forces_, s.force);
+  // The Jacobi/ping-pong output matches the buffer it stands in for.
+  positions_out_.allocate(positions_.size());
+  attach_views();
 }
 
 void GpuSimulator::download(State<float>& s) {

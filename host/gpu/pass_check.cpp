@@ -35,9 +35,33 @@ std::vector<PassError> check_passes(const Scene& scene, const ClothModel& model,
     for (size_t i = 0; i < v.size(); ++i) v[i] = st.force[i] * (s.pos[i].w * c.dt2);
     return v;
   };
+  // The unfused passes, then (from the same state) the fused ones GpuSimulator::step runs:
+  // collide_objects rides along with advance, or with collide_self when that is on.
+  const State<float> start = s;
   check("accumulate_forces", [&] { accumulate_forces(model, c, s); }, [&] { gpu.accumulate_forces(); }, displacement);
   check("integrate", [&] { integrate(c, s); }, [&] { gpu.integrate(); }, both);
-  if (c.self_collision) check("collide_self", [&] { collide_self(c, s); }, [&] { gpu.collide_self(); }, positions);
+  s = start;
+  const bool colliders = !c.spheres.empty() || !c.planes.empty();
+  const bool objects_in_advance = colliders && !c.self_collision;
+  check(objects_in_advance ? "advance (+ collide_objects)" : "advance",
+        [&] {
+          advance(model, c, s);
+          if (objects_in_advance) collide_objects(c, s);
+        },
+        [&] { gpu.advance(objects_in_advance); }, both);
+  if (c.self_collision) {
+    const State<float> before = s;
+    check("collide_self", [&] { collide_self(c, s); }, [&] { gpu.collide_self(); }, positions);
+    if (colliders) {
+      s = before;
+      check("collide_self (+ collide_objects)",
+            [&] {
+              collide_self(c, s);
+              collide_objects(c, s);
+            },
+            [&] { gpu.collide_self(true); }, positions);
+    }
+  }
   check("collide_objects", [&] { collide_objects(c, s); }, [&] { gpu.collide_objects(); }, positions);
   check("solve_length_constraints", [&] { solve_length_constraints(model, c, s); },
         [&] { gpu.solve_length_constraints(); }, positions);

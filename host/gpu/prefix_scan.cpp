@@ -35,7 +35,7 @@ void PrefixScan::scan_level(const gl::Buffer& data, size_t count, size_t level) 
   data.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_SCAN_DATA);
   sums_[level].bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_SCAN_SUMS);
   scan_.set("u_count", unsigned(count));
-  scan_.dispatch(GLuint(blocks));
+  scan_.dispatch(gl::workgroups_for(blocks, WORKGROUP_SIZE));
   counters_.dispatches += 1;
   counters_.barriers += 1;
   // The next level scans the block sums (or add_scan_offsets reads them).

@@ -1,5 +1,6 @@
-// Exclusive prefix sum of a uint buffer on the GPU, any length: a work-efficient block scan
-// (scan_cells.comp) per level, the block totals scanned recursively, then added back
+// Exclusive prefix sum of a uint buffer on the GPU, any length: chunks of SCAN_CHUNK scanned
+// serially by one invocation each (scan_cells.comp) per level, the chunk totals scanned
+// recursively, then added back
 // (add_scan_offsets.comp). Level buffers are sized once for the largest length.
 #pragma once
 
@@ -19,7 +20,7 @@ struct GpuCounters {
 
 class PrefixScan {
  public:
-  static constexpr unsigned kBlock = 2 * WORKGROUP_SIZE;  // elements per workgroup
+  static constexpr unsigned kBlock = SCAN_CHUNK;  // elements per invocation of scan_cells
 
   PrefixScan(const std::filesystem::path& compute_dir, size_t max_count);
   // Scans the first `count` uints of `data` in place (count <= max_count).

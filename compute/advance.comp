@@ -1,0 +1,35 @@
+// Forces, then damped Verlet, then (with u_collide_objects) the collision objects: steps 1,
+// 2 and 4 of DESIGN.md §1 for one particle, fused so the force never leaves registers. The
+// CPU twin is advance() in host/core/reference.hpp. Reads positions (its own and its
+// neighbours') and previous positions through the views; writes the new position to the
+// output buffer (neighbours still read the old one: ping-pong, the host swaps) and the old
+// position to previous, in place. One invocation per grid point; pinned points (w = 0) stay.
+#include "layout.glsl"
+#include "common.glsl"
+#include "forces.glsl"
+#include "collide_objects.glsl"
+
+layout(local_size_x = GRID_WORKGROUP_X, local_size_y = GRID_WORKGROUP_Y) in;
+layout(std430, binding = BINDING_PREVIOUS) writeonly buffer Previous { vec4 prev[]; };
+layout(std430, binding = BINDING_POSITIONS_OUT) writeonly buffer Output { vec4 pos_out[]; };
+
+uniform bool u_collide_objects;
+
+void main() {
+  ivec2 c = ivec2(gl_GlobalInvocationID.xy);
+  if (!in_grid(c)) return;
+  int i = grid_index(c);
+  vec4 p = position_of(i);
+  if (p.w == 0.0) {
+    pos_out[i] = p;
+    return;
+  }
+  vec3 x = p.xyz;
+  vec3 f = spring_force(c, i, x);
+  precise vec3 a = f * p.w;
+  precise vec3 next = x + (x - previous_of(i).xyz) * params.springs.z + a * params.springs.w;
+  prev[i] = p;
+  // After integrate the previous position is x, which collide_objects reads as xp.
+  if (u_collide_objects) next = collide_with_objects(next, x);
+  pos_out[i] = vec4(next, p.w);
+}
