@@ -4,9 +4,9 @@
 #include "layout.glsl"
 #include "common.glsl"
 #include "spatial_hash.glsl"
+#include "particle_views.glsl"
 
 layout(local_size_x = WORKGROUP_SIZE) in;
-layout(std430, binding = BINDING_POSITIONS) readonly buffer Positions { vec4 pos[]; };
 layout(std430, binding = BINDING_CELL_COUNT) buffer Cursors { uint cursor[]; };
 layout(std430, binding = BINDING_CELL_START) readonly buffer Starts { uint cell_start[]; };
 layout(std430, binding = BINDING_CELL_ENTRIES) writeonly buffer Entries { uint entries[]; };
@@ -14,6 +14,6 @@ layout(std430, binding = BINDING_CELL_ENTRIES) writeonly buffer Entries { uint e
 void main() {
   uint i = gl_GlobalInvocationID.x;
   if (i >= particle_count()) return;
-  uint b = hash_cell(cell_of(pos[i].xyz));
+  uint b = hash_cell(cell_of(position_of(int(i)).xyz));
   entries[cell_start[b] + atomicAdd(cursor[b], 1u)] = i;
 }

@@ -252,12 +252,16 @@ void GpuSimulator::collide_objects() {
 }
 
 void GpuSimulator::solve_length_constraint_colour(int colour) {
+  bind_all();
+  dispatch_colour(colour);
+}
+
+void GpuSimulator::dispatch_colour(int colour) {
   const ColourSpan span = colour_span(colour, model_.nw, model_.nh);
   if (span.x.count == 0 || span.y.count == 0) return;  // a grid too narrow for this colour
   solve_length_constraints_.set("u_colour", colour);
   solve_length_constraints_.set("u_span_x", span_uniform(span.x));
   solve_length_constraints_.set("u_span_y", span_uniform(span.y));
-  bind_all();
   solve_length_constraints_.dispatch(gl::workgroups_for(span.x.count, GRID_WORKGROUP_X),
                                      gl::workgroups_for(span.y.count, GRID_WORKGROUP_Y));
   ++counters_.dispatches;
@@ -266,10 +270,11 @@ void GpuSimulator::solve_length_constraint_colour(int colour) {
 }
 
 void GpuSimulator::solve_length_constraints() {
+  bind_all();  // once for all colours: nothing else runs in between
   for (int it = 0; it < constants_.iterations; ++it)
     for (int colour = 0; colour < NUM_COLOURS; ++colour) {
       if (!constants_.enabled[int(kDirections[colour / 2].type)]) continue;
-      solve_length_constraint_colour(colour);
+      dispatch_colour(colour);
     }
 }
 

@@ -77,6 +77,7 @@ class GpuSimulator {
   void upload_colliders();  // from constants_
   void barrier(GLbitfield bits);  // glMemoryBarrier, counted
   void dispatch(gl::Program& program);
+  void dispatch_colour(int colour);  // one colour of the length constraint, bindings already set
 
   const ClothModel& model_;
   const std::filesystem::path dir_;
