@@ -29,6 +29,8 @@ using uvec4 = glm::uvec4;
 #define BINDING_SCAN_SUMS 11     // uint per scan block (multi-level prefix sum)
 #define BINDING_SCAN_DATA 12     // uint array being scanned in place
 #define BINDING_MESH_EXTRA 13    // MeshVertex extras (uv, tangent) of collider meshes, for the render shaders
+#define BINDING_FRAME_BOUNDS 14  // FrameBounds of one frame (check_divergence)
+#define BINDING_LAST_GOOD 15     // LastGoodHeader, then vec4 per particle: the newest frame that passed (keep_last_good)
 // Uniform block binding.
 #define BINDING_STEP_PARAMS 0
 
@@ -80,6 +82,19 @@ struct StepParams {
   uvec4 grid;          // x width points, y height points, z particle count, w hash table size
   uvec4 enabled;       // x structural, y shearing, z bending (1 = exerts force / is constrained), w unused
   uvec4 colliders;     // x sphere count, y plane count
+};
+
+// The divergence guard's reduction of one frame. Coordinates are stored as ordered bits
+// (compute/divergence.glsl): uints whose unsigned order is the float order, so that
+// atomicMin/atomicMax reduce them.
+struct FrameBounds {
+  uvec4 lo;  // xyz smallest finite coordinate (ordered bits), w 1 if any coordinate is NaN/Inf
+  uvec4 hi;  // xyz largest finite coordinate (ordered bits), w unused
+};
+
+// In front of the kept positions of keep_last_good.
+struct LastGoodHeader {
+  uvec4 state;  // x 1 once a frame has failed (no later frame is kept), y the frame kept, zw unused
 };
 
 #ifdef __cplusplus
