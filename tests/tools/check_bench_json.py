@@ -11,7 +11,7 @@ FIELDS = {"backend": str, "size": int, "particles": int, "self_collision": bool,
           "ms_per_frame": float, "particle_substeps_per_s": float, "pass_ms": dict, "pass_timing": str,
           "dispatches_per_frame": (int, float), "barriers_per_frame": (int, float), "gpu_memory_bytes": int}
 PASSES = {"accumulate_forces", "integrate", "collide_self", "collide_objects", "solve_length_constraints",
-          "compute_normals"}
+          "compute_normals", "check_divergence"}
 
 
 def main():
