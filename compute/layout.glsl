@@ -30,7 +30,7 @@ using uvec4 = glm::uvec4;
 #define BINDING_SCAN_DATA 12     // uint array being scanned in place
 #define BINDING_MESH_EXTRA 13    // MeshVertex extras (uv, tangent) of collider meshes, for the render shaders
 #define BINDING_FRAME_BOUNDS 14  // FrameBounds of one frame (check_divergence)
-#define BINDING_LAST_GOOD 15     // LastGoodHeader, then vec4 per particle: the newest frame that passed (keep_last_good)
+#define BINDING_LAST_GOOD 15     // LastGoodHeader, then vec4 per particle: newest frame that passed (keep_last_good)
 // Uniform block binding.
 #define BINDING_STEP_PARAMS 0
 

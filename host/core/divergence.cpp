@@ -49,7 +49,8 @@ std::optional<std::string> divergence_message(const Scene& scene, const ClothMod
           : std::string("a particle position became NaN/Inf");
   const double ks = scene.cloth.ks, mass = particle_mass(scene.cloth), dt = scene.dt();
   const int steps = scene.simulation.simulation_steps;
-  const double stable_dt = ks > 0 ? kStableStepFraction * std::sqrt(mass / ks) : std::numeric_limits<double>::infinity();
+  const double stable_dt =
+      ks > 0 ? kStableStepFraction * std::sqrt(mass / ks) : std::numeric_limits<double>::infinity();
   std::string cause;
   if (dt > stable_dt) {
     // Enough substeps for stable_dt, rounded up to a multiple of 10 and at least twice as many.

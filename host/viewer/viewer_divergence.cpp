@@ -11,14 +11,15 @@ bool Viewer::poll_divergence() {
   for (const FrameCheck& check : guard.take(false)) {
     auto message = divergence_message(st_.scene, *session_.model, check);
     if (!message) continue;
-    if (grab_.active()) session_.sim->release_particle(grab_.particle);
-    grab_ = {};
     int frame = 0;
     const std::vector<glm::vec4> good = guard.last_good(&frame);
     State<float> state;
     state.pos = good;
     state.prev = good;  // at rest: the velocity that blew up is gone
     session_.sim->upload(state);
+    // A particle held at that frame was kept with inverse mass 0: give it its own back.
+    if (grab_.active()) session_.sim->release_particle(grab_.particle);
+    grab_ = {};
     session_.sim->compute_normals();
     guard.restart(good, frame);
     st_.paused = true;
