@@ -50,17 +50,19 @@ Buffer::Buffer(std::string_view label_text) : name_(new_buffer()), label_(label_
 
 void Buffer::allocate(std::size_t bytes, const void* data, GLenum usage) {
   glBindBuffer(GL_COPY_WRITE_BUFFER, name_.get());
-  const std::string name = label_.empty() ? "an unnamed buffer" : fmt::format("the buffer '{}'", label_);
+  auto name = [&] {
+    return label_.empty() ? std::string("an unnamed buffer") : fmt::format("the buffer '{}'", label_);
+  };
   // An earlier command's GL_OUT_OF_MEMORY is reported as such, not blamed on this buffer.
   if (poll_out_of_memory())
     throw OutOfMemoryError(fmt::format("GL_OUT_OF_MEMORY: the GPU driver ran out of memory (found before "
-                                       "allocating {})", name));
+                                       "allocating {})", name()));
   glBufferData(GL_COPY_WRITE_BUFFER, GLsizeiptr(bytes), data, usage);
   if (poll_out_of_memory()) {
     size_ = 0;
     throw OutOfMemoryError(fmt::format("GL_OUT_OF_MEMORY: the GPU driver could not allocate {} bytes ({:.1f} MiB) "
                                        "for {}",
-                                       bytes, double(bytes) / 1048576.0, name));
+                                       bytes, double(bytes) / 1048576.0, name()));
   }
   size_ = bytes;
 }
