@@ -30,6 +30,8 @@ using uvec4 = glm::uvec4;
 #define BINDING_SCAN_DATA 12     // uint array being scanned in place
 #define BINDING_MESH_EXTRA 13    // MeshVertex extras (uv, tangent) of collider meshes, for the render shaders
 #define BINDING_SORTED_POSITIONS 14  // vec4: positions in cell order (entries order), for collide_self
+#define BINDING_FRAME_BOUNDS 15  // FrameBounds of one frame (check_divergence)
+#define BINDING_LAST_GOOD 16     // LastGoodHeader, then vec4 per particle: newest frame that passed (keep_last_good)
 // Texture units of the read-only texel views (GL_TEXTURE_BUFFER) of the same buffers, through
 // which the hot passes read (compute/particle_views.glsl says why).
 #define TEXTURE_POSITIONS 0         // RGBA32F, one texel per particle
@@ -100,6 +102,19 @@ struct StepParams {
   uvec4 grid;          // x width points, y height points, z particle count, w hash table size
   uvec4 enabled;       // x structural, y shearing, z bending (1 = exerts force / is constrained), w unused
   uvec4 colliders;     // x sphere count, y plane count
+};
+
+// The divergence guard's reduction of one frame. Coordinates are stored as ordered bits
+// (compute/divergence.glsl): uints whose unsigned order is the float order, so that
+// atomicMin/atomicMax reduce them.
+struct FrameBounds {
+  uvec4 lo;  // xyz smallest finite coordinate (ordered bits), w 1 if any coordinate is NaN/Inf
+  uvec4 hi;  // xyz largest finite coordinate (ordered bits), w unused
+};
+
+// In front of the kept positions of keep_last_good.
+struct LastGoodHeader {
+  uvec4 state;  // x 1 once a frame has failed (no later frame is kept), y the frame kept, zw unused
 };
 
 #ifdef __cplusplus

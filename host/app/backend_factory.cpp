@@ -23,6 +23,7 @@ std::unique_ptr<gl::GlContext> require_headless_context() {
 #ifndef NDEBUG
   gl::enable_debug_output(gl::DebugMode::Errors);
 #endif
+  if (const std::string notice = gl::software_renderer_notice(); !notice.empty()) fmt::print(stderr, "{}\n", notice);
   return context;
 }
 

@@ -92,6 +92,12 @@ BenchResult BenchRunner::run_gpu(const Scene& scene) {
   // llvmpipe has no GPU timer queries, so every pass is timed with glFinish around it, in
   // a separate frame (the glFinish calls would distort the throughput run above).
   r.pass_ms = time_passes(scene.simulation.simulation_steps, passes, [] { glFinish(); });
+  // The divergence guard, once per frame: its reduction and the copy of a passing frame.
+  glFinish();
+  const auto guard_start = Clock::now();
+  sim.divergence().check(sim.positions());
+  glFinish();
+  r.pass_ms["check_divergence"] = ms_since(guard_start);
   r.pass_timing = "glFinish + steady clock around each pass, separate frame";
   r.particles = model.count();
   r.substeps_per_frame = scene.simulation.simulation_steps;
@@ -115,6 +121,10 @@ BenchResult BenchRunner::run_cpu(const Scene& scene) {
                    {"solve_length_constraints", [&] { solve_length_constraints(model, c, s); }}},
                   [&] { compute_normals(model, s); }};
   r.pass_ms = time_passes(scene.simulation.simulation_steps, passes, [] {});
+  const auto guard_start = Clock::now();
+  KeptFrame<float> kept;
+  keep_last_good(check_divergence(s.pos), divergence_limits(scene, model), 1, s.pos, kept);
+  r.pass_ms["check_divergence"] = ms_since(guard_start);
   r.pass_timing = "steady clock around each pass (CPU reference, float)";
   r.particles = model.count();
   r.substeps_per_frame = scene.simulation.simulation_steps;

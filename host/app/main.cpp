@@ -4,6 +4,7 @@
 
 #include "cli_common.hpp"
 #include "commands.hpp"
+#include "objects.hpp"
 
 int main(int argc, char** argv) {
   using namespace clothsim;
@@ -34,6 +35,14 @@ int main(int argc, char** argv) {
     return run();
   } catch (const SceneError& e) {
     fmt::print(stderr, "error: {}\n", e.what());
+    return kExitBadInput;
+  } catch (const gl::OutOfMemoryError& e) {
+    // Like a grid too large for the GPU's limits (DESIGN.md section 4): too large an input.
+    fmt::print(stderr,
+               "error: {}\n  The cloth does not fit in this GPU's memory: use fewer points "
+               "(cloth.num_width_points, cloth.num_height_points), close other programs using the GPU, or run "
+               "on the CPU: --backend cpu\n",
+               e.what());
     return kExitBadInput;
   } catch (const ExitError& e) {
     fmt::print(stderr, "error: {}\n", e.what());

@@ -38,6 +38,9 @@ struct FrameSource {
     gl::upload_vector(cpu_positions, p);
     gl::upload_vector(cpu_normals, n);
   }
+  // This frame's divergence check. Waiting for it costs nothing here: reading the image back
+  // waits for the frame anyway.
+  std::vector<FrameCheck> take_checks() { return gpu ? gpu->divergence().take(true) : cpu->take_checks(true); }
   const gl::Buffer& positions() const { return gpu ? gpu->positions() : cpu_positions; }
   const gl::Buffer& normals() const { return gpu ? gpu->normals() : cpu_normals; }
 };
@@ -79,6 +82,15 @@ int run_render(const Opts& o) {
   Progress progress("render frame", o.frames);
   for (int f = 1; f <= o.frames; ++f) {
     source.step_frame();
+    // Checked before drawing, so no frame of a diverged cloth is drawn: the frames before it
+    // are written, then the run stops with the message.
+    for (const FrameCheck& check : source.take_checks()) {
+      const auto message = divergence_message(scene, model, check);
+      if (!message) continue;
+      progress.finish();
+      if (f > 1) fmt::print("{}\n", sink.finish());
+      throw ExitError(kExitCheckFailed, *message);
+    }
     target.bind();
     renderer.draw(source.positions(), source.normals(), camera, look);
     sink.add(target.read_rgba());

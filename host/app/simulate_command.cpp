@@ -49,30 +49,45 @@ void add_simulate_command(CLI::App& app, std::function<int()>& run) {
       std::unique_ptr<Backend> backend = make_backend(parse_backend(o->backend), scene, model);
       fmt::print("{}: {}x{} cloth, {} substeps/frame, backend {}\n", scene.source, model.nw, model.nh,
                  scene.simulation.simulation_steps, backend->name());
-      Progress progress("frame", o->frames);
-      const auto start = std::chrono::steady_clock::now();
-      for (int f = 1; f <= o->frames; ++f) {
-        backend->step_frame();
-        // The divergence check reads the cloth back once per frame; cheap next to a frame
-        // of substeps and the only way to stop before a whole run of NaNs.
-        if (auto msg = check_divergence(scene, model, backend->snapshot(), f)) {
-          progress.finish();
-          throw ExitError(kExitCheckFailed, *msg);
-        }
-        progress.update(f);
-      }
-      progress.finish();
-      const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      const ClothSnapshot snap = backend->snapshot();
-      if (o->stats) print_stats(scene, measure(scene, model, snap), o->frames, wall);
-      if (!o->export_path.empty()) {
+      auto export_obj = [&](const ClothSnapshot& snap, const std::string& what) {
+        if (o->export_path.empty()) return;
         try {
           write_obj(o->export_path, model, snap);
         } catch (const std::runtime_error& e) {
           throw ExitError(kExitBadInput, fmt::format("--export {}", e.what()));
         }
-        fmt::print("wrote {}\n", o->export_path);
+        fmt::print("wrote {}{}\n", o->export_path, what);
+      };
+      Progress progress("frame", o->frames);
+      // A diverged run stops with the message; --export still writes a finite cloth: the
+      // newest frame that passed the check.
+      auto stop_if_diverged = [&](const std::vector<FrameCheck>& checks) {
+        for (const FrameCheck& check : checks) {
+          const auto message = divergence_message(scene, model, check);
+          if (!message) continue;
+          progress.finish();
+          if (!o->export_path.empty()) {
+            int kept = 0;
+            const ClothSnapshot good = backend->last_good(&kept);
+            export_obj(good, fmt::format(" (frame {}, the last one that passed the divergence check)", kept));
+          }
+          throw ExitError(kExitCheckFailed, *message);
+        }
+      };
+      const auto start = std::chrono::steady_clock::now();
+      for (int f = 1; f <= o->frames; ++f) {
+        backend->step_frame();
+        // The divergence check: on the GPU a reduction whose 32-byte result arrives at most one
+        // frame late, so the loop never waits for the frame it has just queued.
+        stop_if_diverged(backend->take_checks(false));
+        progress.update(f);
       }
+      stop_if_diverged(backend->take_checks(true));
+      progress.finish();
+      const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      const ClothSnapshot snap = backend->snapshot();
+      if (o->stats) print_stats(scene, measure(scene, model, snap), o->frames, wall);
+      export_obj(snap, "");
       return kExitOk;
     };
   });

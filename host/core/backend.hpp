@@ -1,11 +1,15 @@
-// A simulation backend: something that advances the cloth one rendered frame at a time
-// and can hand back a copy of its state on request (export, stats, validation).
+// A simulation backend: something that advances the cloth one rendered frame at a time,
+// checks every frame for divergence (divergence.hpp), and can hand back a copy of its state
+// on request (export, stats, validation).
 #pragma once
 
 #include <memory>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "diagnostics.hpp"
+#include "divergence.hpp"
 #include "reference.hpp"
 
 namespace clothsim {
@@ -18,17 +22,38 @@ class Backend {
   // A copy of the state. On the GPU this is the only read-back, so call it only when needed.
   virtual ClothSnapshot snapshot() = 0;
   virtual std::string name() const = 0;
+  // The divergence checks not yet taken, oldest first, each frame once. The CPU has checked
+  // the frame just stepped; the GPU hands over each result when it is ready, at most one frame
+  // late (it waits for the previous frame if needed, never for the newest), or with `all`
+  // every frame stepped so far. Results not taken within two frames are dropped, so a caller
+  // that never looks (bench, validate) keeps nothing.
+  virtual std::vector<FrameCheck> take_checks(bool all) = 0;
+  // The newest frame that passed its check before any failed (0 = the initial state), with
+  // CPU-computed normals: what a diverged run exports instead of NaNs.
+  virtual ClothSnapshot last_good(int* frame) = 0;
 };
 
 // The CPU reference as a backend, in float (what the GPU computes) or double.
 template <class R> class CpuBackend final : public Backend {
  public:
   CpuBackend(const Scene& scene, const ClothModel& model)
-      : model_(model), constants_(make_constants<R>(scene, model)), state_(initial_state<R>(model)) {}
+      : model_(model), constants_(make_constants<R>(scene, model)), state_(initial_state<R>(model)),
+        limits_(divergence_limits(scene, model)) {
+    kept_.pos = state_.pos;
+  }
 
   void step_frame() override {
     for (int k = 0; k < int(constants_.steps); ++k) step(model_, constants_, state_);
     compute_normals(model_, state_);
+    const FrameCheck check{++frame_, check_divergence(state_.pos)};
+    keep_last_good(check.bounds, limits_, check.frame, state_.pos, kept_);
+    if (checks_.size() >= 2) checks_.erase(checks_.begin());
+    checks_.push_back(check);
+  }
+  std::vector<FrameCheck> take_checks(bool) override { return std::exchange(checks_, {}); }
+  ClothSnapshot last_good(int* frame) override {
+    if (frame) *frame = kept_.frame;
+    return snapshot_of_positions(model_, kept_.pos);
   }
   ClothSnapshot snapshot() override {
     ClothSnapshot s;
@@ -46,6 +71,10 @@ template <class R> class CpuBackend final : public Backend {
   const ClothModel& model_;
   Constants<R> constants_;
   State<R> state_;
+  DivergenceLimits limits_;
+  KeptFrame<R> kept_;
+  int frame_ = 0;
+  std::vector<FrameCheck> checks_;  // not yet taken
 };
 
 }  // namespace clothsim

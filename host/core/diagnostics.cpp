@@ -65,26 +65,6 @@ ClothStats measure(const Scene& scene, const ClothModel& m, const ClothSnapshot&
   return st;
 }
 
-std::optional<std::string> check_divergence(const Scene& scene, const ClothModel& m, const ClothSnapshot& s, int frame) {
-  const glm::dvec3 centre = initial_centre(m);
-  const double limit = 1000.0 * std::max(scene.cloth.width, scene.cloth.height);
-  for (int i = 0; i < m.count(); ++i) {
-    const glm::dvec3 x = xyz(s.pos[i]);
-    const bool finite = std::isfinite(x.x) && std::isfinite(x.y) && std::isfinite(x.z);
-    if (finite && glm::length(x - centre) <= limit) continue;
-    const std::string what = finite ? fmt::format("was flung {:.3g} m from the cloth (limit {:.3g} m)",
-                                                  glm::length(x - centre), limit)
-                                    : std::string("became NaN/Inf");
-    return fmt::format(
-        "the simulation diverged at frame {}: particle {} ({}, {}) {}. The springs are too stiff for the time "
-        "step: lower cloth.ks (now {:g}) or raise simulation.simulation_steps (now {}), e.g. --set "
-        "simulation.simulation_steps={}",
-        frame, i, i % m.nw, i / m.nw, what, scene.cloth.ks, scene.simulation.simulation_steps,
-        scene.simulation.simulation_steps * 4);
-  }
-  return std::nullopt;
-}
-
 void write_obj(const std::string& path, const ClothModel& m, const ClothSnapshot& s) {
   std::FILE* f = std::fopen(path.c_str(), "w");
   if (!f) throw std::runtime_error(fmt::format("{}: cannot open for writing", path));

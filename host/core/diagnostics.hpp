@@ -1,4 +1,5 @@
-// What a run reports about the cloth: stretch, energy, clearance to colliders, divergence.
+// What a run reports about the cloth: stretch, energy, clearance to colliders (divergence:
+// divergence.hpp).
 // Works on double copies of any backend's state.
 #pragma once
 
@@ -32,11 +33,6 @@ struct ClothStats {
 };
 
 ClothStats measure(const Scene& scene, const ClothModel& model, const ClothSnapshot& s);
-
-// A blown-up run: a non-finite value, or a particle farther than 1000 x the cloth size from
-// where the cloth started. Returns the user-facing explanation (which frame, what to change).
-std::optional<std::string> check_divergence(const Scene& scene, const ClothModel& model, const ClothSnapshot& s,
-                                            int frame);
 
 // Wavefront OBJ: v in particle order, vt, vn, then the triangles of §1 (1-based).
 void write_obj(const std::string& path, const ClothModel& model, const ClothSnapshot& s);

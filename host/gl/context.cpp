@@ -41,4 +41,11 @@ std::string gl_version_string() { return gl_string(GL_VERSION); }
 
 bool gl_renderer_is_llvmpipe() { return gl_renderer_string().find("llvmpipe") != std::string::npos; }
 
+std::string software_renderer_notice() {
+  if (!gl_renderer_is_llvmpipe()) return {};
+  return "note: OpenGL runs on " + gl_renderer_string() +
+         ", Mesa's software rasterizer on the CPU: fine for tests and small cloths, slow for large ones "
+         "(README: Troubleshooting)";
+}
+
 }  // namespace clothsim::gl

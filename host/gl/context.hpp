@@ -45,5 +45,8 @@ bool load_gl_functions(GlProcLoader loader, std::string* why_not);
 std::string gl_renderer_string();  // GL_RENDERER, e.g. "llvmpipe (LLVM 15.0.6, 256 bits)"
 std::string gl_version_string();   // GL_VERSION, e.g. "4.5 (Core Profile) Mesa 22.3.6"
 bool gl_renderer_is_llvmpipe();
+// One line for stderr when the context is a software rasterizer (llvmpipe), so a slow run
+// says why; empty on a GPU.
+std::string software_renderer_notice();
 
 }  // namespace clothsim::gl

@@ -13,6 +13,7 @@ namespace {
 // The callback may run on any thread that has the context current, so the list is locked.
 std::mutex g_mutex;
 std::vector<std::string> g_errors;
+std::vector<GLenum> g_codes;  // drained from glGetError by poll_out_of_memory, not yet reported
 DebugMode g_mode = DebugMode::Off;
 #ifdef NDEBUG
 constexpr bool kPrintErrors = false;
@@ -94,16 +95,29 @@ std::vector<std::string> gl_errors_since_last_check() {
   }
   // An error KHR_debug already reported also sets the glGetError flag: report the flag
   // only when the callback saw nothing (debug output off or unsupported).
-  if (glGetError) {
-    const bool reported = !errors.empty();
-    // Bounded: a lost context may report GL_CONTEXT_LOST on every call.
-    for (int i = 0; i < 16; ++i) {
-      const GLenum code = glGetError();
-      if (code == GL_NO_ERROR) break;
-      if (!reported) errors.push_back(fmt::format("glGetError: {} (0x{:04x})", error_code_name(code), code));
-    }
+  poll_out_of_memory();
+  std::vector<GLenum> codes;
+  {
+    std::lock_guard lock(g_mutex);
+    codes.swap(g_codes);
   }
+  if (errors.empty())
+    for (GLenum code : codes) errors.push_back(fmt::format("glGetError: {} (0x{:04x})", error_code_name(code), code));
   return errors;
+}
+
+bool poll_out_of_memory() {
+  if (!glGetError) return false;
+  bool out_of_memory = false;
+  // Bounded: a lost context may report GL_CONTEXT_LOST on every call.
+  for (int i = 0; i < 16; ++i) {
+    const GLenum code = glGetError();
+    if (code == GL_NO_ERROR) break;
+    out_of_memory = out_of_memory || code == GL_OUT_OF_MEMORY;
+    std::lock_guard lock(g_mutex);
+    g_codes.push_back(code);
+  }
+  return out_of_memory;
 }
 
 }  // namespace clothsim::gl

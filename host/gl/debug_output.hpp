@@ -21,4 +21,9 @@ void enable_debug_output(DebugMode mode);
 // glGetError, so errors are seen even where KHR_debug reports nothing.
 std::vector<std::string> gl_errors_since_last_check();
 
+// Drains glGetError (a cheap call: it does not wait for the GPU) and says whether it held
+// GL_OUT_OF_MEMORY. Every code drained, that one included, is still reported by the next
+// gl_errors_since_last_check(). Called after each buffer allocation and once per frame.
+bool poll_out_of_memory();
+
 }  // namespace clothsim::gl

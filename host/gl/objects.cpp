@@ -4,6 +4,8 @@
 
 #include <fmt/format.h>
 
+#include "debug_output.hpp"
+
 namespace clothsim::gl {
 
 void detail::delete_buffer(GLuint id) { glDeleteBuffers(1, &id); }
@@ -29,7 +31,7 @@ GLuint new_vertex_array() {
   return id;
 }
 
-void label(GLenum identifier, GLuint id, std::string_view text) {
+void set_label(GLenum identifier, GLuint id, std::string_view text) {
   if (!text.empty()) glObjectLabel(identifier, id, GLsizei(text.size()), text.data());
 }
 
@@ -42,11 +44,26 @@ void check_range(std::string_view what, std::size_t offset, std::size_t bytes, s
 
 }  // namespace
 
-Buffer::Buffer(std::string_view label_text) : name_(new_buffer()) { label(GL_BUFFER, name_.get(), label_text); }
+Buffer::Buffer(std::string_view label_text) : name_(new_buffer()), label_(label_text) {
+  set_label(GL_BUFFER, name_.get(), label_text);
+}
 
 void Buffer::allocate(std::size_t bytes, const void* data, GLenum usage) {
   glBindBuffer(GL_COPY_WRITE_BUFFER, name_.get());
+  auto name = [&] {
+    return label_.empty() ? std::string("an unnamed buffer") : fmt::format("the buffer '{}'", label_);
+  };
+  // An earlier command's GL_OUT_OF_MEMORY is reported as such, not blamed on this buffer.
+  if (poll_out_of_memory())
+    throw OutOfMemoryError(fmt::format("GL_OUT_OF_MEMORY: the GPU driver ran out of memory (found before "
+                                       "allocating {})", name()));
   glBufferData(GL_COPY_WRITE_BUFFER, GLsizeiptr(bytes), data, usage);
+  if (poll_out_of_memory()) {
+    size_ = 0;
+    throw OutOfMemoryError(fmt::format("GL_OUT_OF_MEMORY: the GPU driver could not allocate {} bytes ({:.1f} MiB) "
+                                       "for {}",
+                                       bytes, double(bytes) / 1048576.0, name()));
+  }
   size_ = bytes;
 }
 
@@ -81,8 +98,36 @@ void Buffer::bind_base(GLenum target, GLuint binding) const { glBindBufferBase(t
 
 void Buffer::bind(GLenum target) const { glBindBuffer(target, name_.get()); }
 
+Fence Fence::insert() {
+  Fence f;
+  f.sync_ = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
+  return f;
+}
+
+bool Fence::signalled() const {
+  if (!sync_) return true;
+  const GLenum r = glClientWaitSync(sync_, GL_SYNC_FLUSH_COMMANDS_BIT, 0);
+  if (r == GL_WAIT_FAILED) throw std::runtime_error("glClientWaitSync failed on a fence");
+  return r == GL_ALREADY_SIGNALED || r == GL_CONDITION_SATISFIED;
+}
+
+void Fence::wait() const {
+  if (!sync_) return;
+  for (;;) {
+    // One second at a time: a GPU frame never takes that long unless the driver is stuck.
+    const GLenum r = glClientWaitSync(sync_, GL_SYNC_FLUSH_COMMANDS_BIT, 1'000'000'000);
+    if (r == GL_ALREADY_SIGNALED || r == GL_CONDITION_SATISFIED) return;
+    if (r == GL_WAIT_FAILED) throw std::runtime_error("glClientWaitSync failed on a fence");
+  }
+}
+
+void Fence::reset() {
+  if (sync_) glDeleteSync(sync_);
+  sync_ = nullptr;
+}
+
 VertexArray::VertexArray(std::string_view label_text) : name_(new_vertex_array()) {
-  label(GL_VERTEX_ARRAY, name_.get(), label_text);
+  set_label(GL_VERTEX_ARRAY, name_.get(), label_text);
 }
 
 void VertexArray::bind() const { glBindVertexArray(name_.get()); }

@@ -7,6 +7,8 @@
 
 #include <cstddef>
 #include <span>
+#include <stdexcept>
+#include <string>
 #include <string_view>
 #include <type_traits>
 #include <utility>
@@ -41,6 +43,12 @@ void delete_buffer(GLuint id);
 void delete_vertex_array(GLuint id);
 }  // namespace detail
 
+// The driver said GL_OUT_OF_MEMORY: when allocating a buffer (the message names it and the
+// size), or during a run (gpu_divergence.cpp checks once per frame).
+struct OutOfMemoryError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
 // A GL buffer object. Uploads and read-backs go through the GL_COPY_*_BUFFER targets, so
 // they never disturb the bindings a pass has set up.
 class Buffer {
@@ -49,6 +57,7 @@ class Buffer {
   explicit Buffer(std::string_view label = {});
 
   // Replaces the storage with `bytes` bytes, initialised from data (undefined if null).
+  // Throws OutOfMemoryError naming the buffer and the size when the driver has no room.
   void allocate(std::size_t bytes, const void* data = nullptr, GLenum usage = GL_DYNAMIC_DRAW);
   void upload(std::size_t offset, std::size_t bytes, const void* data);
   // Reads back: a shader write needs glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT) first.
@@ -63,10 +72,12 @@ class Buffer {
   void bind(GLenum target) const;
   std::size_t size() const { return size_; }
   GLuint id() const { return name_.get(); }  // for views of it (BufferTexture) and introspection
+  const std::string& label() const { return label_; }
 
  private:
   detail::Name<detail::delete_buffer> name_;
   std::size_t size_ = 0;
+  std::string label_;
 };
 
 // Replaces the buffer's storage with the contents of `values`.
@@ -88,6 +99,33 @@ template <class T> std::vector<T> download_vector(const Buffer& buffer, std::siz
   buffer.download(first * sizeof(T), count * sizeof(T), values.data());
   return values;
 }
+
+// A fence after every command issued so far (glFenceSync), to learn without stalling when
+// the GPU has finished them. Empty when default-constructed.
+class Fence {
+ public:
+  Fence() = default;
+  static Fence insert();
+  Fence(Fence&& other) noexcept : sync_(std::exchange(other.sync_, nullptr)) {}
+  Fence& operator=(Fence&& other) noexcept {
+    if (this != &other) {
+      reset();
+      sync_ = std::exchange(other.sync_, nullptr);
+    }
+    return *this;
+  }
+  ~Fence() { reset(); }
+  explicit operator bool() const { return sync_ != nullptr; }
+  // Whether the commands before the fence are done, without waiting. Flushes them, so a
+  // fence that is polled will signal.
+  bool signalled() const;
+  // Waits until they are done (true at once for an empty fence).
+  void wait() const;
+
+ private:
+  void reset();
+  GLsync sync_ = nullptr;
+};
 
 // A vertex array object. The renderer pulls vertices from storage buffers by gl_VertexID,
 // so it has no attributes; core profile still needs one bound to draw.

@@ -5,6 +5,8 @@
 
 #include <fmt/format.h>
 
+#include "gpu_memory.hpp"
+
 namespace clothsim {
 namespace {
 
@@ -48,6 +50,7 @@ void check_gpu_limits(const Scene& scene, const ClothModel& m) {
     throw SceneError(fmt::format("{}: cloth.num_width_points: {} needs a texel view of {} texels, more than "
                                  "this GPU's GL_MAX_TEXTURE_BUFFER_SIZE ({})",
                                  scene.source, grid, texels, max_texels));
+  check_gpu_memory(scene, m);  // where the driver reports free memory (gpu_memory.hpp)
 }
 
 }  // namespace
@@ -80,7 +83,8 @@ GpuSimulator::GpuSimulator(const Scene& scene, const ClothModel& model, const st
       fill_cells_(load_pass(dir, "fill_cells")),
       sort_cells_(load_pass(dir, "sort_cells")),
       collide_self_(load_pass(dir, "collide_self")),
-      scan_(dir, hash_table_size(uint32_t(model.count()))) {
+      scan_(dir, hash_table_size(uint32_t(model.count()))),
+      guard_(scene, model, dir) {
   const size_t n = model.count();
   std::vector<layout::RestLengths> rest(n);
   for (size_t i = 0; i < n; ++i) {
@@ -112,7 +116,8 @@ void GpuSimulator::barrier(GLbitfield bits) {
 }
 
 GpuCounters GpuSimulator::counters() const {
-  return {counters_.dispatches + scan_.counters().dispatches, counters_.barriers + scan_.counters().barriers};
+  return {counters_.dispatches + scan_.counters().dispatches + guard_.counters().dispatches,
+          counters_.barriers + scan_.counters().barriers + guard_.counters().barriers};
 }
 
 size_t GpuSimulator::memory_bytes() const {
@@ -121,7 +126,7 @@ size_t GpuSimulator::memory_bytes() const {
                               &step_params_, &positions_out_, &cell_count_, &cell_start_, &cell_entries_,
                               &sorted_positions_})
     total += b->size();
-  return total + scan_.memory_bytes();
+  return total + scan_.memory_bytes() + guard_.memory_bytes();
 }
 
 void GpuSimulator::bind_all() const {
@@ -296,6 +301,7 @@ void GpuSimulator::step() {
 void GpuSimulator::step_frame() {
   for (int k = 0; k < int(constants_.steps); ++k) step();
   compute_normals();
+  guard_.check(positions_);
 }
 
 int GpuSimulator::dispatches_per_substep() const {

@@ -8,6 +8,7 @@
 
 #include "backend.hpp"
 #include "context.hpp"
+#include "gpu_divergence.hpp"
 #include "objects.hpp"
 #include "prefix_scan.hpp"
 #include "program.hpp"
@@ -46,7 +47,8 @@ class GpuSimulator {
   PrefixScan& prefix_scan() { return scan_; }
 
   void step();        // one substep, the pass list of §1
-  void step_frame();  // simulation_steps substeps, then normals
+  void step_frame();  // simulation_steps substeps, then normals, then the divergence guard's check
+  GpuDivergenceGuard& divergence() { return guard_; }
 
   // Explicit transfers for export, validation and tests.
   void upload(const State<float>& state);  // pos, prev, and force when present
@@ -99,6 +101,7 @@ class GpuSimulator {
   gl::Program accumulate_forces_, integrate_, advance_, collide_objects_, solve_length_constraints_, compute_normals_;
   gl::Program count_cells_, fill_cells_, sort_cells_, collide_self_;
   PrefixScan scan_;
+  GpuDivergenceGuard guard_;
 };
 
 // The parameter block of a substep, from the same Constants<float> the reference uses.
@@ -111,6 +114,10 @@ class GpuBackend final : public Backend {
              const std::filesystem::path& compute_dir);
   void step_frame() override { sim_->step_frame(); }
   ClothSnapshot snapshot() override;
+  std::vector<FrameCheck> take_checks(bool all) override { return sim_->divergence().take(all); }
+  ClothSnapshot last_good(int* frame) override {
+    return snapshot_of_positions(model_, sim_->divergence().last_good(frame));
+  }
   std::string name() const override;
   GpuSimulator& simulator() { return *sim_; }
 

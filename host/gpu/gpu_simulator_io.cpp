@@ -56,6 +56,7 @@ void GpuSimulator::reset() {
   s.prev = s.pos;
   upload(s);
   compute_normals();
+  guard_.restart(s.pos, 0);
 }
 
 void GpuSimulator::download_hash(SpatialHash& h) {

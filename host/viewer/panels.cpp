@@ -117,6 +117,13 @@ void draw_panels(ViewerState& st, const std::filesystem::path& root) {
   ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_FirstUseEver);
   ImGui::SetNextWindowSize(ImVec2(470, 0), ImGuiCond_FirstUseEver);
   ImGui::Begin("clothsim");
+  if (!st.divergence.empty()) {
+    // First, above every panel: the simulation has stopped and says why.
+    ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.f, 0.45f, 0.35f, 1.f));
+    ImGui::TextWrapped("%s", st.divergence.c_str());
+    ImGui::PopStyleColor();
+    ImGui::Separator();
+  }
   ImGui::PushItemWidth(-200.f);  // leave room for the key names as labels
   simulation_panel(st);
   appearance_panel(st);

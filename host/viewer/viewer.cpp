@@ -24,6 +24,7 @@ int run_viewer(const ViewerOptions& o) {
                why);
     return 3;
   }
+  if (const std::string notice = gl::software_renderer_notice(); !notice.empty()) fmt::print(stderr, "{}\n", notice);
   Viewer viewer(o, std::move(window));
   viewer.load(scene);
   return viewer.run();

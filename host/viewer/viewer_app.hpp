@@ -57,6 +57,7 @@ class Viewer {
     session_.renderer = std::make_unique<Renderer>(opts_.root, scene, *session_.model,
                                                    RendererOptions{opts_.sphere_lat, opts_.sphere_lon});
     reset_camera();
+    st_.divergence.clear();
     st_.stats.particles = session_.model->count();
     st_.stats.springs = session_.model->springs();
     if (st_.path_field.empty()) st_.path_field = scene.source;
@@ -65,7 +66,7 @@ class Viewer {
 
   int run() {
     if (opts_.frames >= 0) st_.paused = false;  // scripted mode runs unpaused
-    int frames_done = 0;
+    int frames_done = 0, frames_to_exit = 0;
     auto last = std::chrono::steady_clock::now();
     while (!glfwWindowShouldClose(window_->handle())) {
       glfwPollEvents();
@@ -78,9 +79,16 @@ class Viewer {
         st_.step_once = false;
         ++frames_done;
       }
-      const bool last_frame = opts_.frames >= 0 && frames_done >= opts_.frames;
+      // Scripted mode cannot wait for a key after a divergence: it draws a few more (paused)
+      // frames, so ImGui has laid out the panel with the message, saves the screenshot, exits 1.
+      if (poll_divergence() && opts_.frames >= 0) frames_to_exit = 3;
+      const bool diverged = frames_to_exit > 0;
+      const bool last_frame = opts_.frames >= 0 && (diverged ? --frames_to_exit == 0 : frames_done >= opts_.frames);
       draw();
-      if (last_frame) return save_screenshot(opts_.screenshot) ? 0 : 1;
+      if (last_frame) {
+        if (diverged) fmt::print(stderr, "error: {}\n", st_.divergence);
+        return save_screenshot(opts_.screenshot) && !diverged ? 0 : 1;
+      }
       glfwSwapBuffers(window_->handle());
       const auto now = std::chrono::steady_clock::now();
       const double dt = std::chrono::duration<double>(now - last).count();
@@ -102,8 +110,8 @@ class Viewer {
     session_.renderer->draw(session_.sim->positions(), session_.sim->normals(), st_.camera, st_.look);
     st_.stats.render_ms = render_timer_.end();
     st_.stats.gpu_timers = sim_timer_.uses_queries();
-    st_.stats.dispatches_per_frame =
-        session_.sim->dispatches_per_substep() * st_.scene.simulation.simulation_steps + 1;
+    st_.stats.dispatches_per_frame = session_.sim->dispatches_per_substep() * st_.scene.simulation.simulation_steps +
+                                     1 + GpuDivergenceGuard::kDispatchesPerFrame;  // normals, the guard
     ImGui_ImplOpenGL3_NewFrame();
     ImGui_ImplGlfw_NewFrame();
     ImGui::NewFrame();
@@ -122,7 +130,9 @@ class Viewer {
     st_.reload_requested = false;
     if (path.empty()) return;
     try {
+      const bool diverged = !st_.divergence.empty();
       load(path[0] == '<' ? default_scene(opts_.sets) : load_scene(path, opts_.sets));
+      if (diverged) st_.paused = false;  // a reload after a divergence starts running again
       st_.status = fmt::format("loaded {}", path);
     } catch (const std::exception& e) {
       st_.status = e.what();  // a bad file is reported in the panel; the current scene stays
@@ -166,6 +176,12 @@ class Viewer {
     glfwGetFramebufferSize(window_->handle(), &w, &h);
     st_.camera = default_camera(st_.scene, *session_.model, h > 0 ? float(w) / float(h) : 1.f);
   }
+
+  // The divergence guard's results (viewer_divergence.cpp): a failed frame pauses the viewer
+  // on the newest frame that passed, with the message in the panel. True on a new failure.
+  bool poll_divergence();
+  // After a failure, P, N, R, reload and open clear the message: R and reload also unpause.
+  void clear_divergence(bool unpause);
 
   void install_callbacks();
   void on_key(int key, int mods);

@@ -26,9 +26,9 @@ void Viewer::install_callbacks() {
 
 void Viewer::on_key(int key, int) {
   switch (key) {
-    case GLFW_KEY_P: st_.paused = !st_.paused; break;
-    case GLFW_KEY_N: if (st_.paused) st_.step_once = true; break;
-    case GLFW_KEY_R: session_.sim->reset(); grab_ = {}; break;
+    case GLFW_KEY_P: clear_divergence(false); st_.paused = !st_.paused; break;
+    case GLFW_KEY_N: clear_divergence(false); if (st_.paused) st_.step_once = true; break;
+    case GLFW_KEY_R: clear_divergence(true); session_.sim->reset(); grab_ = {}; break;
     case GLFW_KEY_SPACE: reset_camera(); break;
     case GLFW_KEY_ESCAPE: glfwSetWindowShouldClose(window_->handle(), GLFW_TRUE); break;
     case GLFW_KEY_F1: st_.show_panels = !st_.show_panels; break;

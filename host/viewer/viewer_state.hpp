@@ -29,6 +29,7 @@ struct ViewerState {
   bool show_panels = true;
   ViewerStats stats;
   std::string status;        // last message for the user (saved, loaded, errors)
+  std::string divergence;    // why the simulation stopped (divergence_message); empty while it runs
   std::string path_field;    // Scene panel's file path
   // Requests from the panels, handled by the main loop.
   bool parameters_changed = false;

@@ -13,8 +13,9 @@ FIELDS = {"backend": str, "size": int, "particles": int, "self_collision": bool,
 # The passes each backend's step runs (the GPU fuses collide_objects into advance or
 # collide_self, and times the stages of its hashed grid one by one).
 PASSES = {"gpu": {"advance", "count_cells", "scan_cells", "fill_cells", "sort_cells", "collide_self",
-                  "solve_length_constraints", "compute_normals"},
-          "cpu": {"advance", "collide_self", "collide_objects", "solve_length_constraints", "compute_normals"}}
+                  "solve_length_constraints", "compute_normals", "check_divergence"},
+          "cpu": {"advance", "collide_self", "collide_objects", "solve_length_constraints", "compute_normals",
+                  "check_divergence"}}
 
 
 def main():

@@ -1,0 +1,68 @@
+#include "gpu_memory.hpp"
+
+#include <cstring>
+
+#include <fmt/format.h>
+
+#include "objects.hpp"
+#include "spatial_hash.hpp"
+#include "../../compute/layout.glsl"
+
+namespace clothsim {
+namespace {
+
+// Not in the generated loader (glad is made for core 4.3 + KHR_debug only).
+constexpr GLenum kNvxCurrentAvailableVidmem = 0x9049;  // GL_GPU_MEMORY_INFO_CURRENT_AVAILABLE_VIDMEM_NVX, KiB
+constexpr GLenum kAtiVboFreeMemory = 0x87FB;           // GL_VBO_FREE_MEMORY_ATI: 4 ints, [0] total free KiB
+
+bool has_extension(const char* name) {
+  GLint n = 0;
+  glGetIntegerv(GL_NUM_EXTENSIONS, &n);
+  for (GLint i = 0; i < n; ++i) {
+    const auto* e = reinterpret_cast<const char*>(glGetStringi(GL_EXTENSIONS, GLuint(i)));
+    if (e && std::strcmp(e, name) == 0) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+std::optional<GpuMemoryInfo> available_gpu_memory() {
+  if (has_extension("GL_NVX_gpu_memory_info")) {
+    GLint kib = 0;
+    glGetIntegerv(kNvxCurrentAvailableVidmem, &kib);
+    return GpuMemoryInfo{uint64_t(kib) * 1024, "GL_NVX_gpu_memory_info"};
+  }
+  if (has_extension("GL_ATI_meminfo")) {
+    GLint kib[4] = {};
+    glGetIntegerv(kAtiVboFreeMemory, kib);
+    return GpuMemoryInfo{uint64_t(kib[0]) * 1024, "GL_ATI_meminfo"};
+  }
+  return std::nullopt;
+}
+
+uint64_t simulator_bytes(const ClothModel& model) {
+  const uint64_t n = uint64_t(model.count()), table = hash_table_size(uint32_t(n));
+  // pos, prev, forces, normals, the self-collision output and the kept copy; rest lengths;
+  // the hash's entries per particle and its count and start per bucket (scan sums are less
+  // than 1 % more).
+  return n * (6 * sizeof(glm::vec4) + sizeof(layout::RestLengths) + sizeof(uint32_t)) +
+         (2 * table + 1) * sizeof(uint32_t);
+}
+
+std::optional<std::string> memory_shortfall(const Scene& scene, const ClothModel& model, uint64_t needed,
+                                            const std::optional<GpuMemoryInfo>& available) {
+  if (!available || needed <= available->available_bytes) return std::nullopt;
+  return fmt::format("{}: cloth.num_width_points: a {}x{} grid needs about {:.0f} MiB of GPU memory, more than "
+                     "the {:.0f} MiB this GPU has free ({}); use fewer points, close other programs using the "
+                     "GPU, or run on the CPU: --backend cpu",
+                     scene.source, model.nw, model.nh, double(needed) / 1048576.0,
+                     double(available->available_bytes) / 1048576.0, available->source);
+}
+
+void check_gpu_memory(const Scene& scene, const ClothModel& model) {
+  if (auto message = memory_shortfall(scene, model, simulator_bytes(model), available_gpu_memory()))
+    throw SceneError(*message);
+}
+
+}  // namespace clothsim
