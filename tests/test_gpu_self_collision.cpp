@@ -123,7 +123,7 @@ TEST_CASE("the GPU prefix scan is exclusive at every length and leaves elements 
 TEST_CASE("the GPU hash holds every particle once, in its own bucket, ascending, as the reference's",
           "[gpu][self_collision]") {
   REQUIRE_GL_CONTEXT();
-  // 182^2 particles -> a 131072-bucket table (a three-level scan); about ten particles per cell.
+  // 182^2 particles -> a 65536-bucket table (a four-level scan); about ten particles per cell.
   Placed t(test::make_scene(182, 182, 0));
   std::mt19937 rng(5);
   std::uniform_real_distribution<float> jitter(-2e-3f, 2e-3f);  // so cells hold irregular counts
@@ -142,7 +142,7 @@ TEST_CASE("the GPU hash holds every particle once, in its own bucket, ascending,
   count_cells(buckets, h);
   scan_cells(h);
   fill_cells(buckets, ids, h);
-  REQUIRE(g.table_size == 131072);
+  REQUIRE(g.table_size == 65536);
   auto sorted = g.entries;
   std::sort(sorted.begin(), sorted.end());
   CHECK(mismatches(sorted, ids) == 0);  // every particle exactly once
@@ -182,7 +182,7 @@ TEST_CASE("particles in contact across a cell boundary are found", "[gpu][self_c
 
 TEST_CASE("a neighbour whose bucket is visited twice is counted once", "[gpu][self_collision]") {
   REQUIRE_GL_CONTEXT();
-  Placed t(test::make_scene(8, 8, 0));  // 64 particles, 128 buckets
+  Placed t(test::make_scene(8, 8, 0));  // 64 particles, 64 buckets
   const uint32_t table = t.s.hash.table_size;
   // A cell A whose +x neighbour's bucket is also the bucket of another of the 27 cells around
   // A (so that bucket is visited twice), while A's own bucket appears once among them.

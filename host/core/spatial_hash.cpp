@@ -5,8 +5,10 @@
 namespace clothsim {
 
 uint32_t hash_table_size(uint32_t particles) {
+  // A load factor up to 1: a larger table spends more on clearing, scanning and sorting
+  // buckets than it saves on candidates from other cells (measured at 256^2 on llvmpipe).
   uint32_t size = 4;  // three adjacent buckets must be distinct (hash_cell)
-  while (size < 2 * particles) size <<= 1;
+  while (size < particles) size <<= 1;
   return size;
 }
 

@@ -9,7 +9,7 @@
 namespace clothsim {
 
 struct SpatialHash {
-  uint32_t table_size = 0;         // power of two >= 2 * particles, at least 4
+  uint32_t table_size = 0;         // power of two >= particles, at least 4
   std::vector<uint32_t> count;     // particles per bucket
   std::vector<uint32_t> start;     // exclusive prefix sum of count, table_size + 1 entries
   std::vector<uint32_t> entries;   // particle ids in bucket order, ascending within a bucket
