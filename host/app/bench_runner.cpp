@@ -16,30 +16,56 @@ double ms_since(Clock::time_point t) { return std::chrono::duration<double, std:
 
 constexpr int kWarmupFrames = 2;
 
+using Pass = std::pair<std::string, std::function<void()>>;
+
+// The passes of one frame: `step` once per substep, then `frame` once (normals, guard).
+struct PassList {
+  std::vector<Pass> step, frame;
+  template <class F> void for_each(int substeps, F&& f) const {
+    for (int k = 0; k < substeps; ++k)
+      for (const Pass& p : step) f(p);
+    for (const Pass& p : frame) f(p);
+  }
+};
+
 // Times each pass of one frame separately; `finish` waits for the work (glFinish on the GPU).
-template <class Passes>
-std::map<std::string, double> time_passes(int substeps, const Passes& passes, const std::function<void()>& finish) {
+std::map<std::string, double> time_passes(int substeps, const PassList& passes, const std::function<void()>& finish) {
   std::map<std::string, double> ms;
-  for (int k = 0; k < substeps; ++k)
-    for (auto& [name, run] : passes.step) {
-      finish();
-      const auto t = Clock::now();
-      run();
-      finish();
-      ms[name] += ms_since(t);
-    }
-  finish();
-  const auto t = Clock::now();
-  passes.normals();
-  finish();
-  ms["compute_normals"] = ms_since(t);
+  passes.for_each(substeps, [&](const Pass& p) {
+    finish();
+    const auto t = Clock::now();
+    p.second();
+    finish();
+    ms[p.first] += ms_since(t);
+  });
   return ms;
 }
 
-struct PassList {
-  std::vector<std::pair<std::string, std::function<void()>>> step;
-  std::function<void()> normals;
-};
+// The GPU time of each pass of one frame from GL_TIME_ELAPSED queries (no stall between
+// passes); empty when the driver has no real GPU timer: llvmpipe's queries read 0 or a few
+// nanoseconds, so a sum under 5 % of the measured frame time means "no timer".
+std::map<std::string, double> time_passes_with_queries(int substeps, const PassList& passes, double frame_ms) {
+  std::vector<std::pair<std::string, GLuint>> issued;
+  passes.for_each(substeps, [&](const Pass& p) {
+    GLuint id = 0;
+    glGenQueries(1, &id);
+    glBeginQuery(GL_TIME_ELAPSED, id);
+    p.second();
+    glEndQuery(GL_TIME_ELAPSED);
+    issued.emplace_back(p.first, id);
+  });
+  std::map<std::string, double> ms;
+  GLuint64 total = 0;
+  for (auto& [name, id] : issued) {
+    GLuint64 ns = 0;
+    glGetQueryObjectui64v(id, GL_QUERY_RESULT, &ns);
+    glDeleteQueries(1, &id);
+    ms[name] += double(ns) * 1e-6;
+    total += ns;
+  }
+  if (double(total) * 1e-6 < 0.05 * frame_ms) ms.clear();
+  return ms;
+}
 
 }  // namespace
 
@@ -88,17 +114,18 @@ BenchResult BenchRunner::run_gpu(const Scene& scene) {
                    {"sort_cells", [&] { if (sc) sim.sort_cells(); }},
                    {"collide_self", [&] { if (sc) sim.resolve_self_contacts(colliders); }},
                    {"solve_length_constraints", [&] { sim.solve_length_constraints(); }}},
-                  [&] { sim.compute_normals(); }};
-  // llvmpipe has no GPU timer queries, so every pass is timed with glFinish around it, in
-  // a separate frame (the glFinish calls would distort the throughput run above).
-  r.pass_ms = time_passes(scene.simulation.simulation_steps, passes, [] { glFinish(); });
-  // The divergence guard, once per frame: its reduction and the copy of a passing frame.
-  glFinish();
-  const auto guard_start = Clock::now();
-  sim.divergence().check(sim.positions());
-  glFinish();
-  r.pass_ms["check_divergence"] = ms_since(guard_start);
-  r.pass_timing = "glFinish + steady clock around each pass, separate frame";
+                  {{"compute_normals", [&] { sim.compute_normals(); }},
+                   // The divergence guard: its reduction and the copy of a passing frame.
+                   {"check_divergence", [&] { sim.divergence().check(sim.positions()); }}}};
+  // Per-pass times come from a separate frame (stalls or queries would distort the run above):
+  // GPU timer queries where the driver has them, else (llvmpipe) glFinish around each pass.
+  const int substeps = scene.simulation.simulation_steps;
+  r.pass_ms = time_passes_with_queries(substeps, passes, r.ms_per_frame);
+  r.pass_timing = "GL_TIME_ELAPSED query around each pass, separate frame";
+  if (r.pass_ms.empty()) {
+    r.pass_ms = time_passes(substeps, passes, [] { glFinish(); });
+    r.pass_timing = "glFinish + steady clock around each pass, separate frame (no GPU timer)";
+  }
   r.particles = model.count();
   r.substeps_per_frame = scene.simulation.simulation_steps;
   r.particle_substeps_per_s = double(r.particles) * r.substeps_per_frame / (r.ms_per_frame * 1e-3);
@@ -119,12 +146,12 @@ BenchResult BenchRunner::run_cpu(const Scene& scene) {
                    {"collide_self", [&] { if (c.self_collision) collide_self(c, s); }},
                    {"collide_objects", [&] { collide_objects(c, s); }},
                    {"solve_length_constraints", [&] { solve_length_constraints(model, c, s); }}},
-                  [&] { compute_normals(model, s); }};
+                  {{"compute_normals", [&] { compute_normals(model, s); }},
+                   {"check_divergence", [&] {
+                      KeptFrame<float> kept;
+                      keep_last_good(check_divergence(s.pos), divergence_limits(scene, model), 1, s.pos, kept);
+                    }}}};
   r.pass_ms = time_passes(scene.simulation.simulation_steps, passes, [] {});
-  const auto guard_start = Clock::now();
-  KeptFrame<float> kept;
-  keep_last_good(check_divergence(s.pos), divergence_limits(scene, model), 1, s.pos, kept);
-  r.pass_ms["check_divergence"] = ms_since(guard_start);
   r.pass_timing = "steady clock around each pass (CPU reference, float)";
   r.particles = model.count();
   r.substeps_per_frame = scene.simulation.simulation_steps;
