@@ -245,7 +245,7 @@ std::string Scene::name() const {
 Scene parse_scene(const std::string& text, const std::string& source, const std::vector<std::string>& overrides) {
   json j;
   try {
-    j = json::parse(text);
+    j = parse_json_limited(text, source, /*allow_exceptions=*/true);
   } catch (const json::parse_error& e) {
     // nlohmann reports a byte offset; turn it into line:column for people.
     size_t off = std::min<size_t>(e.byte, text.size()), line = 1, col = 1;

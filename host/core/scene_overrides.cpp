@@ -47,6 +47,15 @@ std::vector<Segment> split_path(const std::string& path, const std::string& wher
 
 }  // namespace
 
+nlohmann::json parse_json_limited(const std::string& text, const std::string& where, bool allow_exceptions) {
+  auto limit = [&](int depth, nlohmann::json::parse_event_t, nlohmann::json&) {
+    if (depth > kMaxJsonDepth)
+      throw SceneError(fmt::format("{}: arrays and objects nested deeper than {} levels", where, kMaxJsonDepth));
+    return true;
+  };
+  return nlohmann::json::parse(text, limit, allow_exceptions);
+}
+
 void apply_overrides(nlohmann::json& scene, const std::vector<std::string>& overrides, const std::string& source) {
   for (const std::string& o : overrides) {
     std::string where = fmt::format("{}: --set {}", source, o);
@@ -54,8 +63,10 @@ void apply_overrides(nlohmann::json& scene, const std::vector<std::string>& over
     if (eq == std::string::npos || eq == 0)
       throw SceneError(fmt::format("{}: expected key.path=value (e.g. --set cloth.ks=500)", where));
     std::vector<Segment> path = split_path(o.substr(0, eq), where);
+    if (path.size() > size_t(kMaxJsonDepth))
+      throw SceneError(fmt::format("{}: a key path of more than {} parts", where, kMaxJsonDepth));
     std::string text = o.substr(eq + 1);
-    nlohmann::json value = nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
+    nlohmann::json value = parse_json_limited(text, where, /*allow_exceptions=*/false);
     if (value.is_discarded()) value = text;
 
     nlohmann::json* node = &scene;
@@ -71,7 +82,7 @@ void apply_overrides(nlohmann::json& scene, const std::vector<std::string>& over
         node = &(*node)[s.key];
       }
     }
-    *node = value;
+    *node = std::move(value);
   }
 }
 
