@@ -70,9 +70,8 @@ class ObjectReader {
   static std::string describe(const json& v) {
     // A --set value that is not JSON becomes a string as typed, possibly not UTF-8: plain
     // dump() would throw json::type_error 316 for it instead of this message naming the key.
-    std::string s = v.dump(-1, ' ', false, json::error_handler_t::replace);
-    if (s.size() > 40) s = s.substr(0, 37) + "...";
-    return fmt::format("{} {}", v.type_name(), s);
+    if (v.is_null()) return "null";
+    return fmt::format("{} {}", v.type_name(), abbreviate(v.dump(-1, ' ', false, json::error_handler_t::replace), 40));
   }
   double check_number(const json& v, const std::string& kp, double lo, double hi, const char* range) const {
     if (!v.is_number()) fail(kp, fmt::format("expected a number, got {}", describe(v)));

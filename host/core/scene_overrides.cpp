@@ -56,9 +56,17 @@ nlohmann::json parse_json_limited(const std::string& text, const std::string& wh
   return nlohmann::json::parse(text, limit, allow_exceptions);
 }
 
+std::string abbreviate(const std::string& text, size_t max) {
+  if (text.size() <= max) return text;
+  size_t n = max < 3 ? 0 : max - 3;
+  while (n > 0 && (static_cast<unsigned char>(text[n]) & 0xC0) == 0x80) --n;  // a continuation byte
+  return text.substr(0, n) + "...";
+}
+
 void apply_overrides(nlohmann::json& scene, const std::vector<std::string>& overrides, const std::string& source) {
   for (const std::string& o : overrides) {
-    std::string where = fmt::format("{}: --set {}", source, o);
+    // A fuzzed --set can be megabytes long: the message shows its start.
+    std::string where = fmt::format("{}: --set {}", source, abbreviate(o, 80));
     size_t eq = o.find('=');
     if (eq == std::string::npos || eq == 0)
       throw SceneError(fmt::format("{}: expected key.path=value (e.g. --set cloth.ks=500)", where));

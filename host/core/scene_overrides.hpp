@@ -22,4 +22,8 @@ inline constexpr int kMaxJsonDepth = 32;
 // nlohmann::json::parse that throws SceneError("<where>: ...") past kMaxJsonDepth levels.
 nlohmann::json parse_json_limited(const std::string& text, const std::string& where, bool allow_exceptions);
 
+// `text` for a message: at most `max` bytes, the last three "..." when it was cut, and never
+// cut inside a UTF-8 sequence.
+std::string abbreviate(const std::string& text, size_t max);
+
 }  // namespace clothsim
