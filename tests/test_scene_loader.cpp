@@ -268,6 +268,18 @@ TEST_CASE("a bad --set override is a SceneError naming the key", "[scene]") {
   CHECK(load_scene(kBad / "negative_width.json", {"cloth.width=2"}).cloth.width == 2);
 }
 
+TEST_CASE("a message shows only the start of a long value or override and never half a character", "[scene]") {
+  const std::string value = scene_error([] { parse_with("", {"cloth.ks=" + std::string(1000, 'x')}); });
+  CHECK_THAT(value, Catch::EndsWith("cloth.ks: expected a number, got string \"" + std::string(36, 'x') + "..."));
+  const std::string override = scene_error([] { parse_with("", {"cloth.width.a=" + std::string(1000, 'x')}); });
+  CHECK_THAT(override, Catch::Contains("--set cloth.width.a=" + std::string(63, 'x') + "...: 'a' is inside"));
+  std::string accents;
+  for (int i = 0; i < 40; ++i) accents += "\xc3\xa9";  // "é" is two bytes: cutting "\"aéé..." at 37 bytes would split one
+  const std::string utf8 = scene_error([&] { parse_with("", {"cloth.ks=a" + accents}); });
+  CHECK_THAT(utf8, Catch::EndsWith("got string \"a" + accents.substr(0, 34) + "..."));
+  CHECK_THAT(scene_error([] { load_scene(kBad / "ks_null.json"); }), Catch::EndsWith("expected a number, got null"));
+}
+
 TEST_CASE("scene_to_json round-trips to an equal scene", "[scene]") {
   Scene s = parse_with(R"(,
     "sphere": [{"origin": [0.1, 0.2, 0.3], "radius": 0.123456789, "friction": 0.3},

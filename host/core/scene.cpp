@@ -70,9 +70,8 @@ class ObjectReader {
   static std::string describe(const json& v) {
     // A --set value that is not JSON becomes a string as typed, possibly not UTF-8: plain
     // dump() would throw json::type_error 316 for it instead of this message naming the key.
-    std::string s = v.dump(-1, ' ', false, json::error_handler_t::replace);
-    if (s.size() > 40) s = s.substr(0, 37) + "...";
-    return fmt::format("{} {}", v.type_name(), s);
+    if (v.is_null()) return "null";
+    return fmt::format("{} {}", v.type_name(), abbreviate(v.dump(-1, ' ', false, json::error_handler_t::replace), 40));
   }
   double check_number(const json& v, const std::string& kp, double lo, double hi, const char* range) const {
     if (!v.is_number()) fail(kp, fmt::format("expected a number, got {}", describe(v)));
@@ -245,7 +244,7 @@ std::string Scene::name() const {
 Scene parse_scene(const std::string& text, const std::string& source, const std::vector<std::string>& overrides) {
   json j;
   try {
-    j = json::parse(text);
+    j = parse_json_limited(text, source, /*allow_exceptions=*/true);
   } catch (const json::parse_error& e) {
     // nlohmann reports a byte offset; turn it into line:column for people.
     size_t off = std::min<size_t>(e.byte, text.size()), line = 1, col = 1;

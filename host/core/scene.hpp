@@ -28,18 +28,24 @@ struct ClothParams {
   double damping = 0.2;   // percent
   double density = 150;   // kg/m^2
   double ks = 5000;       // N/m
+
+  bool operator==(const ClothParams&) const = default;
 };
 
 struct SphereParams {
   glm::dvec3 origin{0.0};
   double radius = 0;
   double friction = 0;
+
+  bool operator==(const SphereParams&) const = default;
 };
 
 struct PlaneParams {
   glm::dvec3 point{0.0};
   glm::dvec3 normal{0, 1, 0};  // unit length after loading
   double friction = 0;
+
+  bool operator==(const PlaneParams&) const = default;
 };
 
 struct SimulationParams {
@@ -49,6 +55,8 @@ struct SimulationParams {
   double max_stretch = 0.1;
   int constraint_iterations = 1;
   bool self_collision = true;
+
+  bool operator==(const SimulationParams&) const = default;
 };
 
 struct Scene {

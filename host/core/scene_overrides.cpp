@@ -47,15 +47,34 @@ std::vector<Segment> split_path(const std::string& path, const std::string& wher
 
 }  // namespace
 
+nlohmann::json parse_json_limited(const std::string& text, const std::string& where, bool allow_exceptions) {
+  auto limit = [&](int depth, nlohmann::json::parse_event_t, nlohmann::json&) {
+    if (depth > kMaxJsonDepth)
+      throw SceneError(fmt::format("{}: arrays and objects nested deeper than {} levels", where, kMaxJsonDepth));
+    return true;
+  };
+  return nlohmann::json::parse(text, limit, allow_exceptions);
+}
+
+std::string abbreviate(const std::string& text, size_t max) {
+  if (text.size() <= max) return text;
+  size_t n = max < 3 ? 0 : max - 3;
+  while (n > 0 && (static_cast<unsigned char>(text[n]) & 0xC0) == 0x80) --n;  // a continuation byte
+  return text.substr(0, n) + "...";
+}
+
 void apply_overrides(nlohmann::json& scene, const std::vector<std::string>& overrides, const std::string& source) {
   for (const std::string& o : overrides) {
-    std::string where = fmt::format("{}: --set {}", source, o);
+    // A fuzzed --set can be megabytes long: the message shows its start.
+    std::string where = fmt::format("{}: --set {}", source, abbreviate(o, 80));
     size_t eq = o.find('=');
     if (eq == std::string::npos || eq == 0)
       throw SceneError(fmt::format("{}: expected key.path=value (e.g. --set cloth.ks=500)", where));
     std::vector<Segment> path = split_path(o.substr(0, eq), where);
+    if (path.size() > size_t(kMaxJsonDepth))
+      throw SceneError(fmt::format("{}: a key path of more than {} parts", where, kMaxJsonDepth));
     std::string text = o.substr(eq + 1);
-    nlohmann::json value = nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
+    nlohmann::json value = parse_json_limited(text, where, /*allow_exceptions=*/false);
     if (value.is_discarded()) value = text;
 
     nlohmann::json* node = &scene;
@@ -71,7 +90,7 @@ void apply_overrides(nlohmann::json& scene, const std::vector<std::string>& over
         node = &(*node)[s.key];
       }
     }
-    *node = value;
+    *node = std::move(value);
   }
 }
 

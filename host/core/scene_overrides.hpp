@@ -15,4 +15,15 @@ namespace clothsim {
 // with the key's expected type. Missing objects along the path are created.
 void apply_overrides(nlohmann::json& scene, const std::vector<std::string>& overrides, const std::string& source);
 
+// Deepest nesting of arrays and objects accepted in a scene file or a --set value (a scene
+// needs 4: cloth.pinned[k][0]), and of a --set key path. nlohmann parses any depth, but
+// dumping or copying a value recurses, so a few tens of thousands of '[' overflowed the stack.
+inline constexpr int kMaxJsonDepth = 32;
+// nlohmann::json::parse that throws SceneError("<where>: ...") past kMaxJsonDepth levels.
+nlohmann::json parse_json_limited(const std::string& text, const std::string& where, bool allow_exceptions);
+
+// `text` for a message: at most `max` bytes, the last three "..." when it was cut, and never
+// cut inside a UTF-8 sequence.
+std::string abbreviate(const std::string& text, size_t max);
+
 }  // namespace clothsim
