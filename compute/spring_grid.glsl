@@ -7,18 +7,6 @@ const ivec2 DIRECTION_OFFSET[NUM_DIRECTIONS] =
     ivec2[](ivec2(1, 0), ivec2(0, 1), ivec2(1, 1), ivec2(-1, 1), ivec2(2, 0), ivec2(0, 2));
 const uint DIRECTION_TYPE[NUM_DIRECTIONS] = uint[](0u, 0u, 1u, 1u, 2u, 2u);
 
-float rest_component(RestLengths r, int direction) {
-  return direction < 4 ? r.near[direction] : r.far[direction - 4];
-}
-
 bool spring_enabled(int direction) { return params.enabled[DIRECTION_TYPE[direction]] != 0u; }
-
-// Colour of the spring of `direction` stored at c (see spring_colour in spring_grid.hpp).
-int spring_colour(int direction, ivec2 c) {
-  if (direction == DIR_RIGHT) return 2 * direction + (c.x & 1);
-  if (direction == DIR_RIGHT2) return 2 * direction + ((c.x >> 1) & 1);
-  if (direction == DIR_DOWN2) return 2 * direction + ((c.y >> 1) & 1);
-  return 2 * direction + (c.y & 1);
-}
 
 #endif

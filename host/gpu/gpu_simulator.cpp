@@ -134,7 +134,6 @@ void GpuSimulator::bind_all() const {
   previous_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_PREVIOUS);
   forces_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_FORCES);
   normals_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_NORMALS);
-  rest_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_REST);
   spheres_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_SPHERES);
   planes_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_PLANES);
   step_params_.bind_base(GL_UNIFORM_BUFFER, BINDING_STEP_PARAMS);
