@@ -106,7 +106,7 @@ BenchResult BenchRunner::run_gpu(const Scene& scene) {
   // The passes of GpuSimulator::step, the hash stages one by one ("collide_self" is the
   // response over the finished hash); collide_objects is fused into advance or collide_self.
   const bool sc = scene.simulation.self_collision;
-  const bool colliders = !sim.constants().spheres.empty() || !sim.constants().planes.empty();
+  const bool colliders = sim.constants().has_colliders();
   PassList passes{{{"advance", [&] { sim.advance(colliders && !sc); }},
                    {"count_cells", [&] { if (sc) sim.count_cells(); }},
                    {"scan_cells", [&] { if (sc) sim.scan_cells(); }},

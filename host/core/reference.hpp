@@ -39,6 +39,7 @@ template <class R> struct Constants {
   bool self_collision;
   std::vector<SphereC<R>> spheres;
   std::vector<PlaneC<R>> planes;
+  bool has_colliders() const { return !spheres.empty() || !planes.empty(); }
 };
 
 template <class R> Constants<R> make_constants(const Scene& scene, const ClothModel& model);

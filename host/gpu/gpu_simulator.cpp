@@ -25,7 +25,6 @@ glm::vec4 v4(const Vec3<float>& v, float w) { return {v.x, v.y, v.z, w}; }
 // passes read particle data through texel views, compute/particle_views.glsl).
 constexpr GLbitfield kComputeReads = GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT;
 
-
 // Too large a cloth is bad input, reported before any allocation rather than as a driver
 // failure: every per-particle buffer must fit one storage block, every dispatch the group count.
 void check_gpu_limits(const Scene& scene, const ClothModel& m) {
@@ -249,7 +248,7 @@ void GpuSimulator::resolve_self_contacts(bool then_collide_objects) {
 
 
 void GpuSimulator::collide_objects() {
-  if (constants_.spheres.empty() && constants_.planes.empty()) return;
+  if (!constants_.has_colliders()) return;
   dispatch(collide_objects_);
   // solve_length_constraints reads the projected positions next.
   barrier(kComputeReads);
@@ -291,7 +290,7 @@ void GpuSimulator::compute_normals() {
 void GpuSimulator::step() {
   // collide_objects reads only a particle's own position and previous position, so it rides
   // along with the last per-particle pass before the constraints.
-  const bool colliders = !constants_.spheres.empty() || !constants_.planes.empty();
+  const bool colliders = constants_.has_colliders();
   advance(colliders && !constants_.self_collision);
   if (constants_.self_collision) collide_self(colliders);
   solve_length_constraints();
