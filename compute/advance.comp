@@ -27,7 +27,7 @@ void main() {
   vec3 x = p.xyz;
   vec3 f = spring_force(c, i, x);
   precise vec3 a = f * p.w;
-  precise vec3 next = x + (x - previous_of(i).xyz) * params.springs.z + a * params.springs.w;
+  precise vec3 next = x + (x - previous_of(i).xyz) * params.keep_velocity + a * params.dt2;
   prev[i] = p;
   // After integrate the previous position is x, which collide_objects reads as xp.
   if (u_collide_objects) next = collide_with_objects(next, x);

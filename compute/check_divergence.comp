@@ -5,7 +5,7 @@
 #include "divergence.glsl"
 
 layout(local_size_x = WORKGROUP_SIZE) in;
-layout(std430, binding = BINDING_POSITIONS) readonly buffer Positions { vec4 pos[]; };
+layout(std430, binding = BINDING_CHECKED_POSITIONS) readonly buffer Positions { vec4 pos[]; };
 layout(std430, binding = BINDING_FRAME_BOUNDS) buffer Bounds { FrameBounds bounds; };
 
 uniform uint u_count;  // particles

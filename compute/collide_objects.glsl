@@ -8,9 +8,9 @@
 
 vec3 collide_with_objects(vec3 x_in, vec3 xp) {
   precise vec3 x = x_in;
-  for (int s = 0; s < int(params.colliders.x); ++s) {
-    vec4 origin_radius = texelFetch(spheres_view, 2 * s);
-    float keep = texelFetch(spheres_view, 2 * s + 1).x;
+  for (int s = 0; s < int(params.sphere_count); ++s) {
+    vec4 origin_radius = texelFetch(spheres_view, SPHERE_TEXELS * s);
+    float keep = texelFetch(spheres_view, SPHERE_TEXELS * s + 1).x;
     vec3 o = origin_radius.xyz;
     float r = origin_radius.w;
     vec3 e = x - o;
@@ -25,9 +25,9 @@ vec3 collide_with_objects(vec3 x_in, vec3 xp) {
     }
     x = xp + (t - xp) * keep;
   }
-  for (int k = 0; k < int(params.colliders.y); ++k) {
-    vec3 q = texelFetch(planes_view, 2 * k).xyz;
-    vec4 normal_keep = texelFetch(planes_view, 2 * k + 1);
+  for (int k = 0; k < int(params.plane_count); ++k) {
+    vec3 q = texelFetch(planes_view, PLANE_TEXELS * k).xyz;
+    vec4 normal_keep = texelFetch(planes_view, PLANE_TEXELS * k + 1);
     vec3 n = normal_keep.xyz;
     float d = dot3(x - q, n);
     float dp = dot3(xp - q, n);

@@ -20,17 +20,17 @@ vec3 add_spring(vec3 f, vec3 xi, int j, float rest, float k_spring) {
 
 vec3 add_direction(vec3 f, vec3 xi, ivec2 c, int i, int direction, float rest_here) {
   if (!spring_enabled(direction)) return f;
-  float k_spring = DIRECTION_TYPE[direction] == 2u ? params.springs.y : params.springs.x;
-  ivec2 off = DIRECTION_OFFSET[direction];
-  int step = off.y * int(params.grid.x) + off.x;
+  float k_spring = direction_type(direction) == 2 ? params.ks_bending : params.ks;
+  ivec2 off = direction_offset(direction);
+  int step = off.y * int(params.width) + off.x;
   if (in_grid(c + off)) f = add_spring(f, xi, i + step, rest_here, k_spring);
   if (in_grid(c - off)) f = add_spring(f, xi, i - step, rest_length(i - step, direction), k_spring);
   return f;
 }
 
 vec3 spring_force(ivec2 c, int i, vec3 xi) {
-  precise vec3 f = params.gravity_mass.xyz * params.gravity_mass.w;
-  vec4 near = texelFetch(rest_view, 2 * i), far = texelFetch(rest_view, 2 * i + 1);
+  precise vec3 f = params.gravity * params.mass;
+  vec4 near = texelFetch(rest_view, REST_TEXELS * i), far = texelFetch(rest_view, REST_TEXELS * i + 1);
   f = add_direction(f, xi, c, i, DIR_RIGHT, near.x);
   f = add_direction(f, xi, c, i, DIR_DOWN, near.y);
   f = add_direction(f, xi, c, i, DIR_DIAG_DOWN_RIGHT, near.z);

@@ -15,7 +15,7 @@ void main() {
   if (p.w == 0.0) return;
   vec3 x = p.xyz;
   precise vec3 a = force[i].xyz * p.w;
-  precise vec3 next = x + (x - prev[i].xyz) * params.springs.z + a * params.springs.w;
+  precise vec3 next = x + (x - prev[i].xyz) * params.keep_velocity + a * params.dt2;
   prev[i] = p;
   pos[i] = vec4(next, p.w);
 }

@@ -5,7 +5,7 @@
 #include "divergence.glsl"
 
 layout(local_size_x = WORKGROUP_SIZE) in;
-layout(std430, binding = BINDING_POSITIONS) readonly buffer Positions { vec4 pos[]; };
+layout(std430, binding = BINDING_CHECKED_POSITIONS) readonly buffer Positions { vec4 pos[]; };
 layout(std430, binding = BINDING_FRAME_BOUNDS) readonly buffer Bounds { FrameBounds bounds; };
 layout(std430, binding = BINDING_LAST_GOOD) buffer LastGood {
   LastGoodHeader header;

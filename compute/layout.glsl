@@ -1,20 +1,30 @@
 // The one source of truth for the GPU data layout, compiled by both C++ and GLSL.
-// std430 for storage buffers, std140 for the parameter block; every struct member is a
-// vec4/uvec4 so the two rules and the C++ compiler all agree (a vec3[] would have a
-// 16-byte stride in GLSL and 12 in C++). tests/test_gpu_layout.cpp asks GL for the real
-// offsets and strides and compares them with sizeof/offsetof here.
+// std430 for storage buffers, std140 for the parameter block. Every member of a storage
+// buffer struct is a vec4/uvec4 so the two rules and the C++ compiler all agree (a vec3[]
+// would have a 16-byte stride in GLSL and 12 in C++); the parameter block is named scalars.
+// tests/test_gpu_layout.cpp asks GL for the real offsets and strides and compares them with
+// sizeof/offsetof here. Constants and functions that both languages need beyond the layout
+// (spring directions and colours, the hash) live in spring_grid.glsl and spatial_hash.glsl.
 #ifndef CLOTHSIM_LAYOUT_GLSL
 #define CLOTHSIM_LAYOUT_GLSL
 
 #ifdef __cplusplus
 #include <cstdint>
+#include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 namespace layout {
+using vec3 = glm::vec3;
 using vec4 = glm::vec4;
 using uvec4 = glm::uvec4;
+using uint = uint32_t;
+#define STRUCT_ALIGN16 struct alignas(16)
+#else
+#define STRUCT_ALIGN16 struct
 #endif
 
-// Shader-storage buffer bindings (one per per-particle stream).
+// Shader-storage buffer bindings of the simulation (one per per-particle stream). The
+// simulator binds them once per step; nothing else uses these points, so they stay put while
+// the renderer, the scan and the divergence guard bind their own.
 #define BINDING_POSITIONS 0   // vec4: xyz position, w inverse mass (0 = pinned)
 #define BINDING_PREVIOUS 1    // vec4: xyz position one substep ago
 #define BINDING_FORCES 2      // vec4: xyz force of this substep
@@ -26,21 +36,33 @@ using uvec4 = glm::uvec4;
 #define BINDING_CELL_COUNT 8     // uint per hash bucket
 #define BINDING_CELL_START 9     // uint per hash bucket (+1 sentinel)
 #define BINDING_CELL_ENTRIES 10  // uint particle id, in cell order
-#define BINDING_SCAN_SUMS 11     // uint per scan block (multi-level prefix sum)
-#define BINDING_SCAN_DATA 12     // uint array being scanned in place
-#define BINDING_MESH_EXTRA 13    // MeshVertex extras (uv, tangent) of collider meshes, for the render shaders
-#define BINDING_SORTED_POSITIONS 14  // vec4: positions in cell order (entries order), for collide_self
+#define BINDING_SORTED_POSITIONS 11  // vec4: positions in cell order (entries order), for resolve_self_contacts
+// The prefix scan's own bindings (host/gpu/prefix_scan.cpp).
+#define BINDING_SCAN_SUMS 12     // uint per scan block (multi-level prefix sum)
+#define BINDING_SCAN_DATA 13     // uint array being scanned in place
+// The divergence guard's own bindings (host/gpu/gpu_divergence.cpp).
+#define BINDING_CHECKED_POSITIONS 14  // vec4: the positions of the frame being checked
 #define BINDING_FRAME_BOUNDS 15  // FrameBounds of one frame (check_divergence)
 #define BINDING_LAST_GOOD 16     // LastGoodHeader, then vec4 per particle: newest frame that passed (keep_last_good)
-// Texture units of the read-only texel views (GL_TEXTURE_BUFFER) of the same buffers, through
-// which the hot passes read (compute/particle_views.glsl says why).
-#define TEXTURE_POSITIONS 0         // RGBA32F, one texel per particle
-#define TEXTURE_PREVIOUS 1          // RGBA32F, one texel per particle
-#define TEXTURE_REST 2              // RGBA32F, two texels per particle (RestLengths)
-#define TEXTURE_SPHERES 3           // RGBA32F, two texels per SphereCollider
-#define TEXTURE_PLANES 4            // RGBA32F, two texels per PlaneCollider
-#define TEXTURE_CELL_START 5        // R32UI, one texel per hash bucket (+1 sentinel)
-#define TEXTURE_SORTED_POSITIONS 6  // RGBA32F, one texel per hash entry
+// The renderer's own bindings (shaders/vertex_pull.glsl): the cloth's buffers, or a collider mesh's.
+#define BINDING_DRAW_POSITIONS 17  // vec4: xyz position of each vertex drawn
+#define BINDING_DRAW_NORMALS 18    // vec4: xyz unit normal of each vertex drawn
+#define BINDING_DRAW_EXTRAS 19     // MeshVertex extras (uv, tangent) of collider meshes
+// Texture units of the read-only texel views (GL_TEXTURE_BUFFER) of the simulation's buffers,
+// through which the hot passes read (compute/particle_views.glsl says why). Above the units
+// the renderer uses (0-2: fabric, height map, sky), so drawing a frame leaves them bound.
+#define TEXTURE_POSITIONS 8          // RGBA32F, one texel per particle
+#define TEXTURE_PREVIOUS 9           // RGBA32F, one texel per particle
+#define TEXTURE_REST 10              // RGBA32F, REST_TEXELS per particle (RestLengths)
+#define TEXTURE_SPHERES 11           // RGBA32F, SPHERE_TEXELS per SphereCollider
+#define TEXTURE_PLANES 12            // RGBA32F, PLANE_TEXELS per PlaneCollider
+#define TEXTURE_CELL_START 13        // R32UI, one texel per hash bucket (+1 sentinel)
+#define TEXTURE_SORTED_POSITIONS 14  // RGBA32F, one texel per hash entry
+// RGBA32F texels per struct in the views above: member m of element k is texel
+// k * STRUCT_TEXELS + m (tests/test_gpu_layout.cpp checks these against the std430 strides).
+#define REST_TEXELS 2
+#define SPHERE_TEXELS 2
+#define PLANE_TEXELS 2
 // Uniform block binding.
 #define BINDING_STEP_PARAMS 0
 
@@ -94,15 +116,34 @@ struct MeshVertex {
 };
 
 // Everything a pass needs that is constant over a substep. Built on the host from the
-// same Constants<float> the CPU reference uses, so both sides see identical floats.
-struct StepParams {
-  vec4 gravity_mass;   // xyz gravity (m/s^2), w particle mass (kg)
-  vec4 springs;        // x ks, y bending ks (0.2 ks), z velocity keep (1 - damping/100), w dt^2
-  vec4 constraint;     // x 1 + max_stretch, y self-collision distance (2 thickness), z cell size, w simulation_steps (as float)
-  uvec4 grid;          // x width points, y height points, z particle count, w hash table size
-  uvec4 enabled;       // x structural, y shearing, z bending (1 = exerts force / is constrained), w unused
-  uvec4 colliders;     // x sphere count, y plane count
-};
+// same Constants<float> the CPU reference uses, so both sides see identical floats. One
+// named scalar per value (std140 packs consecutive scalars as C++ does, and the vec3 first
+// leaves exactly the 4 bytes the scalar after it takes), declared once through
+// STEP_PARAMS_FIELDS so that tests/test_gpu_layout.cpp checks every field's offset and
+// value, a field added later included.
+#define STEP_PARAMS_FIELDS(F)                                                               \
+  F(vec3, gravity)             /* m/s^2 */                                                 \
+  F(float, mass)               /* kg, of one particle */                                   \
+  F(float, ks)                 /* N/m, structural and shearing springs */                  \
+  F(float, ks_bending)         /* N/m, 0.2 ks */                                           \
+  F(float, keep_velocity)      /* 1 - damping / 100 */                                     \
+  F(float, dt2)                /* s^2, the substep squared */                              \
+  F(float, stretch_limit)      /* 1 + max_stretch */                                       \
+  F(float, contact_distance)   /* m, 2 thickness: self-collision keeps masses this far */  \
+  F(float, inv_cell)           /* 1/m, 1 / the hash cell edge (edge = contact_distance) */ \
+  F(float, steps)              /* simulation_steps, as a float */                          \
+  F(uint, width)               /* grid points along a row */                               \
+  F(uint, height)              /* rows */                                                  \
+  F(uint, count)               /* particles, width * height */                             \
+  F(uint, table_size)          /* hash buckets, a power of two */                          \
+  F(uint, structural_enabled)  /* 1 = the structural springs exert force, are constrained */ \
+  F(uint, shearing_enabled)    /* 1 = the shearing springs do */                           \
+  F(uint, bending_enabled)     /* 1 = the bending springs do */                            \
+  F(uint, sphere_count)        /* SphereCollider entries in use */                         \
+  F(uint, plane_count)         /* PlaneCollider entries in use */
+#define STEP_PARAMS_DECLARE(type, name) type name;
+// std140 rounds the block's size up to 16 bytes; alignas makes sizeof agree.
+STRUCT_ALIGN16 StepParams { STEP_PARAMS_FIELDS(STEP_PARAMS_DECLARE) };
 
 // The divergence guard's reduction of one frame. Coordinates are stored as ordered bits
 // (compute/divergence.glsl): uints whose unsigned order is the float order, so that
@@ -118,6 +159,9 @@ struct LastGoodHeader {
 };
 
 #ifdef __cplusplus
+static_assert(sizeof(RestLengths) == REST_TEXELS * sizeof(vec4), "RestLengths texels");
+static_assert(sizeof(SphereCollider) == SPHERE_TEXELS * sizeof(vec4), "SphereCollider texels");
+static_assert(sizeof(PlaneCollider) == PLANE_TEXELS * sizeof(vec4), "PlaneCollider texels");
 }  // namespace layout
 #endif
 #endif

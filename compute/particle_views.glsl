@@ -19,6 +19,8 @@ layout(binding = TEXTURE_SORTED_POSITIONS) uniform samplerBuffer sorted_position
 vec4 position_of(int i) { return texelFetch(positions_view, i); }
 vec4 previous_of(int i) { return texelFetch(previous_view, i); }
 // RestLengths is two vec4s: near (directions 0-3), far (directions 4-5).
-float rest_length(int i, int direction) { return texelFetch(rest_view, 2 * i + (direction >> 2))[direction & 3]; }
+float rest_length(int i, int direction) {
+  return texelFetch(rest_view, REST_TEXELS * i + (direction >> 2))[direction & 3];
+}
 
 #endif

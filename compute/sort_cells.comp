@@ -14,7 +14,7 @@ layout(std430, binding = BINDING_SORTED_POSITIONS) writeonly buffer Sorted { vec
 
 void main() {
   uint b = gl_GlobalInvocationID.x;
-  if (b >= params.grid.w) return;
+  if (b >= params.table_size) return;
   uint first = cell_start[b], last = cell_start[b + 1u];
   for (uint k = first + 1u; k < last; ++k) {
     uint id = entries[k];

@@ -4,9 +4,9 @@
 #ifndef CLOTHSIM_VERTEX_PULL_GLSL
 #define CLOTHSIM_VERTEX_PULL_GLSL
 
-layout(std430, binding = BINDING_POSITIONS) readonly buffer Positions { vec4 pos[]; };
-layout(std430, binding = BINDING_NORMALS) readonly buffer Normals { vec4 normal[]; };
-layout(std430, binding = BINDING_MESH_EXTRA) readonly buffer Extras { MeshVertex extra[]; };
+layout(std430, binding = BINDING_DRAW_POSITIONS) readonly buffer Positions { vec4 pos[]; };
+layout(std430, binding = BINDING_DRAW_NORMALS) readonly buffer Normals { vec4 normal[]; };
+layout(std430, binding = BINDING_DRAW_EXTRAS) readonly buffer Extras { MeshVertex extra[]; };
 
 uniform mat4 u_model;
 uniform mat4 u_view_projection;

@@ -23,7 +23,7 @@ static_assert(std::is_standard_layout_v<layout::RestLengths> && std::is_standard
                   std::is_standard_layout_v<layout::PlaneCollider> && std::is_standard_layout_v<layout::StepParams>,
               "offsetof needs standard-layout structs");
 
-constexpr GLuint kBindingProbeUints = 15;  // BINDING_PROBE_UINTS in the fixture
+constexpr GLuint kBindingProbeUints = 21;  // BINDING_PROBE_UINTS in the fixture
 
 gl::Program probe_program() {
   return gl::Program::compute(test::source_path("tests/shaders/layout_probe.comp"),
@@ -32,7 +32,10 @@ gl::Program probe_program() {
 
 template <class T> GLenum gl_type_of() {
   if constexpr (std::is_same_v<T, glm::vec4>) return GL_FLOAT_VEC4;
+  if constexpr (std::is_same_v<T, glm::vec3>) return GL_FLOAT_VEC3;
   if constexpr (std::is_same_v<T, glm::uvec4>) return GL_UNSIGNED_INT_VEC4;
+  if constexpr (std::is_same_v<T, float>) return GL_FLOAT;
+  if constexpr (std::is_same_v<T, uint32_t>) return GL_UNSIGNED_INT;
   return GL_NONE;
 }
 
@@ -86,21 +89,40 @@ TEST_CASE("rest lengths and colliders have the C++ offsets and strides in std430
   CHECK_NO_GL_ERRORS();
 }
 
-TEST_CASE("the step parameters have the C++ offsets and size in the std140 uniform block", "[gpu]") {
+TEST_CASE("every step parameter has the C++ offset and type, and the block the C++ size, in std140", "[gpu]") {
   REQUIRE_GL_CONTEXT();
   const gl::Program program = probe_program();
-  const std::vector<Member> members = {
-      MEMBER(StepParams, "params.", gravity_mass), MEMBER(StepParams, "params.", springs),
-      MEMBER(StepParams, "params.", constraint),   MEMBER(StepParams, "params.", grid),
-      MEMBER(StepParams, "params.", enabled),      MEMBER(StepParams, "params.", colliders)};
+  // The field list of layout.glsl itself, so a field added there is checked here too.
+  std::vector<Member> members;
+#define STEP_PARAMS_MEMBER(type, name) members.push_back(MEMBER(StepParams, "params.", name));
+  STEP_PARAMS_FIELDS(STEP_PARAMS_MEMBER)
+#undef STEP_PARAMS_MEMBER
+  REQUIRE(members.size() >= 19);
   for (const Member& m : members) {
     INFO("uniform " << m.name);
+    CHECK(m.type != GLenum(GL_NONE));
     CHECK(resource_property(program, GL_UNIFORM, m.name, GL_OFFSET) == m.offset);
     CHECK(resource_property(program, GL_UNIFORM, m.name, GL_TYPE) == GLint(m.type));
   }
   CHECK(resource_property(program, GL_UNIFORM_BLOCK, "StepParamsBlock", GL_BUFFER_DATA_SIZE) ==
         GLint(sizeof(layout::StepParams)));
   CHECK(resource_property(program, GL_UNIFORM_BLOCK, "StepParamsBlock", GL_BUFFER_BINDING) == BINDING_STEP_PARAMS);
+  CHECK_NO_GL_ERRORS();
+}
+
+TEST_CASE("the texel views step through each struct by its std430 stride", "[gpu]") {
+  REQUIRE_GL_CONTEXT();
+  const gl::Program program = probe_program();
+  // A view reads member m of element k as RGBA32F texel k * STRUCT_TEXELS + m (particle_views.glsl,
+  // collide_objects.glsl): right only if the storage buffer's stride is STRUCT_TEXELS vec4s.
+  CHECK(resource_property(program, GL_BUFFER_VARIABLE, "rest[0].near", GL_TOP_LEVEL_ARRAY_STRIDE) == REST_TEXELS * 16);
+  CHECK(resource_property(program, GL_BUFFER_VARIABLE, "rest[0].far", GL_OFFSET) == 16);
+  CHECK(resource_property(program, GL_BUFFER_VARIABLE, "spheres[0].origin_radius", GL_TOP_LEVEL_ARRAY_STRIDE) ==
+        SPHERE_TEXELS * 16);
+  CHECK(resource_property(program, GL_BUFFER_VARIABLE, "spheres[0].keep", GL_OFFSET) == 16);
+  CHECK(resource_property(program, GL_BUFFER_VARIABLE, "planes[0].point", GL_TOP_LEVEL_ARRAY_STRIDE) ==
+        PLANE_TEXELS * 16);
+  CHECK(resource_property(program, GL_BUFFER_VARIABLE, "planes[0].normal", GL_OFFSET) == 16);
   CHECK_NO_GL_ERRORS();
 }
 
@@ -124,14 +146,19 @@ TEST_CASE("a positions buffer is an array of vec4 with a 16-byte stride", "[gpu]
 TEST_CASE("values written through the C++ layout structs are the values the shader reads", "[gpu]") {
   REQUIRE_GL_CONTEXT();
   gl::Program program = probe_program();
-  // Distinct values everywhere, so a member read from its neighbour's place shows.
+  // Distinct values everywhere, so a member read from its neighbour's place shows: field k
+  // holds the bits 0x3f800000 + k (a float near 1) whatever its type.
   layout::StepParams params{};
-  params.gravity_mass = {0.5f, -9.75f, 0.25f, 1.125f};
-  params.springs = {5000.f, 1000.f, 0.998f, 1.5e-7f};
-  params.constraint = {1.1f, 0.019f, 52.5f, 30.f};
-  params.grid = {7u, 5u, 35u, 128u};
-  params.enabled = {1u, 0u, 1u, 77u};
-  params.colliders = {2u, 3u, 0xdeadbeefu, 9u};
+  std::vector<uint32_t> want_uints;
+  auto fill = [&](auto& field) {
+    constexpr size_t words = sizeof(field) / 4;
+    uint32_t bits[words];
+    for (size_t w = 0; w < words; ++w) want_uints.push_back(bits[w] = 0x3f800000u + uint32_t(want_uints.size()));
+    std::memcpy(&field, bits, sizeof(field));
+  };
+#define STEP_PARAMS_FILL(type, name) fill(params.name);
+  STEP_PARAMS_FIELDS(STEP_PARAMS_FILL)
+#undef STEP_PARAMS_FILL
   const auto rest = two_of<layout::RestLengths>({{-1, -2, -3, -4}, {-5, -6, -7, -8}}, {{1, 2, 3, 4}, {5, 6, 7, 8}});
   const auto spheres =
       two_of<layout::SphereCollider>({{-1, -1, -1, -1}, {-1, -1, -1, -1}}, {{11, 12, 13, 14}, {15, 16, 17, 18}});
@@ -144,8 +171,8 @@ TEST_CASE("values written through the C++ layout structs are the values the shad
   gl::upload_vector(rest_buffer, rest);
   gl::upload_vector(spheres_buffer, spheres);
   gl::upload_vector(planes_buffer, planes);
-  floats.allocate(9 * sizeof(glm::vec4));
-  uints.allocate(3 * sizeof(glm::uvec4));
+  floats.allocate(6 * sizeof(glm::vec4));
+  uints.allocate(want_uints.size() * sizeof(uint32_t));
   params_buffer.bind_base(GL_UNIFORM_BUFFER, BINDING_STEP_PARAMS);
   rest_buffer.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_REST);
   spheres_buffer.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_SPHERES);
@@ -156,12 +183,10 @@ TEST_CASE("values written through the C++ layout structs are the values the shad
   // The read-backs below come next.
   glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
 
-  const std::vector<glm::vec4> want_floats = {params.gravity_mass, params.springs,           params.constraint,
-                                              rest[1].near,        rest[1].far,              spheres[1].origin_radius,
-                                              spheres[1].keep,     planes[1].point,          planes[1].normal};
-  const std::vector<glm::uvec4> want_uints = {params.grid, params.enabled, params.colliders};
+  const std::vector<glm::vec4> want_floats = {rest[1].near,    rest[1].far,     spheres[1].origin_radius,
+                                              spheres[1].keep, planes[1].point, planes[1].normal};
   const auto got_floats = gl::download_vector<glm::vec4>(floats);
-  const auto got_uints = gl::download_vector<glm::uvec4>(uints);
+  const auto got_uints = gl::download_vector<uint32_t>(uints);
   REQUIRE(got_floats.size() == want_floats.size());
   REQUIRE(got_uints.size() == want_uints.size());
   for (size_t k = 0; k < want_floats.size(); ++k) {
@@ -169,7 +194,7 @@ TEST_CASE("values written through the C++ layout structs are the values the shad
     CHECK(std::memcmp(&got_floats[k], &want_floats[k], sizeof(glm::vec4)) == 0);
   }
   for (size_t k = 0; k < want_uints.size(); ++k) {
-    INFO("uint vec4 " << k);
+    INFO("step parameter word " << k);
     CHECK(got_uints[k] == want_uints[k]);
   }
   CHECK_NO_GL_ERRORS();

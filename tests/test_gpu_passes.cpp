@@ -16,6 +16,7 @@
 #include "test_helpers.hpp"
 
 using namespace clothsim;
+using test::mismatches;
 
 namespace {
 
@@ -54,14 +55,6 @@ Scene pressed_cloth(int nw, int nh, std::vector<std::string> sets = {}, const ch
   sets.push_back(fmt::format("cloth.pinned=[[{0},0],[0,{1}],[{2},{1}],[{0},{3}]]", nw / 2, nh / 2, nw - 1, nh - 1));
   sets.push_back("simulation.self_collision=false");
   return test::make_scene(nw, nh, orientation, sets, colliders);
-}
-
-// Elements that differ bit for bit (so -0 vs 0 and NaN payloads count too).
-size_t mismatches(const Vec4s& a, const Vec4s& b) {
-  if (a.size() != b.size()) return std::max(a.size(), b.size());
-  size_t n = 0;
-  for (size_t i = 0; i < a.size(); ++i) n += std::memcmp(&a[i], &b[i], sizeof(a[i])) != 0;
-  return n;
 }
 
 // GPU == CPU bit for bit on llvmpipe, else within `tolerance` metres per particle.

@@ -26,13 +26,7 @@ using Cell = std::array<int32_t, 3>;
 
 std::filesystem::path compute_dir() { return test::source_path("compute"); }
 
-// Elements that differ bit for bit (so -0 vs 0 and NaN payloads count too).
-template <class T> size_t mismatches(const std::vector<T>& a, const std::vector<T>& b) {
-  if (a.size() != b.size()) return std::max(a.size(), b.size());
-  size_t n = 0;
-  for (size_t i = 0; i < a.size(); ++i) n += std::memcmp(&a[i], &b[i], sizeof(T)) != 0;
-  return n;
-}
+using test::mismatches;
 
 float max_diff(const Positions& a, const Positions& b) {
   float m = 0;
@@ -142,6 +136,7 @@ TEST_CASE("the GPU hash holds every particle once, in its own bucket, ascending,
   count_cells(buckets, h);
   scan_cells(h);
   fill_cells(buckets, ids, h);
+  sort_cells(h);
   REQUIRE(g.table_size == 65536);
   auto sorted = g.entries;
   std::sort(sorted.begin(), sorted.end());

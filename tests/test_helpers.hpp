@@ -1,6 +1,8 @@
-// Small builders shared by the CPU-tier tests.
+// Small builders and comparisons shared by the tests of both tiers.
 #pragma once
 
+#include <algorithm>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -19,6 +21,15 @@ inline Scene make_scene(int nw, int nh, int orientation, std::vector<std::string
           "thickness": 0.0095, "orientation": {}}}{}}})",
       nw, nh, orientation, extra_top);
   return parse_scene(text, "<test>", sets);
+}
+
+// Elements that differ bit for bit (so -0 vs 0 and NaN payloads count too); a size
+// difference counts as the longer size.
+template <class T> size_t mismatches(const std::vector<T>& a, const std::vector<T>& b) {
+  if (a.size() != b.size()) return std::max(a.size(), b.size());
+  size_t n = 0;
+  for (size_t i = 0; i < a.size(); ++i) n += std::memcmp(&a[i], &b[i], sizeof(T)) != 0;
+  return n;
 }
 
 inline double max_abs_diff(const std::vector<glm::dvec4>& a, const std::vector<glm::dvec4>& b) {

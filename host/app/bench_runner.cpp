@@ -103,8 +103,8 @@ BenchResult BenchRunner::run_gpu(const Scene& scene) {
   r.dispatches_per_frame = double(after.dispatches - before.dispatches) / frames_;
   r.barriers_per_frame = double(after.barriers - before.barriers) / frames_;
   r.gpu_memory_bytes = sim.memory_bytes();
-  // The passes of GpuSimulator::step, the hash stages one by one ("collide_self" is the
-  // response over the finished hash); collide_objects is fused into advance or collide_self.
+  // The passes of GpuSimulator::step, collide_self as its five stages; collide_objects is
+  // fused into advance or resolve_self_contacts.
   const bool sc = scene.simulation.self_collision;
   const bool colliders = sim.constants().has_colliders();
   PassList passes{{{"advance", [&] { sim.advance(colliders && !sc); }},
@@ -112,7 +112,7 @@ BenchResult BenchRunner::run_gpu(const Scene& scene) {
                    {"scan_cells", [&] { if (sc) sim.scan_cells(); }},
                    {"fill_cells", [&] { if (sc) sim.fill_cells(); }},
                    {"sort_cells", [&] { if (sc) sim.sort_cells(); }},
-                   {"collide_self", [&] { if (sc) sim.resolve_self_contacts(colliders); }},
+                   {"resolve_self_contacts", [&] { if (sc) sim.resolve_self_contacts(colliders); }},
                    {"solve_length_constraints", [&] { sim.solve_length_constraints(); }}},
                   {{"compute_normals", [&] { sim.compute_normals(); }},
                    // The divergence guard: its reduction and the copy of a passing frame.

@@ -41,10 +41,7 @@ template <class R> State<R> initial_state(const ClothModel& m) {
   s.force.assign(n, Vec4<R>(0));
   s.normal.assign(n, Vec4<R>(0));
   s.pos_out = s.pos;
-  s.hash.table_size = hash_table_size(uint32_t(n));
-  s.hash.count.assign(s.hash.table_size, 0);
-  s.hash.start.assign(s.hash.table_size + 1, 0);
-  s.hash.entries.assign(n, 0);
+  s.hash = make_spatial_hash(uint32_t(n));
   return s;
 }
 
@@ -94,49 +91,25 @@ template <class R> void integrate(const Constants<R>& c, State<R>& s) {
 }
 
 template <class R> void collide_self(const Constants<R>& c, State<R>& s) {
-  const size_t n = s.pos.size();
-  SpatialHash& h = s.hash;
-  std::vector<uint32_t> buckets(n);
-  for (size_t i = 0; i < n; ++i)
-    buckets[i] = hash_cell(cell_coord(s.pos[i].x, c.inv_cell), cell_coord(s.pos[i].y, c.inv_cell),
-                           cell_coord(s.pos[i].z, c.inv_cell), h.table_size);
-  std::vector<uint32_t> order(n);
-  std::iota(order.begin(), order.end(), 0u);
-  count_cells(buckets, h);
-  scan_cells(h);
-  fill_cells(buckets, order, h);
-  collide_self_from_hash(c, s);
+  build_spatial_hash(s.pos, c.inv_cell, s.hash);
+  resolve_self_contacts(c, s);
 }
 
-template <class R> void collide_self_from_hash(const Constants<R>& c, State<R>& s) {
-  const SpatialHash& h = s.hash;
+template <class R> void resolve_self_contacts(const Constants<R>& c, State<R>& s) {
   for (size_t i = 0; i < s.pos.size(); ++i) {
     s.pos_out[i] = s.pos[i];
     if (s.pos[i].w == R(0)) continue;
     const Vec3<R> xi(s.pos[i]);
-    const int32_t cx = cell_coord(xi.x, c.inv_cell), cy = cell_coord(xi.y, c.inv_cell), cz = cell_coord(xi.z, c.inv_cell);
     Vec3<R> sum(0);
     uint32_t hits = 0;
-    for (int dz = -1; dz <= 1; ++dz)
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx) {
-          const uint32_t b = hash_cell(cx + dx, cy + dy, cz + dz, h.table_size);
-          for (uint32_t e = h.start[b]; e < h.start[b + 1]; ++e) {
-            const uint32_t j = h.entries[e];
-            const Vec3<R> xj(s.pos[j]);
-            // A bucket holds every cell that hashes to it: keep only j really in this cell,
-            // so each neighbour is counted once however the 27 cells collide in the table.
-            if (j == i || cell_coord(xj.x, c.inv_cell) != cx + dx || cell_coord(xj.y, c.inv_cell) != cy + dy ||
-                cell_coord(xj.z, c.inv_cell) != cz + dz)
-              continue;
-            const Vec3<R> e3 = xi - xj;
-            const R d = length3(e3);
-            // Coincident masses have no direction to separate along; they are skipped.
-            if (d >= c.contact_distance || d == R(0)) continue;
-            sum += e3 * ((c.contact_distance - d) * (R(1) / d));
-            ++hits;
-          }
-        }
+    for_each_neighbour(s.hash, s.pos, c.inv_cell, cell_of(xi, c.inv_cell), [&](uint32_t j) {
+      const Vec3<R> e3 = xi - Vec3<R>(s.pos[j]);
+      const R d = length3(e3);
+      // i itself, and coincident masses, have no direction to separate along: skipped.
+      if (d >= c.contact_distance || d == R(0)) return;
+      sum += e3 * ((c.contact_distance - d) * (R(1) / d));
+      ++hits;
+    });
     if (hits > 0) s.pos_out[i] = Vec4<R>(xi + sum * (R(1) / (R(hits) * c.steps)), s.pos[i].w);
   }
   s.pos.swap(s.pos_out);
@@ -225,7 +198,7 @@ template <class R> void compute_normals(const ClothModel& m, State<R>& s) {
   template void accumulate_forces<R>(const ClothModel&, const Constants<R>&, State<R>&);              \
   template void integrate<R>(const Constants<R>&, State<R>&);                                         \
   template void collide_self<R>(const Constants<R>&, State<R>&);                                      \
-  template void collide_self_from_hash<R>(const Constants<R>&, State<R>&);                            \
+  template void resolve_self_contacts<R>(const Constants<R>&, State<R>&);                             \
   template void collide_objects<R>(const Constants<R>&, State<R>&);                                   \
   template void solve_length_constraint_colour<R>(const ClothModel&, const Constants<R>&, int, State<R>&); \
   template void solve_length_constraints<R>(const ClothModel&, const Constants<R>&, State<R>&);       \

@@ -57,15 +57,18 @@ template <class R> State<R> initial_state(const ClothModel& model);
 // The passes, in step order.
 template <class R> void accumulate_forces(const ClothModel& m, const Constants<R>& c, State<R>& s);
 template <class R> void integrate(const Constants<R>& c, State<R>& s);
+// Builds the hash (count_cells, scan_cells, fill_cells, sort_cells in spatial_hash.hpp), then
+// resolve_self_contacts: the stages the GPU runs as five passes of the same names.
 template <class R> void collide_self(const Constants<R>& c, State<R>& s);
-// The response half of collide_self, on a hash already built (tests build it in a shuffled order).
-template <class R> void collide_self_from_hash(const Constants<R>& c, State<R>& s);
+template <class R> void resolve_self_contacts(const Constants<R>& c, State<R>& s);  // on s.hash as built
 template <class R> void collide_objects(const Constants<R>& c, State<R>& s);
 template <class R> void solve_length_constraints(const ClothModel& m, const Constants<R>& c, State<R>& s);
 template <class R> void compute_normals(const ClothModel& m, State<R>& s);
 
 // Forces then integrate: the CPU twin of the GPU's fused advance pass (which keeps the
 // forces in registers; with collision objects fused in it is advance then collide_objects).
+// accumulate_forces and integrate on their own are twins of passes the GPU keeps only for
+// the pass checks (host/gpu/pass_check.cpp); its step runs advance.
 template <class R> void advance(const ClothModel& m, const Constants<R>& c, State<R>& s) {
   accumulate_forces(m, c, s);
   integrate(c, s);

@@ -42,6 +42,13 @@ class Program {
   void set(std::string_view name, const glm::vec4& value);
   void set(std::string_view name, const glm::mat4& value);
   bool has_uniform(std::string_view name);
+  // For a uniform set before every dispatch: look the location up once (same checks as
+  // set(name, ...)), then set it by location with no string lookup.
+  GLint location(std::string_view name);
+  void set(GLint location, int value) { glProgramUniform1i(program_.get(), location, value); }
+  void set(GLint location, const glm::ivec4* values, GLsizei count) {
+    glProgramUniform4iv(program_.get(), location, count, &values->x);
+  }
 
   // Binds the program and dispatches; memory barriers remain the caller's (say who reads next).
   void dispatch(GLuint groups_x, GLuint groups_y = 1, GLuint groups_z = 1) const;
@@ -53,7 +60,6 @@ class Program {
  private:
   static void delete_program(GLuint id);
   Program(GLuint id, std::string name, std::string sources);
-  GLint location(std::string_view name);
 
   detail::Name<delete_program> program_;
   std::string name_;

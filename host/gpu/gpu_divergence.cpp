@@ -74,7 +74,7 @@ void GpuDivergenceGuard::check(const gl::Buffer& positions) {
   slot.frame = frame_;
   // A buffer copy, ordered before the dispatch below without a barrier.
   slot.bounds.copy_from(empty_bounds_, 0, 0, sizeof(layout::FrameBounds));
-  positions.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_POSITIONS);
+  positions.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_CHECKED_POSITIONS);
   slot.bounds.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_FRAME_BOUNDS);
   last_good_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_LAST_GOOD);
   check_divergence_.dispatch(gl::workgroups_for(count_, WORKGROUP_SIZE));

@@ -1,3 +1,4 @@
+// The simulator's buffers and bindings: construction, the GPU's limits, memory and counters.
 #include "gpu_simulator.hpp"
 
 #include <cstdlib>
@@ -18,12 +19,6 @@ gl::Program load_pass(const std::filesystem::path& dir, const char* name) {
 }
 
 glm::ivec4 span_uniform(const AxisSpan& s) { return {s.first, s.period, s.shift, s.count}; }
-
-glm::vec4 v4(const Vec3<float>& v, float w) { return {v.x, v.y, v.z, w}; }
-
-// What a pass's readers need after it wrote: storage-buffer reads and texel fetches (the
-// passes read particle data through texel views, compute/particle_views.glsl).
-constexpr GLbitfield kComputeReads = GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT;
 
 // Too large a cloth is bad input, reported before any allocation rather than as a driver
 // failure: every per-particle buffer must fit one storage block, every dispatch the group count.
@@ -56,12 +51,25 @@ void check_gpu_limits(const Scene& scene, const ClothModel& m) {
 
 layout::StepParams make_step_params(const Constants<float>& c, const ClothModel& m) {
   layout::StepParams p{};
-  p.gravity_mass = v4(c.gravity, c.mass);
-  p.springs = {c.ks, c.ks_bending, c.keep_velocity, c.dt2};
-  p.constraint = {c.stretch_limit, c.contact_distance, c.inv_cell, c.steps};
-  p.grid = {uint32_t(m.nw), uint32_t(m.nh), uint32_t(m.count()), hash_table_size(uint32_t(m.count()))};
-  p.enabled = {c.enabled[0], c.enabled[1], c.enabled[2], 0u};
-  p.colliders = {uint32_t(c.spheres.size()), uint32_t(c.planes.size()), 0u, 0u};
+  p.gravity = glm::vec3(c.gravity.x, c.gravity.y, c.gravity.z);
+  p.mass = c.mass;
+  p.ks = c.ks;
+  p.ks_bending = c.ks_bending;
+  p.keep_velocity = c.keep_velocity;
+  p.dt2 = c.dt2;
+  p.stretch_limit = c.stretch_limit;
+  p.contact_distance = c.contact_distance;
+  p.inv_cell = c.inv_cell;
+  p.steps = c.steps;
+  p.width = uint32_t(m.nw);
+  p.height = uint32_t(m.nh);
+  p.count = uint32_t(m.count());
+  p.table_size = hash_table_size(uint32_t(m.count()));
+  p.structural_enabled = c.enabled[int(SpringType::Structural)];
+  p.shearing_enabled = c.enabled[int(SpringType::Shearing)];
+  p.bending_enabled = c.enabled[int(SpringType::Bending)];
+  p.sphere_count = uint32_t(c.spheres.size());
+  p.plane_count = uint32_t(c.planes.size());
   return p;
 }
 
@@ -81,9 +89,20 @@ GpuSimulator::GpuSimulator(const Scene& scene, const ClothModel& model, const st
       count_cells_(load_pass(dir, "count_cells")),
       fill_cells_(load_pass(dir, "fill_cells")),
       sort_cells_(load_pass(dir, "sort_cells")),
-      collide_self_(load_pass(dir, "collide_self")),
+      resolve_self_contacts_(load_pass(dir, "resolve_self_contacts")),
       scan_(dir, hash_table_size(uint32_t(model.count()))),
       guard_(scene, model, dir) {
+  advance_collide_objects_ = advance_.location("u_collide_objects");
+  resolve_collide_objects_ = resolve_self_contacts_.location("u_collide_objects");
+  colour_location_ = solve_length_constraints_.location("u_colour");
+  // The colour spans depend only on the grid: set once, picked per dispatch by u_colour.
+  std::vector<glm::ivec4> spans;
+  for (int colour = 0; colour < NUM_COLOURS; ++colour) {
+    const ColourSpan span = colour_span(colour, model.nw, model.nh);
+    spans.push_back(span_uniform(span.x));
+    spans.push_back(span_uniform(span.y));
+  }
+  solve_length_constraints_.set(solve_length_constraints_.location("u_spans[0]"), spans.data(), GLsizei(spans.size()));
   const size_t n = model.count();
   std::vector<layout::RestLengths> rest(n);
   for (size_t i = 0; i < n; ++i) {
@@ -97,7 +116,7 @@ GpuSimulator::GpuSimulator(const Scene& scene, const ClothModel& model, const st
   step_params_.allocate(sizeof(params_), &params_, GL_DYNAMIC_DRAW);
   forces_.allocate(n * sizeof(glm::vec4));
   // The hash table is sized once; start[table_size] is the total, always n.
-  table_size_ = params_.grid.w;
+  table_size_ = params_.table_size;
   cell_count_.allocate(table_size_ * sizeof(uint32_t));
   std::vector<uint32_t> start(table_size_ + 1, 0);
   start.back() = uint32_t(n);
@@ -160,157 +179,6 @@ void GpuSimulator::attach_views() {
   cell_start_view_.attach(cell_start_, GL_R32UI);
   sorted_positions_view_.attach(sorted_positions_, GL_RGBA32F);
 }
-
-void GpuSimulator::swap_positions() {
-  std::swap(positions_, positions_out_);
-  std::swap(positions_view_, positions_out_view_);
-}
-
-void GpuSimulator::dispatch_grid(gl::Program& program) {
-  bind_all();
-  program.dispatch(gl::workgroups_for(model_.nw, GRID_WORKGROUP_X), gl::workgroups_for(model_.nh, GRID_WORKGROUP_Y));
-  ++counters_.dispatches;
-}
-
-void GpuSimulator::dispatch(gl::Program& program) {
-  // Bindings are global GL state another user of the context (the renderer) may change, so
-  // every pass re-asserts them: a handful of cheap calls next to a dispatch.
-  bind_all();
-  program.dispatch(groups_);
-  ++counters_.dispatches;
-}
-
-void GpuSimulator::accumulate_forces() {
-  dispatch_grid(accumulate_forces_);
-  // integrate reads the forces next.
-  barrier(GL_SHADER_STORAGE_BARRIER_BIT);
-}
-
-void GpuSimulator::integrate() {
-  dispatch(integrate_);
-  // collide_self / collide_objects read the new positions and previous positions next.
-  barrier(kComputeReads);
-}
-
-void GpuSimulator::advance(bool then_collide_objects) {
-  advance_.set("u_collide_objects", then_collide_objects);
-  dispatch_grid(advance_);
-  swap_positions();
-  // The hash passes or the constraints read the new positions next; the next advance
-  // writes the old ones (now the output buffer) after this pass read them.
-  barrier(kComputeReads);
-}
-
-void GpuSimulator::count_cells() {
-  cell_count_.clear_to_zero();
-  dispatch(count_cells_);
-  // scan_cells copies the counts next (a buffer copy, hence BUFFER_UPDATE).
-  barrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-}
-
-void GpuSimulator::scan_cells() {
-  cell_start_.copy_from(cell_count_, 0, 0, table_size_ * sizeof(uint32_t));
-  scan_.scan(cell_start_, table_size_);  // ends with a barrier for fill_cells
-}
-
-void GpuSimulator::fill_cells() {
-  cell_count_.clear_to_zero();  // reused as the per-bucket cursors
-  dispatch(fill_cells_);
-  // sort_cells reads the entries next.
-  barrier(GL_SHADER_STORAGE_BARRIER_BIT);
-}
-
-void GpuSimulator::sort_cells() {
-  bind_all();
-  sort_cells_.dispatch(gl::workgroups_for(table_size_, WORKGROUP_SIZE));
-  ++counters_.dispatches;
-  // collide_self reads the starts and the positions in cell order next.
-  barrier(kComputeReads);
-}
-
-void GpuSimulator::collide_self(bool then_collide_objects) {
-  count_cells();
-  scan_cells();
-  fill_cells();
-  sort_cells();
-  resolve_self_contacts(then_collide_objects);
-}
-
-void GpuSimulator::resolve_self_contacts(bool then_collide_objects) {
-  collide_self_.set("u_collide_objects", then_collide_objects);
-  dispatch(collide_self_);
-  // Jacobi: the output becomes the positions; collide_objects or the constraints read them
-  // next. The next substep's count_cells clears the cursors fill_cells wrote, and scan_cells
-  // copies over the starts the scan wrote: buffer updates after shader writes (BUFFER_UPDATE).
-  swap_positions();
-  barrier(kComputeReads | GL_BUFFER_UPDATE_BARRIER_BIT);
-}
-
-
-void GpuSimulator::collide_objects() {
-  if (!constants_.has_colliders()) return;
-  dispatch(collide_objects_);
-  // solve_length_constraints reads the projected positions next.
-  barrier(kComputeReads);
-}
-
-void GpuSimulator::solve_length_constraint_colour(int colour) {
-  bind_all();
-  dispatch_colour(colour);
-}
-
-void GpuSimulator::dispatch_colour(int colour) {
-  const ColourSpan span = colour_span(colour, model_.nw, model_.nh);
-  if (span.x.count == 0 || span.y.count == 0) return;  // a grid too narrow for this colour
-  solve_length_constraints_.set("u_colour", colour);
-  solve_length_constraints_.set("u_span_x", span_uniform(span.x));
-  solve_length_constraints_.set("u_span_y", span_uniform(span.y));
-  solve_length_constraints_.dispatch(gl::workgroups_for(span.x.count, GRID_WORKGROUP_X),
-                                     gl::workgroups_for(span.y.count, GRID_WORKGROUP_Y));
-  ++counters_.dispatches;
-  // The next colour (or the next substep's advance) reads these positions.
-  barrier(kComputeReads);
-}
-
-void GpuSimulator::solve_length_constraints() {
-  bind_all();  // once for all colours: nothing else runs in between
-  for (int it = 0; it < constants_.iterations; ++it)
-    for (int colour = 0; colour < NUM_COLOURS; ++colour) {
-      if (!constants_.enabled[int(kDirections[colour / 2].type)]) continue;
-      dispatch_colour(colour);
-    }
-}
-
-void GpuSimulator::compute_normals() {
-  dispatch(compute_normals_);
-  // The vertex shader pulls normals (and a read-back may follow).
-  barrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
-}
-
-void GpuSimulator::step() {
-  // collide_objects reads only a particle's own position and previous position, so it rides
-  // along with the last per-particle pass before the constraints.
-  const bool colliders = constants_.has_colliders();
-  advance(colliders && !constants_.self_collision);
-  if (constants_.self_collision) collide_self(colliders);
-  solve_length_constraints();
-}
-
-void GpuSimulator::step_frame() {
-  for (int k = 0; k < int(constants_.steps); ++k) step();
-  compute_normals();
-  guard_.check(positions_);
-}
-
-int GpuSimulator::dispatches_per_substep() const {
-  int enabled_colours = 0;
-  for (int colour = 0; colour < NUM_COLOURS; ++colour)
-    enabled_colours += constants_.enabled[int(kDirections[colour / 2].type)];
-  const int self = constants_.self_collision ? 4 + scan_.dispatches(table_size_) : 0;  // count, fill, sort, collide + scan
-  return 1 + self + constants_.iterations * enabled_colours;
-}
-
-
 
 GpuBackend::GpuBackend(std::unique_ptr<gl::GlContext> context, const Scene& scene, const ClothModel& model,
                        const std::filesystem::path& compute_dir)

@@ -1,6 +1,8 @@
 // The model of DESIGN.md §1 as compute passes over shader-storage buffers. The passes have
 // the names of the CPU reference functions they mirror; step() is the same pass list.
 // Positions stay on the GPU: the only read-backs are download() and snapshot(), on request.
+// Split by concern: gpu_simulator.cpp (buffers, bindings, limits), gpu_step.cpp (the passes
+// and the step), gpu_simulator_io.cpp (transfers), gpu_edits.cpp (live edits and the grab).
 #pragma once
 
 #include <filesystem>
@@ -22,10 +24,11 @@ class GpuSimulator {
   // Needs a current GL 4.3 context. `compute_dir` holds the .comp files.
   GpuSimulator(const Scene& scene, const ClothModel& model, const std::filesystem::path& compute_dir);
 
-  // The passes, one dispatch each (the length constraint: one per colour and iteration).
-  // step() runs advance, [collide_self], solve_length_constraints, with collide_objects
-  // fused into the last per-particle pass before the constraints; the unfused passes stay
-  // for the pass-by-pass check against the reference functions of the same names.
+  // The passes, one dispatch each (the length constraint: one per colour and iteration),
+  // each named like its .comp file and its CPU twin in host/core/reference.hpp. step() runs
+  // advance, [collide_self], solve_length_constraints, with collide_objects fused into the
+  // last per-particle pass before the constraints. accumulate_forces, integrate and
+  // collide_objects on their own are kept only for the pass checks (pass_check.cpp).
   void accumulate_forces();
   void integrate();
   void advance(bool then_collide_objects = false);  // accumulate_forces + integrate [+ collide_objects]
@@ -35,14 +38,16 @@ class GpuSimulator {
   void solve_length_constraints();
   void compute_normals();
 
-  // The stages of collide_self, named like their shaders and CPU twins.
+  // The stages of collide_self, named like their shaders and CPU twins (spatial_hash.hpp).
   void count_cells();
   void scan_cells();
   void fill_cells();
-  void sort_cells();
-  // The last stage: collide_self.comp over the hash the four stages built.
+  void sort_cells();  // also writes the positions in cell order for the response
+  // The last stage: the push-out over the hash the four stages built.
   void resolve_self_contacts(bool then_collide_objects = false);
   void download_hash(SpatialHash& hash);  // count (cursors after fill), start, entries
+  void upload_hash(const SpatialHash& hash);  // the same, for a stage checked on its own
+  std::vector<glm::vec4> download_sorted_positions();
   // The scanner, for tests of arbitrary lengths (up to the hash table size).
   PrefixScan& prefix_scan() { return scan_; }
 
@@ -51,7 +56,7 @@ class GpuSimulator {
   GpuDivergenceGuard& divergence() { return guard_; }
 
   // Explicit transfers for export, validation and tests.
-  void upload(const State<float>& state);  // pos, prev, and force when present
+  void upload(const State<float>& state);  // pos, prev, and force when present (binds them)
   void download(State<float>& state);  // pos, prev, force, normal
 
   // Live edits from the viewer. Parameters that keep the grid (stiffness, damping, density,
@@ -72,10 +77,14 @@ class GpuSimulator {
   const Constants<float>& constants() const { return constants_; }
 
  private:
+  // Binds every simulation buffer and view, on binding points and texture units no one else
+  // uses (layout.glsl): at the start of every step, and for a pass called on its own (tests,
+  // pass checks: another simulator in the same context may have bound its own since).
   void bind_all() const;
+  void bind_for_pass() const { if (!in_step_) bind_all(); }
   void attach_views();  // after any buffer is (re)allocated
   void dispatch_grid(gl::Program& program);  // 2-D, one invocation per grid point
-  void swap_positions();  // the Jacobi/ping-pong output becomes the positions
+  void swap_positions();  // the Jacobi/ping-pong output becomes the positions (rebinds the two)
   void upload_colliders();  // from constants_
   void barrier(GLbitfield bits);  // glMemoryBarrier, counted
   void dispatch(gl::Program& program);
@@ -98,8 +107,11 @@ class GpuSimulator {
   gl::BufferTexture planes_view_{"planes view"}, cell_start_view_{"cell start view"};
   gl::BufferTexture sorted_positions_view_{"sorted positions view"};
   uint32_t table_size_ = 0;
+  bool in_step_ = false;
   gl::Program accumulate_forces_, integrate_, advance_, collide_objects_, solve_length_constraints_, compute_normals_;
-  gl::Program count_cells_, fill_cells_, sort_cells_, collide_self_;
+  gl::Program count_cells_, fill_cells_, sort_cells_, resolve_self_contacts_;
+  // Uniforms set before a dispatch, looked up once.
+  GLint advance_collide_objects_ = -1, resolve_collide_objects_ = -1, colour_location_ = -1;
   PrefixScan scan_;
   GpuDivergenceGuard guard_;
 };

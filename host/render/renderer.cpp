@@ -142,9 +142,9 @@ void Renderer::draw(const gl::Buffer& positions, const gl::Buffer& normals, cons
   sky_.bind(2);
 
   // The cloth: the simulation's own buffers, read in place by the vertex shader.
-  positions.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_POSITIONS);
-  normals.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_NORMALS);
-  no_extras_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_MESH_EXTRA);
+  positions.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_DRAW_POSITIONS);
+  normals.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_DRAW_NORMALS);
+  no_extras_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_DRAW_EXTRAS);
   prog.set("u_is_cloth", 1);
   prog.set("u_grid", glm::ivec2(model_.nw, model_.nh));
   const bool wire = look.shader == ShaderKind::Wireframe;
@@ -159,9 +159,9 @@ void Renderer::draw(const gl::Buffer& positions, const gl::Buffer& normals, cons
   // Colliders: their own buffers at the same bindings, shaded with the same program.
   prog.set("u_is_cloth", 0);
   auto draw_collider = [&](const Mesh& m, glm::vec4 colour) {
-    m.positions->bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_POSITIONS);
-    m.normals->bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_NORMALS);
-    m.extras->bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_MESH_EXTRA);
+    m.positions->bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_DRAW_POSITIONS);
+    m.normals->bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_DRAW_NORMALS);
+    m.extras->bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_DRAW_EXTRAS);
     prog.set("u_color", colour);
     if (wire) glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
     draw_mesh(m, prog, false);

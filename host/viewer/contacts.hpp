@@ -6,8 +6,10 @@
 
 #include <glm/vec4.hpp>
 
+#include "reference.hpp"
+
 namespace clothsim {
 
-int count_self_contacts(const std::vector<glm::vec4>& positions, float contact_distance);
+int count_self_contacts(const std::vector<glm::vec4>& positions, const Constants<float>& c);
 
 }  // namespace clothsim

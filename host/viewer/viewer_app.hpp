@@ -146,8 +146,8 @@ class Viewer {
     st_.stats.contacts = -1;
     if (!st_.scene.simulation.self_collision) return;
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    st_.stats.contacts = count_self_contacts(gl::download_vector<glm::vec4>(session_.sim->positions()),
-                                             float(2 * st_.scene.cloth.thickness));
+    st_.stats.contacts =
+        count_self_contacts(gl::download_vector<glm::vec4>(session_.sim->positions()), session_.sim->constants());
   }
 
   bool save_screenshot(const std::string& path) {

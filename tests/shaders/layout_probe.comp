@@ -6,29 +6,32 @@
 #include "../../compute/layout.glsl"
 #include "../../compute/common.glsl"
 
-// A binding no pass uses: the uvec4 members go out here, so no integer passes through a float.
-#define BINDING_PROBE_UINTS 15
+// A binding no pass uses: the step parameters go out here as bits, one uint per scalar.
+#define BINDING_PROBE_UINTS 21
 
 layout(local_size_x = WORKGROUP_SIZE) in;
 layout(std430, binding = BINDING_POSITIONS) writeonly buffer Positions { vec4 pos[]; };
 layout(std430, binding = BINDING_REST) readonly buffer Rest { RestLengths rest[]; };
 layout(std430, binding = BINDING_SPHERES) readonly buffer Spheres { SphereCollider spheres[]; };
 layout(std430, binding = BINDING_PLANES) readonly buffer Planes { PlaneCollider planes[]; };
-layout(std430, binding = BINDING_PROBE_UINTS) writeonly buffer ProbeUints { uvec4 probe_uints[]; };
+layout(std430, binding = BINDING_PROBE_UINTS) writeonly buffer ProbeUints { uint probe_uints[]; };
+
+uint next_uint = 0u;
+void put(uint v) { probe_uints[next_uint++] = v; }
+void put(float v) { put(floatBitsToUint(v)); }
+void put(vec3 v) { put(v.x); put(v.y); put(v.z); }
+
+// Every field of StepParams in declaration order, the list of layout.glsl itself.
+#define PUT_FIELD(type, name) put(params.name);
 
 void main() {
   if (gl_GlobalInvocationID.x != 0u) return;
-  pos[0] = params.gravity_mass;
-  pos[1] = params.springs;
-  pos[2] = params.constraint;
-  probe_uints[0] = params.grid;
-  probe_uints[1] = params.enabled;
-  probe_uints[2] = params.colliders;
+  STEP_PARAMS_FIELDS(PUT_FIELD)
   // Element 1 of each array, so a wrong stride shows as well as a wrong offset.
-  pos[3] = rest[1].near;
-  pos[4] = rest[1].far;
-  pos[5] = spheres[1].origin_radius;
-  pos[6] = spheres[1].keep;
-  pos[7] = planes[1].point;
-  pos[8] = planes[1].normal;
+  pos[0] = rest[1].near;
+  pos[1] = rest[1].far;
+  pos[2] = spheres[1].origin_radius;
+  pos[3] = spheres[1].keep;
+  pos[4] = planes[1].point;
+  pos[5] = planes[1].normal;
 }

@@ -8,6 +8,6 @@ layout(std140, binding = BINDING_STEP_PARAMS) uniform Params { StepParams params
 
 void main() {
   uint i = gl_GlobalInvocationID.x;
-  if (i >= params.grid.z) return;
-  positions[i].xyz += params.gravity_mass.xyz * params.springs.w;
+  if (i >= params.count) return;
+  positions[i].xyz += params.gravity * params.dt2;
 }

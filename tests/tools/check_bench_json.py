@@ -11,8 +11,8 @@ FIELDS = {"backend": str, "size": int, "particles": int, "self_collision": bool,
           "ms_per_frame": float, "particle_substeps_per_s": float, "pass_ms": dict, "pass_timing": str,
           "dispatches_per_frame": (int, float), "barriers_per_frame": (int, float), "gpu_memory_bytes": int}
 # The passes each backend's step runs (the GPU fuses collide_objects into advance or
-# collide_self, and times the stages of its hashed grid one by one).
-PASSES = {"gpu": {"advance", "count_cells", "scan_cells", "fill_cells", "sort_cells", "collide_self",
+# resolve_self_contacts, and times the five stages of collide_self one by one).
+PASSES = {"gpu": {"advance", "count_cells", "scan_cells", "fill_cells", "sort_cells", "resolve_self_contacts",
                   "solve_length_constraints", "compute_normals", "check_divergence"},
           "cpu": {"advance", "collide_self", "collide_objects", "solve_length_constraints", "compute_normals",
                   "check_divergence"}}

@@ -1,8 +1,9 @@
 // Reads positions, the bucket starts and the positions in cell order (sort_cells wrote them,
 // so a candidate costs one read, not an id and then a position); writes the Jacobi output
 // positions. One invocation per particle: it visits the 27 cells around it and averages the
-// push-out from every particle closer than 2 * thickness (DESIGN.md §1.3), in the
-// reference's order. With u_collide_objects the collision objects follow in the same
+// push-out from every particle closer than 2 * thickness (DESIGN.md §1.3), in the order of
+// resolve_self_contacts in host/core/reference.cpp. The last stage of collide_self, after
+// count_cells, scan_cells, fill_cells and sort_cells built the hash. With u_collide_objects the collision objects follow in the same
 // invocation (step 4 reads only the particle's own position and previous position).
 #include "layout.glsl"
 #include "common.glsl"
@@ -22,7 +23,7 @@ struct Contacts {
 // Adds the push-out from every particle among entries [first, last) that lies in one of the
 // three cells (x - 1 .. x + 1, row.y, row.z) and closer than the contact distance.
 Contacts visit_entries(Contacts acc, vec3 xi, ivec3 row, uint first, uint last) {
-  float contact = params.constraint.y;
+  float contact = params.contact_distance;
   for (uint e = first; e < last; ++e) {
     vec3 xj = texelFetch(sorted_positions_view, int(e)).xyz;
     // Buckets also hold cells of other rows that hash to them: count j only if it is in one
@@ -49,7 +50,7 @@ uint bucket_start(uint b) { return texelFetch(cell_start_view, int(b)).x; }
 // cell) -- or two runs when the three buckets wrap around the end of the table.
 Contacts visit_row(Contacts acc, vec3 xi, ivec3 c, int dy, int dz) {
   ivec3 row = ivec3(c.x, c.y + dy, c.z + dz);
-  uint size = params.grid.w;
+  uint size = params.table_size;
   uint b0 = (hash_row(row.y, row.z) + uint(c.x - 1)) & (size - 1u);
   uint end = b0 + 3u;
   acc = visit_entries(acc, xi, row, bucket_start(b0), bucket_start(min(end, size)));
@@ -83,7 +84,7 @@ void main() {
   precise vec3 sum = acc.sum;
   uint hits = acc.hits;
   if (hits > 0u) {
-    precise float scale = 1.0 / (float(hits) * params.constraint.w);
+    precise float scale = 1.0 / (float(hits) * params.steps);
     xi = xi + sum * scale;
   }
   if (u_collide_objects) xi = collide_with_objects(xi, previous_of(i).xyz);

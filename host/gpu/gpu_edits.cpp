@@ -1,0 +1,62 @@
+// Live edits from the viewer: parameter changes, the grab, reset. None runs during a step;
+// each changes buffers the next step reads.
+#include "gpu_simulator.hpp"
+
+namespace clothsim {
+
+void GpuSimulator::upload_colliders() {
+  auto v4 = [](const Vec3<float>& v, float w) { return glm::vec4(v.x, v.y, v.z, w); };
+  std::vector<layout::SphereCollider> spheres;
+  for (auto& s : constants_.spheres) spheres.push_back({v4(s.origin, s.radius), {s.keep, 0.f, 0.f, 0.f}});
+  std::vector<layout::PlaneCollider> planes;
+  for (auto& p : constants_.planes) planes.push_back({v4(p.point, 0.f), v4(p.normal, p.keep)});
+  // A storage buffer may not be empty when bound: keep one dummy element for zero colliders.
+  if (spheres.empty()) spheres.resize(1);
+  if (planes.empty()) planes.resize(1);
+  gl::upload_vector(spheres_, spheres, GL_STATIC_DRAW);
+  gl::upload_vector(planes_, planes, GL_STATIC_DRAW);
+  spheres_view_.attach(spheres_, GL_RGBA32F);
+  planes_view_.attach(planes_, GL_RGBA32F);
+}
+
+void GpuSimulator::set_parameters(const Scene& scene) {
+  const float old_mass = constants_.mass;
+  constants_ = make_constants<float>(scene, model_);
+  inverse_mass_ = float(1.0 / particle_mass(scene.cloth));
+  params_ = make_step_params(constants_, model_);
+  step_params_.upload(0, sizeof(params_), &params_);
+  upload_colliders();
+  if (constants_.mass != old_mass) {
+    // Density changed: every free particle's inverse mass follows (an edit-time read-back).
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    auto pos = gl::download_vector<glm::vec4>(positions_);
+    for (auto& p : pos) if (p.w != 0.f) p.w = inverse_mass_;
+    positions_.upload(0, pos.size() * sizeof(glm::vec4), pos.data());
+  }
+}
+
+void GpuSimulator::hold_particle(int i, const glm::vec3& position) {
+  const glm::vec4 p(position, 0.f);
+  // Both buffers, so the held particle has no velocity; shaders read them next substep.
+  positions_.upload(size_t(i) * sizeof(glm::vec4), sizeof(p), &p);
+  previous_.upload(size_t(i) * sizeof(glm::vec4), sizeof(p), &p);
+}
+
+void GpuSimulator::release_particle(int i) {
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  glm::vec4 p;
+  positions_.download(size_t(i) * sizeof(glm::vec4), sizeof(p), &p);
+  p.w = model_.pinned[i] ? 0.f : inverse_mass_;
+  positions_.upload(size_t(i) * sizeof(glm::vec4), sizeof(p), &p);
+}
+
+void GpuSimulator::reset() {
+  State<float> s = initial_state<float>(model_);
+  for (auto& p : s.pos) if (p.w != 0.f) p.w = inverse_mass_;
+  s.prev = s.pos;
+  upload(s);
+  compute_normals();
+  guard_.restart(s.pos, 0);
+}
+
+}  // namespace clothsim
