@@ -1,5 +1,6 @@
 // Reads forces, positions, previous positions; writes positions and previous positions in
 // place. One invocation per particle (damped Verlet; pinned particles, w = 0, stay put).
+// The step runs advance, which fuses this with the forces; this pass stays for the pass checks.
 #include "layout.glsl"
 #include "common.glsl"
 

@@ -47,8 +47,12 @@ int run_validate(const Opts& o) {
   for (const PassError& e : check_passes(scene, model, gpu, o.warmup)) {
     const bool pass_ok = e.max_error <= pass_tolerance;
     ok = ok && pass_ok;
-    fmt::print("  {:<34} max {:.3e} m{}  {}\n", e.pass, e.max_error, e.bitwise ? " (bitwise equal)" : "",
-               pass_ok ? "ok" : "FAILED");
+    if (e.integers)
+      fmt::print("  {:<40} {}  {}\n", e.pass, e.differing ? fmt::format("{} elements differ", e.differing) : "equal",
+                 pass_ok ? "ok" : "FAILED");
+    else
+      fmt::print("  {:<40} max {:.3e} m{}  {}\n", e.pass, e.max_error, e.bitwise ? " (bitwise equal)" : "",
+                 pass_ok ? "ok" : "FAILED");
   }
 
   // 2. The whole run in lock step, on a fresh GPU state.

@@ -1,9 +1,79 @@
 #include "pass_check.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <functional>
 
 namespace clothsim {
+namespace {
+
+template <class T> size_t differing(const std::vector<T>& a, const std::vector<T>& b) {
+  if (a.size() != b.size()) return std::max(a.size(), b.size());
+  size_t n = 0;
+  for (size_t i = 0; i < a.size(); ++i) n += std::memcmp(&a[i], &b[i], sizeof(T)) != 0;
+  return n;
+}
+
+PassError integer_result(const char* pass, size_t differ) {
+  return {pass, differ ? INFINITY : 0.0, differ == 0, true, differ};
+}
+
+// Entries with each bucket sorted: fill_cells leaves the order within a bucket to the GPU's atomics.
+std::vector<uint32_t> entries_as_sets(const SpatialHash& h, std::vector<uint32_t> entries) {
+  for (uint32_t b = 0; b < h.table_size; ++b)
+    std::sort(entries.begin() + h.start[b], entries.begin() + h.start[b + 1]);
+  return entries;
+}
+
+// The four stages that build the hash and the response over it, each on the GPU from the
+// CPU's hash before it. Leaves `s` after resolve_self_contacts.
+void check_self_collision_stages(const Constants<float>& c, State<float>& s, GpuSimulator& gpu,
+                                 std::vector<PassError>& out) {
+  const size_t n = s.pos.size();
+  std::vector<uint32_t> buckets(n), order(n);
+  for (size_t i = 0; i < n; ++i) {
+    const glm::ivec3 cell = cell_of(s.pos[i], c.inv_cell);
+    buckets[i] = hash_cell(cell.x, cell.y, cell.z, s.hash.table_size);
+    order[n - 1 - i] = uint32_t(i);  // descending: a fill order sort_cells must undo
+  }
+  SpatialHash& h = s.hash;
+  SpatialHash g;
+  gpu.upload(s);
+  count_cells(buckets, h);
+  gpu.count_cells();
+  gpu.download_hash(g);
+  out.push_back(integer_result("count_cells", differing(g.count, h.count)));
+  gpu.upload_hash(h);
+  scan_cells(h);
+  gpu.scan_cells();
+  gpu.download_hash(g);
+  out.push_back(integer_result("scan_cells", differing(g.start, h.start)));
+  gpu.upload_hash(h);
+  fill_cells(buckets, order, h);
+  gpu.fill_cells();
+  gpu.download_hash(g);
+  out.push_back(integer_result("fill_cells (as a set per bucket)",
+                               differing(g.count, h.count) +
+                                   differing(entries_as_sets(h, g.entries), entries_as_sets(h, h.entries))));
+  gpu.upload_hash(h);
+  sort_cells(h);
+  gpu.sort_cells();
+  gpu.download_hash(g);
+  std::vector<glm::vec4> want_sorted(n);
+  for (size_t e = 0; e < n; ++e) want_sorted[e] = s.pos[h.entries[e]];
+  out.push_back(integer_result("sort_cells (+ positions in cell order)",
+                               differing(g.entries, h.entries) + differing(gpu.download_sorted_positions(), want_sorted)));
+  // The GPU's hash and sorted positions are now the CPU's: the response reads them.
+  resolve_self_contacts(c, s);
+  gpu.resolve_self_contacts();
+  State<float> r;
+  gpu.download(r);
+  const Deviation d = deviation(r.pos, s.pos);
+  out.push_back({"resolve_self_contacts", d.max, d.bitwise});
+}
+
+}  // namespace
 
 std::vector<PassError> check_passes(const Scene& scene, const ClothModel& model, GpuSimulator& gpu, int warmup) {
   CpuBackend<float> cpu(scene, model);
@@ -51,6 +121,8 @@ std::vector<PassError> check_passes(const Scene& scene, const ClothModel& model,
         [&] { gpu.advance(objects_in_advance); }, both);
   if (c.self_collision) {
     const State<float> before = s;
+    check_self_collision_stages(c, s, gpu, out);
+    s = before;
     check("collide_self", [&] { collide_self(c, s); }, [&] { gpu.collide_self(); }, positions);
     if (colliders) {
       s = before;

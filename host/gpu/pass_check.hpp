@@ -33,10 +33,16 @@ struct PassError {
   std::string pass;
   double max_error = 0;  // metres; forces are converted to the displacement they cause in one substep
   bool bitwise = true;
+  // The hash stages produce integers, which must agree exactly on any GPU: then max_error is
+  // 0 when they do and infinite when they do not, and `differing` counts the elements.
+  bool integers = false;
+  size_t differing = 0;
 };
 
 // Runs the CPU (float) for `warmup_frames`, then checks each pass of one substep (and the
-// normals) on the GPU against the CPU, each from the CPU's state before that pass.
+// normals) on the GPU against the CPU, each from the CPU's state before that pass: the
+// unfused passes, the fused ones the step runs, and with self-collision each stage of the
+// hash (count_cells, scan_cells, fill_cells, sort_cells) and resolve_self_contacts.
 std::vector<PassError> check_passes(const Scene& scene, const ClothModel& model, GpuSimulator& gpu,
                                     int warmup_frames);
 
