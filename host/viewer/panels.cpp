@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include <fmt/format.h>
 #include <imgui.h>
@@ -20,10 +21,11 @@ namespace {
 class PanelRows final : public ParamVisitor {
  public:
   bool changed = false;
+  std::vector<std::string> fixed;  // the read-only rows, listed together under the widgets
 
   void number(const ParamInfo& p, double& v) override {
     const Widget& w = p.widget;
-    if (w.style == Widget::ReadOnly) ImGui::LabelText(label(p).c_str(), "%g", v);
+    if (w.style == Widget::ReadOnly) fixed.push_back(fmt::format("{} = {}", label(p), v));
     if (w.style != Widget::Drag) return;
     float f = float(v * w.scale);
     if (ImGui::DragFloat(label(p).c_str(), &f, w.speed, float(w.lo), float(w.hi), w.format)) {
@@ -33,7 +35,7 @@ class PanelRows final : public ParamVisitor {
   }
   void integer(const ParamInfo& p, int& v) override {
     const Widget& w = p.widget;
-    if (w.style == Widget::ReadOnly) ImGui::LabelText(label(p).c_str(), "%d", v);
+    if (w.style == Widget::ReadOnly) fixed.push_back(fmt::format("{} = {}", label(p), v));
     if (w.style != Widget::Drag) return;
     if (ImGui::DragInt(label(p).c_str(), &v, w.speed, int(w.lo), int(w.hi), w.format)) {
       if (w.lo < w.hi) v = std::clamp(v, int(w.lo), int(w.hi));  // a typed value may be outside
@@ -76,6 +78,11 @@ void simulation_panel(ViewerState& st) {
   PanelRows rows;
   visit_rows(st.scene, rows);
   st.parameters_changed |= rows.changed;
+  // Collapsed by default, so that the panel is no taller for them.
+  if (!rows.fixed.empty() && ImGui::TreeNode("needs a new cloth: edit the scene file, then Reload")) {
+    for (const std::string& f : rows.fixed) ImGui::TextDisabled("%s", f.c_str());
+    ImGui::TreePop();
+  }
   ImGui::TextDisabled("P pause  N step  R reset  Space camera  S screenshot  F1 panels");
   ImGui::TextDisabled("drag: orbit  right/ctrl-drag: pan  wheel: zoom  shift-drag: grab");
 }
