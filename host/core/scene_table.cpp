@@ -13,8 +13,6 @@
 namespace clothsim {
 namespace {
 
-constexpr double kInf = HUGE_VAL;
-
 constexpr Widget drag(float speed, double lo, double hi, const char* format) {
   return {.style = Widget::Drag, .speed = speed, .lo = lo, .hi = hi, .format = format};
 }
