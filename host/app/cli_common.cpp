@@ -9,7 +9,7 @@ namespace clothsim {
 void SceneOptions::add_to(CLI::App& cmd, bool positional_required) {
   auto* opt = cmd.add_option("scene", path, "scene JSON file (classic CS184 format or extended)");
   if (positional_required) opt->required();
-  cmd.add_option("--set", sets, "override a scene value, e.g. --set cloth.ks=500 (repeatable)")
+  cmd.add_option("--set", sets, "override a scene value, e.g. --set cloth.ks=500 (repeatable; keys: docs/parameters.md)")
       ->type_name("KEY=VALUE")
       ->allow_extra_args(false);
 }

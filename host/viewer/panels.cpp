@@ -1,54 +1,88 @@
-// The viewer's Dear ImGui panels. Labels are the scene JSON key names (one name end to end).
+// The viewer's Dear ImGui panels. Labels are the scene JSON key names (one name end to end);
+// the Simulation panel is made from the parameter table (host/core/scene_table.cpp).
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <string>
+#include <vector>
 
 #include <fmt/format.h>
 #include <imgui.h>
 
+#include "scene_table.hpp"
 #include "viewer_state.hpp"
 
 namespace clothsim {
 namespace {
 
-void simulation_panel(ViewerState& st) {
-  if (!ImGui::CollapsingHeader("Simulation", ImGuiTreeNodeFlags_DefaultOpen)) return;
-  ClothParams& c = st.scene.cloth;
-  SimulationParams& s = st.scene.simulation;
+// The Simulation panel's widgets, one per row of the parameter table that has a widget:
+// the labels are the JSON keys, values are shown in the row's display unit.
+class PanelRows final : public ParamVisitor {
+ public:
   bool changed = false;
-  changed |= ImGui::Checkbox("enable_structural", &c.enable_structural);
-  changed |= ImGui::Checkbox("enable_shearing", &c.enable_shearing);
-  changed |= ImGui::Checkbox("enable_bending", &c.enable_bending);
-  // Density is stored in kg/m^2 and shown in g/cm^2 like the classic GUI (1 g/cm^2 = 10 kg/m^2).
-  float density_g_cm2 = float(c.density / 10.0);
-  if (ImGui::DragFloat("density (g/cm^2)", &density_g_cm2, 0.1f, 0.01f, 1000.f, "%.2f")) {
-    c.density = std::max(0.001, double(density_g_cm2) * 10.0);
-    changed = true;
-  }
-  auto drag_double = [&](const char* label, double& v, float speed, double lo, double hi, const char* fmt) {
-    float f = float(v);
-    if (ImGui::DragFloat(label, &f, speed, float(lo), float(hi), fmt)) {
-      v = std::clamp(double(f), lo, hi);
+  std::vector<std::string> fixed;  // the read-only rows, listed together under the widgets
+
+  void number(const ParamInfo& p, double& v) override {
+    const Widget& w = p.widget;
+    if (w.style == Widget::ReadOnly) fixed.push_back(fmt::format("{} = {}", label(p), v));
+    if (w.style != Widget::Drag) return;
+    float f = float(v * w.scale);
+    if (ImGui::DragFloat(label(p).c_str(), &f, w.speed, float(w.lo), float(w.hi), w.format)) {
+      v = (w.lo < w.hi ? std::clamp(double(f), w.lo, w.hi) : double(f)) / w.scale;
       changed = true;
     }
-  };
-  drag_double("ks (N/m)", c.ks, 10.f, 0.0, 1e7, "%.0f");
-  drag_double("damping (%)", c.damping, 0.01f, 0.0, 100.0, "%.3f");
-  drag_double("frames_per_sec", s.frames_per_sec, 1.f, 1.0, 1000.0, "%.0f");
-  changed |= ImGui::DragInt("simulation_steps", &s.simulation_steps, 1.f, 1, 1000);
-  float g[3] = {float(s.gravity.x), float(s.gravity.y), float(s.gravity.z)};
-  if (ImGui::DragFloat3("gravity (m/s^2)", g, 0.05f)) {
-    s.gravity = glm::dvec3(g[0], g[1], g[2]);
-    changed = true;
   }
-  drag_double("max_stretch", s.max_stretch, 0.005f, 0.0, 10.0, "%.3f");
-  changed |= ImGui::DragInt("constraint_iterations", &s.constraint_iterations, 0.1f, 0, 100);
-  changed |= ImGui::Checkbox("self_collision", &s.self_collision);
-  drag_double("thickness (m)", c.thickness, 0.0005f, 1e-4, 1.0, "%.4f");
-  s.simulation_steps = std::max(1, s.simulation_steps);
-  s.constraint_iterations = std::max(0, s.constraint_iterations);
-  st.parameters_changed |= changed;
+  void integer(const ParamInfo& p, int& v) override {
+    const Widget& w = p.widget;
+    if (w.style == Widget::ReadOnly) fixed.push_back(fmt::format("{} = {}", label(p), v));
+    if (w.style != Widget::Drag) return;
+    if (ImGui::DragInt(label(p).c_str(), &v, w.speed, int(w.lo), int(w.hi), w.format)) {
+      if (w.lo < w.hi) v = std::clamp(v, int(w.lo), int(w.hi));  // a typed value may be outside
+      changed = true;
+    }
+  }
+  void boolean(const ParamInfo& p, bool& v) override {
+    if (p.widget.style == Widget::Checkbox) changed |= ImGui::Checkbox(p.key, &v);
+  }
+  void vec3(const ParamInfo& p, glm::dvec3& v) override {
+    if (p.widget.style != Widget::Drag) return;
+    float f[3] = {float(v.x), float(v.y), float(v.z)};
+    if (ImGui::DragFloat3(label(p).c_str(), f, p.widget.speed, float(p.widget.lo), float(p.widget.hi), p.widget.format)) {
+      v = glm::dvec3(f[0], f[1], f[2]);
+      changed = true;
+    }
+  }
+  void choice(const ParamInfo& p, int& v) override {
+    if (p.widget.style != Widget::Hidden)
+      changed |= ImGui::Combo(p.key, &v, p.choices.data(), int(p.choices.size()));
+  }
+  void grid_indices(const ParamInfo&, GridIndices&, int, int) override {}  // pins: edit the file
+  void object(const ParamInfo& p, ObjectRef& o) override {
+    if (!o.present()) return;
+    ImGui::PushID(p.key);  // the same key may appear in two objects
+    o.visit(*this);
+    ImGui::PopID();
+  }
+  void list(const ParamInfo&, ListRef&) override {}  // colliders: edit the file
+
+ private:
+  static std::string label(const ParamInfo& p) {
+    const char* unit = p.widget.unit ? p.widget.unit : p.unit;
+    return *unit ? fmt::format("{} ({})", p.key, unit) : std::string(p.key);
+  }
+};
+
+void simulation_panel(ViewerState& st) {
+  if (!ImGui::CollapsingHeader("Simulation", ImGuiTreeNodeFlags_DefaultOpen)) return;
+  PanelRows rows;
+  visit_rows(st.scene, rows);
+  st.parameters_changed |= rows.changed;
+  // Collapsed by default, so that the panel is no taller for them.
+  if (!rows.fixed.empty() && ImGui::TreeNode("needs a new cloth: edit the scene file, then Reload")) {
+    for (const std::string& f : rows.fixed) ImGui::TextDisabled("%s", f.c_str());
+    ImGui::TreePop();
+  }
   ImGui::TextDisabled("P pause  N step  R reset  Space camera  S screenshot  F1 panels");
   ImGui::TextDisabled("drag: orbit  right/ctrl-drag: pan  wheel: zoom  shift-drag: grab");
 }

@@ -5,10 +5,10 @@
 // separated, empty lines skipped). Each input is passed to
 // clothsim::parse_scene(json, "<fuzz>", overrides).
 //
-// Property: parse_scene either returns a Scene that is fully valid (every double finite, at
-// least 2 points each way, sizes > 0, friction in [0, 1], damping in [0, 100], unit plane
-// normals, pins inside the grid, at most kMaxParticles particles, ...) and that
-// scene_to_json writes out and loads back bit for bit, or throws clothsim::SceneError naming
+// Property: parse_scene either returns a Scene that is fully valid (every value inside the
+// range of its row in the parameter table, host/core/scene_table.cpp; unit plane normals, pins
+// inside the grid, at most kMaxParticles particles) and that scene_to_json writes out and
+// loads back bit for bit, value by value, or throws clothsim::SceneError naming
 // the source. Anything else (another exception, a violated property) calls abort(), which
 // libFuzzer reports as a crash; ASan/UBSan reports, hangs (-timeout) and OOMs are crashes too.
 //
@@ -16,15 +16,19 @@
 // which ctest runs over tests/fuzz/regressions/ and the seed corpus in every build.
 #include "fuzz_scene.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
 #include <string>
 #include <typeinfo>
+#include <utility>
 #include <vector>
 
-#include "scene.hpp"
+#include <fmt/format.h>
+
+#include "scene_table.hpp"
 
 namespace clothsim::fuzz {
 namespace {
@@ -35,47 +39,104 @@ namespace {
   std::abort();
 }
 
-void expect(bool ok, const char* what) {
+void expect(bool ok, const std::string& what) {
   if (!ok) violated(what);
 }
 
 bool finite3(const glm::dvec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
-bool in01(double x) { return std::isfinite(x) && x >= 0 && x <= 1; }
 
-void check_valid(const Scene& s) {
+// Key path of a row for messages: "cloth.ks", "sphere[1].radius".
+std::string join(const std::string& prefix, const char* key) { return prefix.empty() ? key : prefix + "." + key; }
+
+// Every value inside the range its row of the parameter table states, so a new row is checked
+// without an edit here.
+class InRange final : public ParamVisitor {
+ public:
+  explicit InRange(std::string prefix = "") : prefix_(std::move(prefix)) {}
+  void number(const ParamInfo& p, double& v) override {
+    expect(std::isfinite(v) && v >= p.lo && v <= p.hi, join(prefix_, p.key) + " finite and in its row's range");
+  }
+  void integer(const ParamInfo& p, int& v) override {
+    expect(v >= p.lo && v <= p.hi, join(prefix_, p.key) + " in its row's range");
+  }
+  void boolean(const ParamInfo&, bool&) override {}
+  void vec3(const ParamInfo& p, glm::dvec3& v) override { expect(finite3(v), join(prefix_, p.key) + " finite"); }
+  void choice(const ParamInfo& p, int& v) override {
+    expect(v >= 0 && size_t(v) < p.choices.size(), join(prefix_, p.key) + " one of its row's choices");
+  }
+  void grid_indices(const ParamInfo& p, GridIndices& pins, int nw, int nh) override {
+    for (const auto& q : pins)
+      expect(q[0] >= 0 && q[1] >= 0 && q[0] < nw && q[1] < nh, join(prefix_, p.key) + " inside the grid");
+  }
+  void object(const ParamInfo& p, ObjectRef& o) override {
+    InRange sub(join(prefix_, p.key));
+    if (o.present()) o.visit(sub);
+  }
+  void list(const ParamInfo& p, ListRef& l) override {
+    for (size_t i = 0; i < l.size(); ++i) {
+      InRange sub(fmt::format("{}[{}]", join(prefix_, p.key), i));
+      l.visit(i, sub);
+    }
+  }
+
+ private:
+  std::string prefix_;
+};
+
+// Every value of a scene as "key.path" and an exact text (doubles in hex: every bit counts).
+class Flatten final : public ParamVisitor {
+ public:
+  using Values = std::vector<std::pair<std::string, std::string>>;
+  Flatten(Values& out, std::string prefix = "") : out_(out), prefix_(std::move(prefix)) {}
+  void number(const ParamInfo& p, double& v) override { add(p, fmt::format("{:a}", v)); }
+  void integer(const ParamInfo& p, int& v) override { add(p, fmt::format("{}", v)); }
+  void boolean(const ParamInfo& p, bool& v) override { add(p, v ? "true" : "false"); }
+  void vec3(const ParamInfo& p, glm::dvec3& v) override { add(p, fmt::format("{:a} {:a} {:a}", v.x, v.y, v.z)); }
+  void choice(const ParamInfo& p, int& v) override { add(p, fmt::format("{}", v)); }
+  void grid_indices(const ParamInfo& p, GridIndices& pins, int, int) override {
+    std::string s;
+    for (const auto& q : pins) s += fmt::format("[{}, {}]", q[0], q[1]);
+    add(p, s);
+  }
+  void object(const ParamInfo& p, ObjectRef& o) override {
+    add(p, o.present() ? "present" : "absent");
+    Flatten sub(out_, join(prefix_, p.key));
+    if (o.present()) o.visit(sub);
+  }
+  void list(const ParamInfo& p, ListRef& l) override {
+    add(p, fmt::format("{} elements", l.size()));
+    for (size_t i = 0; i < l.size(); ++i) {
+      Flatten sub(out_, fmt::format("{}[{}]", join(prefix_, p.key), i));
+      l.visit(i, sub);
+    }
+  }
+
+ private:
+  void add(const ParamInfo& p, std::string v) { out_.emplace_back(join(prefix_, p.key), std::move(v)); }
+  Values& out_;
+  std::string prefix_;
+};
+
+Flatten::Values flatten(Scene s) {
+  Flatten::Values out;
+  Flatten f(out);
+  visit_rows(s, f);
+  return out;
+}
+
+void check_valid(Scene s) {
   const ClothParams& c = s.cloth;
   expect(s.source == "<fuzz>", "Scene::source is the source given");
-  expect(std::isfinite(c.width) && c.width > 0, "cloth.width finite and > 0");
-  expect(std::isfinite(c.height) && c.height > 0, "cloth.height finite and > 0");
-  expect(std::isfinite(c.thickness) && c.thickness > 0, "cloth.thickness finite and > 0");
-  expect(c.num_width_points >= 2 && c.num_height_points >= 2, "at least 2 points each way");
+  InRange rows;
+  visit_rows(s, rows);
+  // What the rows' ranges cannot say:
   const long long n = (long long)c.num_width_points * c.num_height_points;
   expect(n <= kMaxParticles, "particle count <= kMaxParticles");
   expect((long long)s.particle_count() == n, "particle_count() does not overflow");
-  expect(c.orientation == Orientation::Horizontal || c.orientation == Orientation::Vertical, "orientation 0 or 1");
-  for (const auto& p : c.pinned)
-    expect(p[0] >= 0 && p[1] >= 0 && p[0] < c.num_width_points && p[1] < c.num_height_points, "pins inside the grid");
-  expect(std::isfinite(c.damping) && c.damping >= 0 && c.damping <= 100, "cloth.damping in [0, 100]");
-  expect(std::isfinite(c.density) && c.density > 0, "cloth.density finite and > 0");
-  expect(std::isfinite(c.ks) && c.ks >= 0, "cloth.ks finite and >= 0");
-  for (const SphereParams& sp : s.spheres) {
-    expect(finite3(sp.origin), "sphere.origin finite");
-    expect(std::isfinite(sp.radius) && sp.radius > 0, "sphere.radius finite and > 0");
-    expect(in01(sp.friction), "sphere.friction in [0, 1]");
-  }
   for (const PlaneParams& pl : s.planes) {
-    expect(finite3(pl.point), "plane.point finite");
-    expect(finite3(pl.normal), "plane.normal finite");
     const double len = std::sqrt(pl.normal.x * pl.normal.x + pl.normal.y * pl.normal.y + pl.normal.z * pl.normal.z);
     expect(std::abs(len - 1) <= 1e-12, "plane.normal unit length");
-    expect(in01(pl.friction), "plane.friction in [0, 1]");
   }
-  const SimulationParams& m = s.simulation;
-  expect(std::isfinite(m.frames_per_sec) && m.frames_per_sec > 0, "simulation.frames_per_sec finite and > 0");
-  expect(m.simulation_steps >= 1, "simulation.simulation_steps >= 1");
-  expect(finite3(m.gravity), "simulation.gravity finite");
-  expect(std::isfinite(m.max_stretch) && m.max_stretch >= 0, "simulation.max_stretch finite and >= 0");
-  expect(m.constraint_iterations >= 0, "simulation.constraint_iterations >= 0");
   expect(std::isfinite(s.dt()) && s.dt() > 0, "dt() finite and > 0");
 }
 
@@ -87,7 +148,13 @@ void check_round_trip(const Scene& a) {
   } catch (const SceneError& e) {
     violated(std::string("scene_to_json output does not load back: ") + e.what());
   }
-  // Every field, so a new parameter is covered too (the structs' operator== is defaulted).
+  // Row by row from the table, naming the first value that differs.
+  const Flatten::Values va = flatten(a), vb = flatten(b);
+  for (size_t i = 0; i < std::min(va.size(), vb.size()); ++i)
+    if (va[i] != vb[i])
+      violated(fmt::format("round trip: {} was {}, loads back as {}", va[i].first, va[i].second, vb[i].second));
+  expect(va.size() == vb.size(), "round trip: the same number of values");
+  // And every member, in case one has no row (the structs' operator== is defaulted).
   expect(a.cloth == b.cloth, "round trip: cloth");
   expect(a.spheres == b.spheres, "round trip: spheres");
   expect(a.planes == b.planes, "round trip: planes");

@@ -1,0 +1,129 @@
+// docs/parameters.md, written from the parameter table (scene_table.cpp) so that the reference
+// cannot drift from what the loader accepts: a ctest test compares the committed file.
+#include "param_doc.hpp"
+
+#include <fmt/format.h>
+
+#include "scene_table.hpp"
+
+namespace clothsim {
+namespace {
+
+std::string num(double v) {
+  if (v == HUGE_VAL) return "∞";
+  if (v == -HUGE_VAL) return "-∞";
+  return fmt::format("{}", v);
+}
+
+std::string range(const ParamInfo& p) {
+  const bool lo = p.lo != -HUGE_VAL, hi = p.hi != HUGE_VAL;
+  if (lo && hi) return fmt::format("[{}, {}]", num(p.lo), num(p.hi));
+  if (lo) return "≥ " + num(p.lo);
+  if (hi) return "≤ " + num(p.hi);
+  return "finite";
+}
+
+std::string viewer(const Widget& w, const ParamInfo& p) {
+  switch (w.style) {
+    case Widget::Hidden: return "";
+    case Widget::Checkbox: return "checkbox";
+    case Widget::ReadOnly: return "read-only (edit the file, Reload)";
+    case Widget::Drag: break;
+  }
+  std::string s = "drag";
+  if (w.lo != w.hi) s += fmt::format(" [{}, {}]", num(w.lo), num(w.hi));
+  if (w.scale != 1) s += fmt::format(" in {} (= {} × {})", w.unit ? w.unit : p.unit, p.key, num(w.scale));
+  return s;
+}
+
+// Collects the table rows of one section (a top-level object); nested objects and lists add
+// their own row and then their element's rows, with the key path relative to the section.
+class Doc final : public ParamVisitor {
+ public:
+  Doc(std::string& out, std::string prefix) : out_(out), prefix_(std::move(prefix)) {}
+
+  void number(const ParamInfo& p, double& v) override { add(p, "number", p.required ? "" : num(v), range(p)); }
+  void integer(const ParamInfo& p, int& v) override {
+    add(p, "integer", p.required ? "" : fmt::format("{}", v), range(p));
+  }
+  void boolean(const ParamInfo& p, bool& v) override { add(p, "boolean", v ? "true" : "false", ""); }
+  void vec3(const ParamInfo& p, glm::dvec3& v) override {
+    add(p, "[x, y, z]", p.required ? "" : fmt::format("[{}, {}, {}]", num(v.x), num(v.y), num(v.z)), "finite");
+  }
+  void choice(const ParamInfo& p, int& v) override {
+    std::string names;
+    for (const char* c : p.choices) names += fmt::format("{}`\"{}\"`", names.empty() ? "" : " \\| ", c);
+    add(p, "string", fmt::format("`\"{}\"`", p.choices[size_t(v)]), names);
+  }
+  void grid_indices(const ParamInfo& p, GridIndices&, int, int) override {
+    add(p, "[[x, y], ...]", "[]", "inside the grid");
+  }
+  void object(const ParamInfo& p, ObjectRef& o) override {
+    add(p, "object", o.optional() ? "absent" : "", "");
+    Doc sub(out_, prefix_ + p.key + ".");
+    o.visit(sub);
+  }
+  void list(const ParamInfo& p, ListRef& l) override {
+    add(p, p.one_or_many ? "object or array of objects" : "array of objects", "[]", "");
+    Doc sub(out_, prefix_ + p.key + "[i].");
+    l.visit_default(sub);
+  }
+
+ private:
+  void add(const ParamInfo& p, const char* type, const std::string& def, const std::string& valid) {
+    out_ += fmt::format("| `{}{}` | {} | {} | {} | {} | {} | {} |\n", prefix_, p.key, type,
+                        p.required ? "**required**" : def, valid, p.unit, p.meaning, viewer(p.widget, p));
+  }
+  std::string& out_;
+  std::string prefix_;
+};
+
+// The top level: one section per object or list, with its rows.
+class Sections final : public ParamVisitor {
+ public:
+  explicit Sections(std::string& out) : out_(out) {}
+  void object(const ParamInfo& p, ObjectRef& o) override {
+    head(p, p.required ? "required" : "optional");
+    Doc rows(out_, "");
+    o.visit(rows);
+  }
+  void list(const ParamInfo& p, ListRef& l) override {
+    head(p, "optional; the rows below apply to each element");
+    Doc rows(out_, "");
+    l.visit_default(rows);
+  }
+  // Scalars at the top level would be a new kind of scene file; none exist.
+  void number(const ParamInfo&, double&) override {}
+  void integer(const ParamInfo&, int&) override {}
+  void boolean(const ParamInfo&, bool&) override {}
+  void vec3(const ParamInfo&, glm::dvec3&) override {}
+  void choice(const ParamInfo&, int&) override {}
+  void grid_indices(const ParamInfo&, GridIndices&, int, int) override {}
+
+ private:
+  void head(const ParamInfo& p, const char* presence) {
+    out_ += fmt::format("\n## `{}`\n\n{} ({}).\n\n", p.key, p.meaning, presence);
+    out_ += "| key | type | default | valid | unit | meaning | viewer |\n|---|---|---|---|---|---|---|\n";
+  }
+  std::string& out_;
+};
+
+}  // namespace
+
+std::string parameters_markdown() {
+  std::string out =
+      "# Scene parameters\n\n"
+      "<!-- Generated from host/core/scene_table.cpp by clothsim-params-doc; do not edit.\n"
+      "     Regenerate: cmake --build build --target parameters-doc -->\n\n"
+      "Every key a scene file may hold (README: Scene files), with its default when left out. Loading\n"
+      "is strict: an unknown key, a wrong type, a non-finite or out-of-range value is an error naming\n"
+      "the file and the key path (exit 2). `--set key.path=value` overrides any of them, e.g.\n"
+      "`--set cloth.ks=500`, `--set sphere[0].radius=0.3`. The viewer column says how the\n"
+      "*Simulation* panel shows the key (its label is the key).\n";
+  Scene defaults;
+  Sections top(out);
+  visit_rows(defaults, top);
+  return out;
+}
+
+}  // namespace clothsim

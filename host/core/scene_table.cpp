@@ -1,0 +1,133 @@
+// THE scene parameter table: every scene parameter is one row here (param_table.hpp says what a
+// row holds and who reads it). Adding a parameter: a member in scene.hpp with its default, one
+// row below, and its physics; then `cmake --build build --target parameters-doc`.
+//
+// Row order is the order the loader reads and reports errors in. Ranges are what the loader
+// accepts; `expected` is its message for a number outside them (tests/scenes_bad/expected.txt).
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "scene_table.hpp"
+
+namespace clothsim {
+namespace {
+
+constexpr Widget drag(float speed, double lo, double hi, const char* format) {
+  return {.style = Widget::Drag, .speed = speed, .lo = lo, .hi = hi, .format = format};
+}
+constexpr Widget kCheckbox{.style = Widget::Checkbox};
+constexpr Widget kReadOnly{.style = Widget::ReadOnly};
+
+const char* normalise_normal(glm::dvec3& n) {
+  // Scale by the largest component first: |n| of a finite n such as [1e200, 0, 0] overflows.
+  const double m = std::max({std::abs(n.x), std::abs(n.y), std::abs(n.z)});
+  if (m == 0) return "expected a non-zero normal vector, got [0, 0, 0]";
+  // A normal that is already unit to rounding is kept as written, so that normalising is
+  // idempotent and scene_to_json's output loads back to the same normal, bit for bit.
+  const double len2 = n.x * n.x + n.y * n.y + n.z * n.z;
+  if (std::abs(len2 - 1) > 4 * std::numeric_limits<double>::epsilon()) {
+    n /= m;
+    n /= std::sqrt(n.x * n.x + n.y * n.y + n.z * n.z);
+  }
+  return nullptr;
+}
+
+const ParamInfo kFriction{.key = "friction", .required = true, .lo = 0, .hi = 1,
+                          .expected = "a friction coefficient in [0, 1]",
+                          .meaning = "0: a touching mass keeps its motion, 1: it sticks"};
+
+const Param<Scene> kScene[] = {
+    row<&Scene::cloth>({.key = "cloth", .required = true, .meaning = "The cloth"}),
+    row<&Scene::spheres>({.key = "sphere", .meaning = "Sphere colliders, applied in order: one object or an array",
+                          .one_or_many = true}),
+    row<&Scene::planes>({.key = "plane", .meaning = "Plane colliders, applied after the spheres: one object or an array",
+                         .one_or_many = true}),
+    row<&Scene::simulation>({.key = "simulation", .meaning = "Time stepping and global forces"}),
+};
+
+// num_width_points..orientation need a new cloth: the viewer shows them read-only (Reload).
+const Param<ClothParams> kCloth[] = {
+    row<&ClothParams::width>({.key = "width", .required = true, .lo = 1e-9, .expected = "a size > 0 (metres)",
+                              .unit = "m", .meaning = "extent along x", .widget = kReadOnly}),
+    row<&ClothParams::height>({.key = "height", .required = true, .lo = 1e-9, .expected = "a size > 0 (metres)",
+                               .unit = "m", .meaning = "extent along z (horizontal) or y (vertical)",
+                               .widget = kReadOnly}),
+    row<&ClothParams::num_width_points>({.key = "num_width_points", .required = true, .lo = 2, .hi = 1 << 20,
+                                         .meaning = "point masses along the width (at most 4096² in all)",
+                                         .widget = kReadOnly}),
+    row<&ClothParams::num_height_points>({.key = "num_height_points", .required = true, .lo = 2, .hi = 1 << 20,
+                                          .meaning = "point masses along the height", .widget = kReadOnly}),
+    row<&ClothParams::thickness>({.key = "thickness", .required = true, .lo = 1e-9,
+                                  .expected = "a thickness > 0 (metres)", .unit = "m",
+                                  .meaning = "self-collision keeps masses 2 · thickness apart",
+                                  .widget = drag(0.0005f, 1e-4, 1.0, "%.4f")}),
+    row<&ClothParams::orientation>({.key = "orientation", .required = true, .lo = 0, .hi = 1,
+                                    .meaning = "0: flat at y = 1 spanning x and z; 1: standing in the x–y plane",
+                                    .widget = kReadOnly}),
+    // Special case: a list of [x, y] grid indices, checked against the grid (and the grid
+    // against memory) by the loader's grid_indices.
+    row<&ClothParams::pinned>({.key = "pinned", .meaning = "[x, y] grid indices of masses that never move"}),
+    row<&ClothParams::enable_structural>({.key = "enable_structural", .meaning = "x±1 and y±1 springs exert force",
+                                          .widget = kCheckbox}),
+    row<&ClothParams::enable_shearing>({.key = "enable_shearing", .meaning = "diagonal springs exert force",
+                                        .widget = kCheckbox}),
+    row<&ClothParams::enable_bending>({.key = "enable_bending", .meaning = "x±2 and y±2 springs exert force",
+                                       .widget = kCheckbox}),
+    row<&ClothParams::damping>({.key = "damping", .lo = 0, .hi = 100, .expected = "a percentage in [0, 100]",
+                                .unit = "%", .meaning = "the Verlet velocity term is scaled by (1 - damping/100)",
+                                .widget = drag(0.01f, 0.0, 100.0, "%.3f")}),
+    // Shown in g/cm^2 like the classic GUI (1 g/cm^2 = 10 kg/m^2).
+    row<&ClothParams::density>({.key = "density", .lo = 1e-12, .expected = "a density > 0 (kg/m^2)",
+                                .unit = "kg/m^2", .meaning = "mass per area; each mass is width · height · density / points",
+                                .widget = {.style = Widget::Drag, .speed = 0.1f, .lo = 0.01, .hi = 1000,
+                                           .format = "%.2f", .scale = 0.1, .unit = "g/cm^2"}}),
+    row<&ClothParams::ks>({.key = "ks", .lo = 0, .expected = "a spring constant >= 0 (N/m)", .unit = "N/m",
+                           .meaning = "spring constant; bending springs use 0.2 · ks",
+                           .widget = drag(10.f, 0.0, 1e7, "%.0f")}),
+};
+
+const Param<SphereParams> kSphere[] = {
+    row<&SphereParams::origin>({.key = "origin", .required = true, .unit = "m", .meaning = "centre"}),
+    row<&SphereParams::radius>({.key = "radius", .required = true, .lo = 1e-12, .expected = "a radius > 0 (metres)",
+                                .unit = "m", .meaning = "radius"}),
+    row<&SphereParams::friction>(kFriction),
+};
+
+const Param<PlaneParams> kPlane[] = {
+    row<&PlaneParams::point>({.key = "point", .required = true, .unit = "m", .meaning = "a point on the plane"}),
+    row<&PlaneParams::normal>({.key = "normal", .required = true,
+                               .meaning = "non-zero, either sign; made unit length on loading",
+                               .after_read = normalise_normal}),
+    row<&PlaneParams::friction>(kFriction),
+};
+
+const Param<SimulationParams> kSimulation[] = {
+    row<&SimulationParams::frames_per_sec>({.key = "frames_per_sec", .lo = 1e-6, .hi = 1e6,
+                                            .expected = "frames per second in (0, 1e6]", .unit = "1/s",
+                                            .meaning = "frames per simulated second",
+                                            .widget = drag(1.f, 1.0, 1000.0, "%.0f")}),
+    row<&SimulationParams::simulation_steps>({.key = "simulation_steps", .lo = 1, .hi = 100000,
+                                              .meaning = "substeps per frame; dt = 1 / frames_per_sec / simulation_steps",
+                                              .widget = drag(1.f, 1, 1000, "%d")}),
+    row<&SimulationParams::gravity>({.key = "gravity", .unit = "m/s^2", .meaning = "acceleration of every mass",
+                                     .widget = drag(0.05f, 0, 0, "%.3f")}),
+    row<&SimulationParams::max_stretch>({.key = "max_stretch", .lo = 0, .expected = "a stretch ratio >= 0",
+                                         .meaning = "no spring ends a substep longer than (1 + max_stretch) · rest",
+                                         .widget = drag(0.005f, 0.0, 10.0, "%.3f")}),
+    row<&SimulationParams::constraint_iterations>({.key = "constraint_iterations", .lo = 0, .hi = 10000,
+                                                   .meaning = "sweeps of the length constraint per substep",
+                                                   .widget = drag(0.1f, 0, 100, "%d")}),
+    row<&SimulationParams::self_collision>({.key = "self_collision", .meaning = "hashed-grid self-collision on/off",
+                                            .widget = kCheckbox}),
+};
+
+}  // namespace
+
+template <> std::span<const Param<Scene>> param_rows<Scene>() { return kScene; }
+template <> std::span<const Param<ClothParams>> param_rows<ClothParams>() { return kCloth; }
+template <> std::span<const Param<SphereParams>> param_rows<SphereParams>() { return kSphere; }
+template <> std::span<const Param<PlaneParams>> param_rows<PlaneParams>() { return kPlane; }
+template <> std::span<const Param<SimulationParams>> param_rows<SimulationParams>() { return kSimulation; }
+
+}  // namespace clothsim
