@@ -2,6 +2,7 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <numeric>
 #include <random>
 
@@ -104,4 +105,21 @@ TEST_CASE("the correction is the average push divided by simulation_steps", "[se
   collide_self(c, st);
   CHECK(st.pos[0].x == Approx(-0.009 / 30));
   CHECK(st.pos[1].x == Approx(0.01 + 0.009 / 30));
+}
+
+TEST_CASE("the cell of a NaN, infinite or huge coordinate is defined: clamped to 2^30 cells", "[self_collision]") {
+  // A float-to-int conversion past 2^31 (or of NaN) is undefined behaviour; a diverging cloth
+  // still builds its hash before the guard stops it.
+  const int32_t limit = 1 << 30;
+  for (float inv : {1.f, 52.6f}) {
+    CHECK(cell_coord(std::nanf(""), inv) == -limit);
+    CHECK(cell_coord(INFINITY, inv) == limit);
+    CHECK(cell_coord(-INFINITY, inv) == -limit);
+    CHECK(cell_coord(3e38f, inv) == limit);
+    CHECK(cell_coord(-3e38f, inv) == -limit);
+  }
+  CHECK(cell_coord(std::nan(""), 1.0) == -limit);
+  CHECK(cell_coord(1e300, 1.0) == limit);
+  CHECK(cell_coord(0.99f, 1.f) == 0);
+  CHECK(cell_coord(-0.01f, 1.f) == -1);
 }
