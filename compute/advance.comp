@@ -1,16 +1,16 @@
 // Forces, then damped Verlet, then (with u_collide_objects) the collision objects: steps 1,
 // 2 and 4 of DESIGN.md §1 for one particle, fused so the force never leaves registers. The
 // CPU twin is advance() in host/core/reference.hpp. Reads positions (its own and its
-// neighbours') and previous positions through the views; writes the new position to the
-// output buffer (neighbours still read the old one: ping-pong, the host swaps) and the old
-// position to previous, in place. One invocation per grid point; pinned points (w = 0) stay.
+// neighbours') and displacements through the views; writes the new position to the output
+// buffer (neighbours still read the old one: ping-pong, the host swaps) and the new
+// displacement in place. One invocation per grid point; pinned points (w = 0) stay.
 #include "layout.glsl"
 #include "common.glsl"
 #include "forces.glsl"
 #include "collide_objects.glsl"
 
 layout(local_size_x = GRID_WORKGROUP_X, local_size_y = GRID_WORKGROUP_Y) in;
-layout(std430, binding = BINDING_PREVIOUS) writeonly buffer Previous { vec4 prev[]; };
+layout(std430, binding = BINDING_DISPLACEMENT) writeonly buffer Displacements { vec4 disp[]; };
 layout(std430, binding = BINDING_POSITIONS_OUT) writeonly buffer Output { vec4 pos_out[]; };
 
 uniform bool u_collide_objects;
@@ -27,9 +27,9 @@ void main() {
   vec3 x = p.xyz;
   vec3 f = spring_force(c, i, x);
   precise vec3 a = f * p.w;
-  precise vec3 next = x + (x - previous_of(i).xyz) * params.keep_velocity + a * params.dt2;
-  prev[i] = p;
-  // After integrate the previous position is x, which collide_objects reads as xp.
-  if (u_collide_objects) next = collide_with_objects(next, x);
+  precise vec3 d = displacement_of(i).xyz * params.keep_velocity + a * params.dt2;
+  precise vec3 next = x + d;
+  if (u_collide_objects) collide_with_objects(next, d);
+  disp[i] = vec4(d, 0.0);
   pos_out[i] = vec4(next, p.w);
 }

@@ -26,7 +26,7 @@ using uint = uint32_t;
 // simulator binds them once per step; nothing else uses these points, so they stay put while
 // the renderer, the scan and the divergence guard bind their own.
 #define BINDING_POSITIONS 0   // vec4: xyz position, w inverse mass (0 = pinned)
-#define BINDING_PREVIOUS 1    // vec4: xyz position one substep ago
+#define BINDING_DISPLACEMENT 1    // vec4: xyz position one substep ago
 #define BINDING_FORCES 2      // vec4: xyz force of this substep
 #define BINDING_NORMALS 3     // vec4: xyz unit vertex normal
 #define BINDING_REST 4        // RestLengths per particle
@@ -52,7 +52,7 @@ using uint = uint32_t;
 // through which the hot passes read (compute/particle_views.glsl says why). Above the units
 // the renderer uses (0-2: fabric, height map, sky), so drawing a frame leaves them bound.
 #define TEXTURE_POSITIONS 8          // RGBA32F, one texel per particle
-#define TEXTURE_PREVIOUS 9           // RGBA32F, one texel per particle
+#define TEXTURE_DISPLACEMENT 9           // RGBA32F, one texel per particle
 #define TEXTURE_REST 10              // RGBA32F, REST_TEXELS per particle (RestLengths)
 #define TEXTURE_SPHERES 11           // RGBA32F, SPHERE_TEXELS per SphereCollider
 #define TEXTURE_PLANES 12            // RGBA32F, PLANE_TEXELS per PlaneCollider

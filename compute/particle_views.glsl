@@ -9,7 +9,7 @@
 #define CLOTHSIM_PARTICLE_VIEWS_GLSL
 
 layout(binding = TEXTURE_POSITIONS) uniform samplerBuffer positions_view;
-layout(binding = TEXTURE_PREVIOUS) uniform samplerBuffer previous_view;
+layout(binding = TEXTURE_DISPLACEMENT) uniform samplerBuffer displacement_view;
 layout(binding = TEXTURE_REST) uniform samplerBuffer rest_view;
 layout(binding = TEXTURE_SPHERES) uniform samplerBuffer spheres_view;
 layout(binding = TEXTURE_PLANES) uniform samplerBuffer planes_view;
@@ -17,7 +17,7 @@ layout(binding = TEXTURE_CELL_START) uniform usamplerBuffer cell_start_view;
 layout(binding = TEXTURE_SORTED_POSITIONS) uniform samplerBuffer sorted_positions_view;
 
 vec4 position_of(int i) { return texelFetch(positions_view, i); }
-vec4 previous_of(int i) { return texelFetch(previous_view, i); }
+vec4 displacement_of(int i) { return texelFetch(displacement_view, i); }
 // RestLengths is two vec4s: near (directions 0-3), far (directions 4-5).
 float rest_length(int i, int direction) {
   return texelFetch(rest_view, REST_TEXELS * i + (direction >> 2))[direction & 3];

@@ -1,10 +1,10 @@
 // Reads positions, the bucket starts and the positions in cell order (sort_cells wrote them,
 // so a candidate costs one read, not an id and then a position); writes the Jacobi output
-// positions. One invocation per particle: it visits the 27 cells around it and averages the
+// positions and, in place, the displacements. One invocation per particle: it visits the 27 cells around it and averages the
 // push-out from every particle closer than 2 * thickness (DESIGN.md §1.3), in the order of
 // resolve_self_contacts in host/core/reference.cpp. The last stage of collide_self, after
 // count_cells, scan_cells, fill_cells and sort_cells built the hash. With u_collide_objects the collision objects follow in the same
-// invocation (step 4 reads only the particle's own position and previous position).
+// invocation (step 4 reads only the particle's own position and displacement).
 #include "layout.glsl"
 #include "common.glsl"
 #include "spatial_hash.glsl"
@@ -12,6 +12,7 @@
 
 layout(local_size_x = WORKGROUP_SIZE) in;
 layout(std430, binding = BINDING_POSITIONS_OUT) writeonly buffer Output { vec4 pos_out[]; };
+layout(std430, binding = BINDING_DISPLACEMENT) writeonly buffer Displacements { vec4 disp[]; };
 
 uniform bool u_collide_objects;
 
@@ -83,10 +84,14 @@ void main() {
   acc = visit_row(acc, xi, c, 1, 1);
   precise vec3 sum = acc.sum;
   uint hits = acc.hits;
+  precise vec3 d = displacement_of(i).xyz;
   if (hits > 0u) {
     precise float scale = 1.0 / (float(hits) * params.steps);
-    xi = xi + sum * scale;
+    precise vec3 corr = sum * scale;
+    xi = xi + corr;
+    d = d + corr;  // x_prev stays where it was
   }
-  if (u_collide_objects) xi = collide_with_objects(xi, previous_of(i).xyz);
+  if (u_collide_objects) collide_with_objects(xi, d);
+  disp[i] = vec4(d, 0.0);
   pos_out[i] = vec4(xi, p.w);
 }

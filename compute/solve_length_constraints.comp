@@ -1,4 +1,4 @@
-// Reads (through the view) and writes positions in place. Dispatched once per colour over that colour's span
+// Reads (through the views) and writes positions and displacements in place. Dispatched once per colour over that colour's span
 // (colour_span in host/core/spring_grid.hpp): one invocation per spring of the colour, and
 // no two springs of a colour share a particle, so the writes never race (Provot 1995).
 #include "layout.glsl"
@@ -8,6 +8,7 @@
 
 layout(local_size_x = GRID_WORKGROUP_X, local_size_y = GRID_WORKGROUP_Y) in;
 layout(std430, binding = BINDING_POSITIONS) writeonly buffer Positions { vec4 pos[]; };
+layout(std430, binding = BINDING_DISPLACEMENT) writeonly buffer Displacements { vec4 disp[]; };
 
 uniform int u_colour;
 // The span of every colour (colour_span in host/core/spring_grid.hpp), set once for the grid:
@@ -34,8 +35,15 @@ void main() {
   precise float excess = (len - limit) * (1.0 / len);
   precise vec3 corr = e * excess;
   precise float inv_wsum = 1.0 / wsum;
-  precise vec3 xi = pi.xyz + corr * (pi.w * inv_wsum);
-  precise vec3 xj = pj.xyz - corr * (pj.w * inv_wsum);
+  precise vec3 ci = corr * (pi.w * inv_wsum);
+  precise vec3 cj = corr * (pj.w * inv_wsum);
+  precise vec3 xi = pi.xyz + ci;
+  precise vec3 xj = pj.xyz - cj;
+  // Both ends' x_prev stay: the correction goes into the displacements too.
+  precise vec3 di = displacement_of(i).xyz + ci;
+  precise vec3 dj = displacement_of(j).xyz - cj;
   pos[i].xyz = xi;
   pos[j].xyz = xj;
+  disp[i] = vec4(di, 0.0);
+  disp[j] = vec4(dj, 0.0);
 }

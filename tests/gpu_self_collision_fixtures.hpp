@@ -56,7 +56,7 @@ struct Placed {
   explicit Placed(Scene sc) : scene(std::move(sc)) {}
   // The GPU result; `s` is left after the CPU pass.
   Positions collide() {
-    s.prev = s.pos;
+    s.disp.assign(s.pos.size(), Vec4<float>(0));  // placed at rest
     GpuSimulator gpu(scene, model, compute_dir());
     gpu.upload(s);
     gpu.collide_self();

@@ -35,7 +35,7 @@ TEST_CASE("pinned masses are bitwise unchanged after a GPU run, inside a sphere 
     INFO("pinned particle " << i);
     CHECK(initial.pos[i].w == 0.f);
     CHECK(std::memcmp(&g.pos[i], &initial.pos[i], sizeof(g.pos[i])) == 0);
-    CHECK(std::memcmp(&g.prev[i], &initial.pos[i], sizeof(g.prev[i])) == 0);
+    CHECK(std::memcmp(&g.disp[i], &initial.disp[i], sizeof(g.disp[i])) == 0);
   }
   CHECK(moved(initial.pos, g.pos).all == initial.pos.size() - pins.size());  // everything else moved
   CHECK_NO_GL_ERRORS();
@@ -52,7 +52,7 @@ TEST_CASE("two GPU runs from the same scene give bitwise identical buffers", "[g
     gpu.download(run);
   }
   CHECK(mismatches(runs[0].pos, runs[1].pos) == 0);
-  CHECK(mismatches(runs[0].prev, runs[1].prev) == 0);
+  CHECK(mismatches(runs[0].disp, runs[1].disp) == 0);
   CHECK(mismatches(runs[0].force, runs[1].force) == 0);
   CHECK(mismatches(runs[0].normal, runs[1].normal) == 0);
   CHECK(moved(initial_state<float>(model).pos, runs[0].pos).all > 0);

@@ -1,6 +1,9 @@
 // The CPU reference against the numbers DESIGN.md §1 says the model must show.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+#include <cmath>
+
 #include "backend.hpp"
 #include "test_helpers.hpp"
 
@@ -34,7 +37,7 @@ TEST_CASE("with damping a lone mass tends to the terminal speed g dt / (d/100)",
   CpuBackend<double> cpu(s, m);
   for (int f = 0; f < 90; ++f) cpu.step_frame();
   const auto& st = cpu.state();
-  const double v = (st.prev[4].y - st.pos[4].y) / s.dt();
+  const double v = -st.disp[4].y / s.dt();  // the Verlet velocity (x - x_prev) / dt
   const double terminal = 9.8 * s.dt() / (0.2 / 100);
   CHECK(terminal == Approx(1.8148).epsilon(1e-3));
   CHECK(v == Approx(terminal).epsilon(0.01));
@@ -49,7 +52,7 @@ TEST_CASE("pinned masses never move", "[reference]") {
   for (int f = 0; f < 30; ++f) cpu.step_frame();
   for (int i : {m.index(0, 0), m.index(6, 0), m.index(3, 2)}) {
     CHECK(cpu.state().pos[i] == before[i]);  // bitwise
-    CHECK(cpu.state().prev[i] == before[i]);
+    CHECK(cpu.state().disp[i] == Vec4<float>(0));  // never any velocity
   }
 }
 
@@ -111,15 +114,29 @@ TEST_CASE("no mass ends across a plane, whichever way its normal points", "[refe
 }
 
 TEST_CASE("with damping and no collisions total energy does not grow", "[reference]") {
-  Scene s = test::make_scene(9, 7, 0, {"cloth.pinned=[[0,0],[8,0]]", "simulation.self_collision=false"});
+  // Zero gravity, nothing pinned, no colliders, and a length limit the springs never reach:
+  // the only energy is the springs' (the cloth starts stretched 10 % about its centre) and the
+  // motion it turns into, and damping may only take it away. Verlet's discrete energy (the
+  // velocity d / dt lags half a substep) wobbles a little from frame to frame.
+  Scene s = test::make_scene(9, 7, 0, {"simulation.self_collision=false", "simulation.gravity=[0,0,0]",
+                                       "simulation.max_stretch=10"});
   ClothModel m = build_cloth(s.cloth);
   CpuBackend<double> cpu(s, m);
+  for (auto& p : cpu.state().pos) p = glm::dvec4(glm::dvec3(0.5, 1, 0.5) + (glm::dvec3(p) - glm::dvec3(0.5, 1, 0.5)) * 1.1, p.w);
   const double start = measure(s, m, cpu.snapshot()).total_energy();
-  for (int f = 0; f < 180; ++f) cpu.step_frame();
-  const double end = measure(s, m, cpu.snapshot()).total_energy();
-  INFO("energy start " << start << " J, end " << end << " J");
-  CHECK(end <= start);
-  CHECK(end < start - 1e-3);  // the cloth really fell and lost energy
+  REQUIRE(start > 1.0);  // J: the stretch is really there
+  constexpr double kWobble = 1e-3;  // of the starting energy, from one frame to the next
+  double previous = start, worst_rise = -INFINITY;
+  for (int f = 0; f < 180; ++f) {
+    cpu.step_frame();
+    const double e = measure(s, m, cpu.snapshot()).total_energy();
+    worst_rise = std::max(worst_rise, (e - previous) / start);
+    previous = e;
+  }
+  INFO("energy start " << start << " J, end " << previous << " J, largest rise between frames " << worst_rise
+                       << " of the start");
+  CHECK(worst_rise <= kWobble);
+  CHECK(previous < 0.5 * start);  // it really oscillated and lost energy
 }
 
 TEST_CASE("float and double references agree to float32 precision over one frame", "[reference]") {

@@ -24,7 +24,7 @@ struct TwoSheets {
         auto& p = s.pos[model.index(x, y)];
         p = glm::dvec4(x / 8.0, y < 9 ? 1.0 : 1.0 + gap, (y % 9) / 8.0 + 1e-3 * (y >= 9), p.w);
       }
-    s.prev = s.pos;
+    s.disp.assign(s.pos.size(), Vec4<double>(0));  // placed at rest
   }
   std::vector<uint32_t> buckets() const {
     std::vector<uint32_t> b;

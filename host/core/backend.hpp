@@ -58,7 +58,7 @@ template <class R> class CpuBackend final : public Backend {
   ClothSnapshot snapshot() override {
     ClothSnapshot s;
     for (auto& p : state_.pos) s.pos.emplace_back(p);
-    for (auto& p : state_.prev) s.prev.emplace_back(p);
+    for (auto& d : state_.disp) s.disp.emplace_back(d);
     for (auto& p : state_.normal) s.normal.emplace_back(p);
     return s;
   }

@@ -30,8 +30,8 @@ ClothStats measure(const Scene& scene, const ClothModel& m, const ClothSnapshot&
   const bool enabled[3] = {scene.cloth.enable_structural, scene.cloth.enable_shearing, scene.cloth.enable_bending};
   for (int i = 0; i < m.count(); ++i) {
     const glm::dvec3 x = xyz(s.pos[i]);
-    for (int c = 0; c < 4; ++c) st.finite = st.finite && std::isfinite(s.pos[i][c]) && std::isfinite(s.prev[i][c]);
-    const glm::dvec3 v = (x - xyz(s.prev[i])) / dt;
+    for (int c = 0; c < 4; ++c) st.finite = st.finite && std::isfinite(s.pos[i][c]) && std::isfinite(s.disp[i][c]);
+    const glm::dvec3 v = xyz(s.disp[i]) / dt;
     if (!m.pinned[i]) st.kinetic += 0.5 * m.mass * glm::dot(v, v);
     st.max_speed = std::max(st.max_speed, glm::length(v));
     st.gravitational -= m.mass * glm::dot(scene.simulation.gravity, x);

@@ -16,13 +16,14 @@
 namespace clothsim {
 
 struct ClothSnapshot {
-  std::vector<glm::dvec4> pos, prev;  // w = inverse mass
+  std::vector<glm::dvec4> pos;   // w = inverse mass
+  std::vector<glm::dvec4> disp;  // displacement of the last substep, x - x_prev
   std::vector<glm::dvec4> normal;     // may be empty
 };
 
 struct ClothStats {
   double max_stretch_ratio = 0;  // max over springs of length / rest length
-  double kinetic = 0;            // J, from the Verlet velocity (x - x_prev) / dt
+  double kinetic = 0;            // J, from the Verlet velocity d / dt, d = x - x_prev
   double gravitational = 0;      // J, -m g . x summed
   double spring = 0;             // J, 1/2 k (len - rest)^2 over enabled springs
   std::vector<double> sphere_clearance;  // min |x - o| - r per sphere (negative: inside)

@@ -110,7 +110,7 @@ template <class R> ClothSnapshot snapshot_of_positions(const ClothModel& model, 
   compute_normals(model, s);
   ClothSnapshot out;
   for (auto& p : s.pos) out.pos.emplace_back(p);
-  out.prev = out.pos;
+  out.disp.assign(out.pos.size(), glm::dvec4(0));  // shown at rest
   for (auto& n : s.normal) out.normal.emplace_back(n);
   return out;
 }

@@ -37,7 +37,7 @@ template <class R> State<R> initial_state(const ClothModel& m) {
   s.pos.resize(n);
   for (int i = 0; i < n; ++i)
     s.pos[i] = Vec4<R>(Vec3<R>(m.initial[i]), m.pinned[i] ? R(0) : R(1.0 / m.mass));
-  s.prev = s.pos;
+  s.disp.assign(n, Vec4<R>(0));  // at rest
   s.force.assign(n, Vec4<R>(0));
   s.normal.assign(n, Vec4<R>(0));
   s.pos_out = s.pos;
@@ -82,11 +82,11 @@ template <class R> void integrate(const Constants<R>& c, State<R>& s) {
   for (size_t i = 0; i < s.pos.size(); ++i) {
     const R w = s.pos[i].w;
     if (w == R(0)) continue;  // pinned: keeps its position
-    const Vec3<R> x(s.pos[i]), xp(s.prev[i]);
     const Vec3<R> a = Vec3<R>(s.force[i]) * w;
-    const Vec3<R> next = x + (x - xp) * c.keep_velocity + a * c.dt2;
-    s.prev[i] = Vec4<R>(x, w);
-    s.pos[i] = Vec4<R>(next, w);
+    // x' = x + (1 - damping) (x - x_prev) + a dt^2, with d = x - x_prev kept as its own vector.
+    const Vec3<R> d = Vec3<R>(s.disp[i]) * c.keep_velocity + a * c.dt2;
+    s.disp[i] = Vec4<R>(d, R(0));
+    s.pos[i] = Vec4<R>(Vec3<R>(s.pos[i]) + d, w);
   }
 }
 
@@ -110,33 +110,46 @@ template <class R> void resolve_self_contacts(const Constants<R>& c, State<R>& s
       sum += e3 * ((c.contact_distance - d) * (R(1) / d));
       ++hits;
     });
-    if (hits > 0) s.pos_out[i] = Vec4<R>(xi + sum * (R(1) / (R(hits) * c.steps)), s.pos[i].w);
+    if (hits > 0) {
+      const Vec3<R> corr = sum * (R(1) / (R(hits) * c.steps));
+      s.pos_out[i] = Vec4<R>(xi + corr, s.pos[i].w);
+      s.disp[i] = Vec4<R>(Vec3<R>(s.disp[i]) + corr, R(0));  // x_prev stays where it was
+    }
   }
   s.pos.swap(s.pos_out);
+}
+
+// The friction blend x' = x_prev + keep (t - x_prev) with x_prev = x - d, written as
+// d' = keep ((t - x) + d), x' = x + (d' - d): every rounded difference is small.
+template <class R> void blend_to(const Vec3<R>& t_minus_x, R keep, Vec3<R>& x, Vec3<R>& d) {
+  const Vec3<R> next_d = (t_minus_x + d) * keep;
+  x = x + (next_d - d);
+  d = next_d;
 }
 
 template <class R> void collide_objects(const Constants<R>& c, State<R>& s) {
   for (size_t i = 0; i < s.pos.size(); ++i) {
     if (s.pos[i].w == R(0)) continue;
-    Vec3<R> x(s.pos[i]);
-    const Vec3<R> xp(s.prev[i]);
+    Vec3<R> x(s.pos[i]), d(s.disp[i]);
     for (const SphereC<R>& sp : c.spheres) {
       const Vec3<R> e = x - sp.origin;
-      const R d = length3(e);
-      if (d > sp.radius) continue;
-      // A mass exactly at the centre has no outward direction: push it up.
-      const Vec3<R> t = d > R(0) ? sp.origin + e * (sp.radius * (R(1) / d)) : sp.origin + Vec3<R>(0, sp.radius, 0);
-      x = xp + (t - xp) * sp.keep;
+      const R dist = length3(e);
+      if (dist > sp.radius) continue;
+      // t - x = e (r / |e| - 1): the push out to the surface. A mass exactly at the centre
+      // has no outward direction: it goes up.
+      const Vec3<R> t_minus_x = dist > R(0) ? e * ((sp.radius - dist) * (R(1) / dist)) : Vec3<R>(0, sp.radius, 0);
+      blend_to(t_minus_x, sp.keep, x, d);
     }
     for (const PlaneC<R>& pl : c.planes) {
-      const R d = dot3(x - pl.point, pl.normal);
-      const R dp = dot3(xp - pl.point, pl.normal);
-      if (d * dp > R(0)) continue;
-      const R side = dp > R(0) ? R(1) : (dp < R(0) ? R(-1) : R(0));
-      const Vec3<R> t = x - pl.normal * d + pl.normal * (R(1e-4) * side);
-      x = xp + (t - xp) * pl.keep;
+      const R dist = dot3(x - pl.point, pl.normal);
+      const R dist_prev = dist - dot3(d, pl.normal);  // (x_prev - p) . n
+      if (dist * dist_prev > R(0)) continue;
+      const R side = dist_prev > R(0) ? R(1) : (dist_prev < R(0) ? R(-1) : R(0));
+      // t = x - dist n + SURFACE_OFFSET side n, so t - x is along n.
+      blend_to(pl.normal * (R(1e-4) * side - dist), pl.keep, x, d);
     }
     s.pos[i] = Vec4<R>(x, s.pos[i].w);
+    s.disp[i] = Vec4<R>(d, R(0));
   }
 }
 
@@ -158,8 +171,12 @@ void solve_length_constraint_colour(const ClothModel& m, const Constants<R>& c, 
       if (!(len > limit)) continue;
       const Vec3<R> corr = e * ((len - limit) * (R(1) / len));
       const R inv_wsum = R(1) / wsum;
-      s.pos[i] = Vec4<R>(xi + corr * (wi * inv_wsum), wi);
-      s.pos[j] = Vec4<R>(xj - corr * (wj * inv_wsum), wj);
+      const Vec3<R> ci = corr * (wi * inv_wsum), cj = corr * (wj * inv_wsum);
+      s.pos[i] = Vec4<R>(xi + ci, wi);
+      s.pos[j] = Vec4<R>(xj - cj, wj);
+      // A pinned end (w = 0) gets a zero correction: its displacement stays as it is.
+      s.disp[i] = Vec4<R>(Vec3<R>(s.disp[i]) + ci, R(0));
+      s.disp[j] = Vec4<R>(Vec3<R>(s.disp[j]) - cj, R(0));
     }
 }
 

@@ -44,15 +44,24 @@ template <class R> struct Constants {
 
 template <class R> Constants<R> make_constants(const Scene& scene, const ClothModel& model);
 
-// What changes during a run: positions (w = inverse mass, 0 = pinned), previous positions,
-// forces and normals, all vec4 like the GPU buffers.
+// What changes during a run: positions (w = inverse mass, 0 = pinned), the displacement of
+// the last substep (d = x - x_prev, w unused), forces and normals, all vec4 like the GPU
+// buffers. The displacement is kept as its own vector rather than recomputed from two
+// positions: x - x_prev of two floats near 1 m would round the ~1e-5 m velocity term by ~1 %
+// every substep (docs/model.md, "State"). Every change of a position is added to both.
 template <class R> struct State {
-  std::vector<Vec4<R>> pos, prev, force, normal;
+  std::vector<Vec4<R>> pos, disp, force, normal;
   SpatialHash hash;                 // self-collision scratch, sized once
   std::vector<Vec4<R>> pos_out;     // self-collision Jacobi output
 };
 
 template <class R> State<R> initial_state(const ClothModel& model);
+
+// After a change of the substep length (frames_per_sec or simulation_steps), the displacement
+// per substep scales with it, so the cloth keeps its velocity: d *= dt_new / dt_old.
+template <class R> void rescale_displacement(State<R>& s, double dt_ratio) {
+  for (auto& d : s.disp) d = Vec4<R>(Vec3<R>(d) * R(dt_ratio), R(0));
+}
 
 // The passes, in step order.
 template <class R> void accumulate_forces(const ClothModel& m, const Constants<R>& c, State<R>& s);

@@ -33,13 +33,24 @@ void GpuSimulator::set_parameters(const Scene& scene) {
     for (auto& p : pos) if (p.w != 0.f) p.w = inverse_mass_;
     positions_.upload(0, pos.size() * sizeof(glm::vec4), pos.data());
   }
+  if (scene.dt() != dt_) {
+    // A new substep length: the displacement per substep scales with it, so the cloth keeps
+    // its velocity (the same function the reference uses, so both sides round alike).
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    State<float> s;
+    s.disp = gl::download_vector<Vec4<float>>(displacement_);
+    rescale_displacement(s, scene.dt() / dt_);
+    gl::upload_vector(displacement_, s.disp);
+    displacement_view_.attach(displacement_, GL_RGBA32F);
+    dt_ = scene.dt();
+  }
 }
 
 void GpuSimulator::hold_particle(int i, const glm::vec3& position) {
-  const glm::vec4 p(position, 0.f);
+  const glm::vec4 p(position, 0.f), at_rest(0.f);
   // Both buffers, so the held particle has no velocity; shaders read them next substep.
   positions_.upload(size_t(i) * sizeof(glm::vec4), sizeof(p), &p);
-  previous_.upload(size_t(i) * sizeof(glm::vec4), sizeof(p), &p);
+  displacement_.upload(size_t(i) * sizeof(glm::vec4), sizeof(at_rest), &at_rest);
 }
 
 void GpuSimulator::release_particle(int i) {
@@ -53,7 +64,6 @@ void GpuSimulator::release_particle(int i) {
 void GpuSimulator::reset() {
   State<float> s = initial_state<float>(model_);
   for (auto& p : s.pos) if (p.w != 0.f) p.w = inverse_mass_;
-  s.prev = s.pos;
   upload(s);
   compute_normals();
   guard_.restart(s.pos, 0);

@@ -43,7 +43,7 @@ std::optional<GpuMemoryInfo> available_gpu_memory() {
 
 uint64_t simulator_bytes(const ClothModel& model) {
   const uint64_t n = uint64_t(model.count()), table = hash_table_size(uint32_t(n));
-  // pos, prev, forces, normals, the self-collision output and the kept copy; rest lengths;
+  // pos, disp, forces, normals, the self-collision output and the kept copy; rest lengths;
   // the hash's entries per particle and its count and start per bucket (scan sums are less
   // than 1 % more).
   return n * (6 * sizeof(glm::vec4) + sizeof(layout::RestLengths) + sizeof(uint32_t)) +

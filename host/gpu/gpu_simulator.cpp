@@ -79,6 +79,7 @@ GpuSimulator::GpuSimulator(const Scene& scene, const ClothModel& model, const st
       constants_(make_constants<float>(scene, model)),
       params_(make_step_params(constants_, model)),
       inverse_mass_(float(1.0 / model.mass)),
+      dt_(scene.dt()),
       groups_(gl::workgroups_for(model.count(), WORKGROUP_SIZE)),
       accumulate_forces_(load_pass(dir, "accumulate_forces")),
       integrate_(load_pass(dir, "integrate")),
@@ -140,7 +141,7 @@ GpuCounters GpuSimulator::counters() const {
 
 size_t GpuSimulator::memory_bytes() const {
   size_t total = 0;
-  for (const gl::Buffer* b : {&positions_, &previous_, &forces_, &normals_, &rest_, &spheres_, &planes_,
+  for (const gl::Buffer* b : {&positions_, &displacement_, &forces_, &normals_, &rest_, &spheres_, &planes_,
                               &step_params_, &positions_out_, &cell_count_, &cell_start_, &cell_entries_,
                               &sorted_positions_})
     total += b->size();
@@ -149,7 +150,7 @@ size_t GpuSimulator::memory_bytes() const {
 
 void GpuSimulator::bind_all() const {
   positions_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_POSITIONS);
-  previous_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_PREVIOUS);
+  displacement_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_DISPLACEMENT);
   forces_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_FORCES);
   normals_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_NORMALS);
   spheres_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_SPHERES);
@@ -161,7 +162,7 @@ void GpuSimulator::bind_all() const {
   cell_entries_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_CELL_ENTRIES);
   sorted_positions_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_SORTED_POSITIONS);
   positions_view_.bind(TEXTURE_POSITIONS);
-  previous_view_.bind(TEXTURE_PREVIOUS);
+  displacement_view_.bind(TEXTURE_DISPLACEMENT);
   rest_view_.bind(TEXTURE_REST);
   spheres_view_.bind(TEXTURE_SPHERES);
   planes_view_.bind(TEXTURE_PLANES);
@@ -172,7 +173,7 @@ void GpuSimulator::bind_all() const {
 void GpuSimulator::attach_views() {
   positions_view_.attach(positions_, GL_RGBA32F);
   positions_out_view_.attach(positions_out_, GL_RGBA32F);
-  previous_view_.attach(previous_, GL_RGBA32F);
+  displacement_view_.attach(displacement_, GL_RGBA32F);
   rest_view_.attach(rest_, GL_RGBA32F);
   spheres_view_.attach(spheres_, GL_RGBA32F);
   planes_view_.attach(planes_, GL_RGBA32F);
@@ -190,7 +191,7 @@ ClothSnapshot GpuBackend::snapshot() {
   sim_->download(s);
   ClothSnapshot out;
   for (auto& p : s.pos) out.pos.emplace_back(p);
-  for (auto& p : s.prev) out.prev.emplace_back(p);
+  for (auto& d : s.disp) out.disp.emplace_back(d);
   for (auto& p : s.normal) out.normal.emplace_back(p);
   return out;
 }

@@ -56,14 +56,15 @@ class GpuSimulator {
   GpuDivergenceGuard& divergence() { return guard_; }
 
   // Explicit transfers for export, validation and tests.
-  void upload(const State<float>& state);  // pos, prev, and force when present (binds them)
-  void download(State<float>& state);  // pos, prev, force, normal
+  void upload(const State<float>& state);  // pos, disp, and force when present
+  void download(State<float>& state);  // pos, disp, force, normal
 
   // Live edits from the viewer. Parameters that keep the grid (stiffness, damping, density,
   // gravity, steps, thickness, ...) apply without a restart; a changed mass rescales every
-  // inverse mass in place. The grid itself (size, points, orientation, pins) needs a new simulator.
+  // inverse mass in place, a changed substep length every displacement (rescale_displacement:
+  // the cloth keeps its velocity). The grid itself (size, points, orientation, pins) needs a new simulator.
   void set_parameters(const Scene& scene);
-  // Holds particle i at `position` (pos and prev, inverse mass 0) until release_particle.
+  // Holds particle i at `position` (at rest: displacement 0, inverse mass 0) until release_particle.
   void hold_particle(int i, const glm::vec3& position);
   void release_particle(int i);  // back to its own inverse mass (0 if it is pinned)
   void reset();                  // back to the initial state
@@ -95,15 +96,16 @@ class GpuSimulator {
   Constants<float> constants_;
   layout::StepParams params_{};
   float inverse_mass_;
+  double dt_;  // the substep length the displacements are per
   GpuCounters counters_;  // of a free particle, for the current density
   GLuint groups_ = 0;
-  gl::Buffer positions_{"positions"}, previous_{"previous"}, forces_{"forces"}, normals_{"normals"};
+  gl::Buffer positions_{"positions"}, displacement_{"displacement"}, forces_{"forces"}, normals_{"normals"};
   gl::Buffer rest_{"rest lengths"}, spheres_{"spheres"}, planes_{"planes"}, step_params_{"step params"};
   gl::Buffer positions_out_{"positions out"}, cell_count_{"cell count"}, cell_start_{"cell start"};
   gl::Buffer cell_entries_{"cell entries"}, sorted_positions_{"sorted positions"};
   // Read-only views of the buffers above (compute/particle_views.glsl).
   gl::BufferTexture positions_view_{"positions view"}, positions_out_view_{"positions out view"};
-  gl::BufferTexture previous_view_{"previous view"}, rest_view_{"rest view"}, spheres_view_{"spheres view"};
+  gl::BufferTexture displacement_view_{"displacement view"}, rest_view_{"rest view"}, spheres_view_{"spheres view"};
   gl::BufferTexture planes_view_{"planes view"}, cell_start_view_{"cell start view"};
   gl::BufferTexture sorted_positions_view_{"sorted positions view"};
   uint32_t table_size_ = 0;

@@ -26,7 +26,7 @@ std::vector<glm::vec4> GpuSimulator::download_sorted_positions() {
 
 void GpuSimulator::upload(const State<float>& s) {
   gl::upload_vector(positions_, s.pos);
-  gl::upload_vector(previous_, s.prev);
+  gl::upload_vector(displacement_, s.disp);
   if (s.force.size() == s.pos.size()) gl::upload_vector(forces_, s.force);
   // The Jacobi/ping-pong output matches the buffer it stands in for.
   positions_out_.allocate(positions_.size());
@@ -37,7 +37,7 @@ void GpuSimulator::download(State<float>& s) {
   // Shader writes must be visible to glGetBufferSubData.
   glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
   s.pos = gl::download_vector<Vec4<float>>(positions_);
-  s.prev = gl::download_vector<Vec4<float>>(previous_);
+  s.disp = gl::download_vector<Vec4<float>>(displacement_);
   s.force = gl::download_vector<Vec4<float>>(forces_);
   s.normal = gl::download_vector<Vec4<float>>(normals_);
 }

@@ -40,7 +40,7 @@ void GpuSimulator::accumulate_forces() {
 
 void GpuSimulator::integrate() {
   dispatch(integrate_);
-  // collide_self / collide_objects read the new positions and previous positions next.
+  // collide_self / collide_objects read the new positions and displacements next.
   barrier(kComputeReads);
 }
 
@@ -137,7 +137,7 @@ void GpuSimulator::compute_normals() {
 }
 
 void GpuSimulator::step() {
-  // collide_objects reads only a particle's own position and previous position, so it rides
+  // collide_objects reads only a particle's own position and displacement, so it rides
   // along with the last per-particle pass before the constraints.
   const bool colliders = constants_.has_colliders();
   bind_all();  // once: nothing in the step binds over these (swap_positions rebinds its two)

@@ -96,7 +96,7 @@ std::vector<PassError> check_passes(const Scene& scene, const ClothModel& model,
   auto positions = [](const State<float>& st) { return st.pos; };
   auto both = [](const State<float>& st) {
     auto v = st.pos;
-    v.insert(v.end(), st.prev.begin(), st.prev.end());
+    v.insert(v.end(), st.disp.begin(), st.disp.end());
     return v;
   };
   // A force error matters by the displacement it causes in one substep: F * w * dt^2.

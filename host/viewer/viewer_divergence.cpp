@@ -15,7 +15,7 @@ bool Viewer::poll_divergence() {
     const std::vector<glm::vec4> good = guard.last_good(&frame);
     State<float> state;
     state.pos = good;
-    state.prev = good;  // at rest: the velocity that blew up is gone
+    state.disp.assign(good.size(), Vec4<float>(0));  // at rest: the velocity that blew up is gone
     session_.sim->upload(state);
     // A particle held at that frame was kept with inverse mass 0: give it its own back.
     if (grab_.active()) session_.sim->release_particle(grab_.particle);
