@@ -149,7 +149,7 @@ template <class R> void check_checkpoint_continues_bitwise() {
   {
     CpuBackend<R> first(s, m);
     for (int f = 0; f < n; ++f) first.step_frame();
-    write_checkpoint(dir / "half.state", {cloth_hash(m), m.nw, m.nh, s.source, first.name(), first.save_state()});
+    write_checkpoint(dir / "half.state", {cloth_hash(m), m.nw, m.nh, pinned_count(m), s.source, first.name(), first.save_state()});
   }
   const Checkpoint c = read_checkpoint(dir / "half.state");
   CpuBackend<R> second(s, m);
@@ -183,7 +183,7 @@ TEST_CASE("a truncated, foreign or mismatched state file is refused with a messa
   cpu.step_frame();
   TempDir dir("bad_state");
   const std::string good = dir / "good.state";
-  write_checkpoint(good, {cloth_hash(m), m.nw, m.nh, "a.json", cpu.name(), cpu.save_state()});
+  write_checkpoint(good, {cloth_hash(m), m.nw, m.nh, pinned_count(m), "a.json", cpu.name(), cpu.save_state()});
   REQUIRE_NOTHROW(read_checkpoint(good));
 
   auto write_bytes = [&](const std::string& name, const std::string& bytes) {
@@ -199,7 +199,7 @@ TEST_CASE("a truncated, foreign or mismatched state file is refused with a messa
     CHECK_THROWS_WITH(read_checkpoint(path), Catch::Contains(path) && Catch::Contains(why));
   };
   for (size_t keep : {size_t(0), size_t(10), size_t(64), size_t(100), bytes.size() - 1})
-    refused(write_bytes(fmt::format("cut{}.state", keep), bytes.substr(0, keep)), keep < 64 ? "not a clothsim state" : "truncated");
+    refused(write_bytes(fmt::format("cut{}.state", keep), bytes.substr(0, keep)), keep < 16 ? "not a clothsim state" : "truncated");
   refused(write_bytes("longer.state", bytes + "x"), "trailing bytes");
   refused(write_bytes("foreign.state", std::string(4096, 'z')), "not a clothsim state");
   std::string flipped = bytes;

@@ -28,7 +28,7 @@ TEST_CASE("GPU: 2N frames equal N frames, saved, loaded and N more, bitwise", "[
   {
     GpuBackend first(nullptr, s, m, compute);
     for (int f = 0; f < n; ++f) first.step_frame();
-    write_checkpoint(file, {cloth_hash(m), m.nw, m.nh, s.source, first.name(), first.save_state()});
+    write_checkpoint(file, {cloth_hash(m), m.nw, m.nh, pinned_count(m), s.source, first.name(), first.save_state()});
   }
   const Checkpoint c = read_checkpoint(file);
   std::filesystem::remove(file);

@@ -60,6 +60,7 @@ void save_state(const std::string& path, const Scene& scene, const ClothModel& m
   c.cloth = cloth_hash(model);
   c.nw = model.nw;
   c.nh = model.nh;
+  c.pins = pinned_count(model);
   c.scene = scene.source;
   c.backend = backend.name();
   c.state = backend.save_state();

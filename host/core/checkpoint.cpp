@@ -1,5 +1,6 @@
 #include "checkpoint.hpp"
 
+#include <algorithm>
 #include <bit>
 #include <cstdio>
 #include <cstring>
@@ -13,12 +14,13 @@ namespace {
 
 // State file, little endian (README "Checkpoints"):
 //   char[16] "clothsim state\n\0", u32 version, u32 scalar bytes, u32 nw, u32 nh, u64 cloth hash,
-//   i64 frame, f64 time, u32 scene name length, u32 backend name length, the two names,
+//   i64 frame, f64 time, u32 scene name length, u32 backend name length, u32 pinned particles,
+//   u32 zero (reserved), the two names,
 //   positions (nw*nh*4 scalars), velocity state (nw*nh*4 scalars), u64 FNV-1a of all before.
 static_assert(std::endian::native == std::endian::little, "state files are written in host byte order");
 constexpr char kMagic[16] = "clothsim state\n";
 constexpr uint32_t kVersion = 1;
-constexpr size_t kHeaderBytes = 64;
+constexpr size_t kHeaderBytes = 72;
 constexpr uint32_t kMaxName = 4096;
 
 constexpr uint64_t kFnvOffset = 0xcbf29ce484222325ull, kFnvPrime = 0x100000001b3ull;
@@ -49,6 +51,12 @@ template <class R> std::vector<uint8_t> bytes_of(const std::vector<Vec4<R>>& v) 
 const char* scalar_name(int bytes) { return bytes == 8 ? "double" : bytes == 4 ? "float" : "unknown"; }
 
 }  // namespace
+
+int pinned_count(const ClothModel& model) {
+  int n = 0;
+  for (uint8_t p : model.pinned) n += p != 0;
+  return n;
+}
 
 template <class R> SavedState save_streams(const State<R>& s, int64_t frame, double time) {
   SavedState out;
@@ -96,6 +104,8 @@ void write_checkpoint(const std::string& path, const Checkpoint& c) {
   put<double>(head, s.time);
   put<uint32_t>(head, uint32_t(c.scene.size()));
   put<uint32_t>(head, uint32_t(c.backend.size()));
+  put<uint32_t>(head, uint32_t(c.pins));
+  put<uint32_t>(head, 0);
   head.insert(head.end(), c.scene.begin(), c.scene.end());
   head.insert(head.end(), c.backend.begin(), c.backend.end());
 
@@ -125,10 +135,11 @@ Checkpoint read_checkpoint(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (ec || !in) throw CheckpointError(fmt::format("{}: cannot open the state file", path));
   auto fail = [&](const std::string& why) { return CheckpointError(fmt::format("{}: {}", path, why)); };
-  if (size < kHeaderBytes) throw fail(fmt::format("not a clothsim state file (only {} bytes)", size));
-  uint8_t head[kHeaderBytes];
-  in.read(reinterpret_cast<char*>(head), kHeaderBytes);
-  if (std::memcmp(head, kMagic, sizeof kMagic) != 0) throw fail("not a clothsim state file (no 'clothsim state' header)");
+  uint8_t head[kHeaderBytes] = {};
+  in.read(reinterpret_cast<char*>(head), std::streamsize(std::min<uintmax_t>(size, kHeaderBytes)));
+  if (size < sizeof kMagic || std::memcmp(head, kMagic, sizeof kMagic) != 0)
+    throw fail("not a clothsim state file (no 'clothsim state' header)");
+  if (size < kHeaderBytes) throw fail(fmt::format("truncated ({} bytes, shorter than the header)", size));
   if (const uint32_t v = get<uint32_t>(head + 16); v != kVersion)
     throw fail(fmt::format("state file version {}, this clothsim reads version {}", v, kVersion));
 
@@ -149,6 +160,7 @@ Checkpoint read_checkpoint(const std::string& path) {
   c.nw = int(nw);
   c.nh = int(nh);
   c.cloth = get<uint64_t>(head + 32);
+  c.pins = int(get<uint32_t>(head + 64));
   s.frame = get<int64_t>(head + 40);
   s.time = get<double>(head + 48);
   c.scene.resize(scene_len);
@@ -177,10 +189,10 @@ void check_fits(const Checkpoint& c, const std::string& path, const Scene& scene
   const uint64_t here = cloth_hash(model);
   if (c.cloth != here)
     throw CheckpointError(fmt::format(
-        "{}: a different cloth: the state was saved from a {}x{} cloth (scene {}, cloth hash {:016x}), but "
-        "scene {} has a {}x{} cloth (cloth hash {:016x}). A state loads only into the cloth it was saved "
-        "from: same grid, width, height, orientation and pins (other parameters may change)",
-        path, c.nw, c.nh, c.scene, c.cloth, scene.source, model.nw, model.nh, here));
+        "{}: a different cloth: the state was saved from a {}x{} cloth with {} pinned particles (scene {}, cloth "
+        "hash {:016x}), but scene {} has a {}x{} cloth with {} (cloth hash {:016x}). A state loads only into the "
+        "cloth it was saved from: same grid, width, height, orientation and pins (other parameters may change)",
+        path, c.nw, c.nh, c.pins, c.scene, c.cloth, scene.source, model.nw, model.nh, pinned_count(model), here));
   if (c.state.scalar_bytes != scalar_bytes)
     throw CheckpointError(fmt::format(
         "{}: the state holds {}-byte ({}) scalars, saved by backend {}, but backend {} runs in {}-byte ({}). "

@@ -38,11 +38,13 @@ template <class R> void load_streams(const SavedState& saved, State<R>& s);
 // Material and scene parameters (ks, density, damping, colliders, substeps, ...) are not
 // part of it: a state may be continued under different ones.
 uint64_t cloth_hash(const ClothModel& model);
+int pinned_count(const ClothModel& model);
 
 // A state file: the state plus what it belongs to.
 struct Checkpoint {
   uint64_t cloth = 0;      // cloth_hash of the cloth it was saved from
   int nw = 0, nh = 0;
+  int pins = 0;            // pinned particles, for messages
   std::string scene;       // the scene it was saved from, for messages
   std::string backend;     // the backend's name, for messages
   SavedState state;

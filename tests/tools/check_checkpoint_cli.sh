@@ -43,12 +43,14 @@ size=$(wc -c <"$dir/A.state")
 head -c $((size / 2)) "$dir/A.state" >"$dir/truncated.state"
 refused "$dir/truncated.state" "truncated"
 head -c 40 "$dir/A.state" >"$dir/stub.state"
-refused "$dir/stub.state" "not a clothsim state file"
+refused "$dir/stub.state" "truncated"
+head -c 10 "$dir/A.state" >"$dir/ten.state"
+refused "$dir/ten.state" "not a clothsim state file"
 cp "$scene" "$dir/foreign.state"
 refused "$dir/foreign.state" "not a clothsim state file"
 refused "$dir/missing.state" "cannot open"
-refused "$dir/A.state" "different cloth: .*33x17.*but scene .* has a 33x19 cloth" --set cloth.num_height_points=19
-refused "$dir/A.state" "different cloth" --set cloth.pinned=[[0,0]]
+refused "$dir/A.state" "different cloth: .*33x17 cloth with 2 pinned.*but scene .* has a 33x19 cloth" --set cloth.num_height_points=19
+refused "$dir/A.state" "different cloth: .*33x17 cloth with 2 pinned.*but scene .* has a 33x17 cloth with 1" --set cloth.pinned=[[0,0]]
 # The other backend's scalar: the GPU and cpu float run in float, `--backend cpu` in double.
 other=gpu; [ "$backend" = gpu ] && other=cpu
 "$bin" simulate "$scene" --backend "$other" $small --frames 1 --load-state "$dir/A.state" >"$dir/other.out" 2>"$dir/other.err"
