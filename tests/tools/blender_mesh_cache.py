@@ -25,7 +25,8 @@ def import_obj(path, importer):
         bpy.ops.wm.obj_import(filepath=path)
     else:
         addon_utils.enable("io_scene_obj", default_set=True)
-        # No splitting, so the file's vertex order is kept ("Keep Vert Order").
+        # No splitting, so the file's vertex order is kept ("Keep Vert Order"): with the default
+        # split_mode "ON" this importer reorders the vertices (measured: 0.5 m off on 33x17).
         bpy.ops.import_scene.obj(filepath=path, split_mode="OFF", use_split_objects=False, use_split_groups=False)
     new = [o for o in bpy.data.objects if o not in before]
     assert len(new) == 1, f"{importer}: {path} gave {len(new)} objects"
