@@ -32,8 +32,8 @@ class PointCacheExport final : public FrameExport {
   }
   void finish() override { pc2_.close(); }
   std::string summary() const override {
-    return fmt::format("{} ({} samples of {} points, one every {} frame{}) and the mesh {}", pc2_.path(),
-                       pc2_.samples(), points_, every_, every_ == 1 ? "" : "s", mesh_);
+    return fmt::format("{} ({} sample{} of {} points, one every {} frame{}) and the mesh {}", pc2_.path(),
+                       pc2_.samples(), pc2_.samples() == 1 ? "" : "s", points_, every_, every_ == 1 ? "" : "s", mesh_);
   }
 
  private:
