@@ -1,10 +1,15 @@
-// `clothsim simulate SCENE --frames N [--backend gpu|cpu] [--export FILE.obj] [--stats]`
+// `clothsim simulate SCENE --frames N [--backend gpu|cpu] [--export FILE.obj|FILE.pc2|DIR/]
+//  [--export-every K] [--load-state FILE] [--save-state FILE] [--stats]`
+#include <unistd.h>
+
 #include <chrono>
+#include <filesystem>
 
 #include <fmt/format.h>
 
 #include "cli_common.hpp"
 #include "commands.hpp"
+#include "frame_export.hpp"
 
 namespace clothsim {
 namespace {
@@ -23,6 +28,50 @@ void print_stats(const Scene& scene, const ClothStats& st, int frames, double wa
   fmt::print("finite            {}\n", st.finite ? "yes" : "NO (a value became NaN/Inf)");
 }
 
+// An output file's directory must exist and be writable: checked before the run, so a long
+// simulation never ends in a path error.
+void check_writable(const std::string& flag, const std::string& path) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::path dir = fs::path(path).has_parent_path() ? fs::path(path).parent_path() : fs::path(".");
+  if (fs::is_directory(path, ec)) throw ExitError(kExitBadInput, fmt::format("{} {}: is a directory", flag, path));
+  if (!fs::is_directory(dir, ec))
+    throw ExitError(kExitBadInput, fmt::format("{} {}: the directory {} does not exist", flag, path, dir.string()));
+  if (access(dir.c_str(), W_OK) != 0)
+    throw ExitError(kExitBadInput, fmt::format("{} {}: the directory {} is not writable", flag, path, dir.string()));
+}
+
+// Reads and checks --load-state, then hands it to the backend; every failure is exit 2.
+int64_t load_state(const std::string& path, const Scene& scene, const ClothModel& model, Backend& backend) {
+  try {
+    const Checkpoint c = read_checkpoint(path);
+    check_fits(c, path, scene, model, backend.scalar_bytes(), backend.name());
+    backend.load_state(c.state);
+    fmt::print("loaded {}: frame {} ({:.4g} s simulated), saved by backend {} from {}\n", path, c.state.frame,
+               c.state.time, c.backend, c.scene);
+    return c.state.frame;
+  } catch (const CheckpointError& e) {
+    throw ExitError(kExitBadInput, fmt::format("--load-state {}", e.what()));
+  }
+}
+
+void save_state(const std::string& path, const Scene& scene, const ClothModel& model, Backend& backend) {
+  Checkpoint c;
+  c.cloth = cloth_hash(model);
+  c.nw = model.nw;
+  c.nh = model.nh;
+  c.pins = pinned_count(model);
+  c.scene = scene.source;
+  c.backend = backend.name();
+  c.state = backend.save_state();
+  try {
+    write_checkpoint(path, c);
+  } catch (const CheckpointError& e) {
+    throw ExitError(kExitBadInput, fmt::format("--save-state {}", e.what()));
+  }
+  fmt::print("saved {} (frame {})\n", path, c.state.frame);
+}
+
 }  // namespace
 
 void add_simulate_command(CLI::App& app, std::function<int()>& run) {
@@ -30,7 +79,8 @@ void add_simulate_command(CLI::App& app, std::function<int()>& run) {
     SceneOptions scene;
     int frames = 90;
     std::string backend = "gpu";
-    std::string export_path;
+    std::string export_path, load_path, save_path;
+    int export_every = 1;
     bool stats = false;
   };
   auto o = std::make_shared<Opts>();
@@ -40,17 +90,29 @@ void add_simulate_command(CLI::App& app, std::function<int()>& run) {
   cmd->add_option("--backend", o->backend, "gpu (compute shaders) or cpu (the reference)")
       ->check(CLI::IsMember({"gpu", "cpu"}))
       ->capture_default_str();
-  cmd->add_option("--export", o->export_path, "write the final cloth as Wavefront OBJ");
+  cmd->add_option("--export", o->export_path,
+                  "FILE.obj: the final cloth; FILE.pc2: a point cache of every frame plus FILE.obj, the mesh; "
+                  "DIR/: DIR/frame_0000.obj, one OBJ per frame");
+  cmd->add_option("--export-every", o->export_every, "with a .pc2 or DIR/ export: write every K-th frame")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--load-state", o->load_path, "continue from a state saved by --save-state");
+  cmd->add_option("--save-state", o->save_path, "save the final state (positions, displacements, time)");
   cmd->add_flag("--stats", o->stats, "print frames, timing, stretch, energy, clearances");
   cmd->callback([o, &run] {
     run = [o]() -> int {
+      const ExportKind kind = export_kind(o->export_path);
+      const bool sequence = kind == ExportKind::PointCache || kind == ExportKind::ObjSequence;
+      if (o->export_every != 1 && !sequence)
+        throw ExitError(kExitBadInput, "--export-every: needs --export FILE.pc2 or --export DIR/ (an OBJ holds one frame)");
+      if (kind == ExportKind::Obj || kind == ExportKind::PointCache) check_writable("--export", o->export_path);
+      if (!o->save_path.empty()) check_writable("--save-state", o->save_path);
       const Scene scene = o->scene.load();
       const ClothModel model = build_cloth(scene.cloth);
       std::unique_ptr<Backend> backend = make_backend(parse_backend(o->backend), scene, model);
       fmt::print("{}: {}x{} cloth, {} substeps/frame, backend {}\n", scene.source, model.nw, model.nh,
                  scene.simulation.simulation_steps, backend->name());
+      const int64_t start = o->load_path.empty() ? 0 : load_state(o->load_path, scene, model, *backend);
       auto export_obj = [&](const ClothSnapshot& snap, const std::string& what) {
-        if (o->export_path.empty()) return;
         try {
           write_obj(o->export_path, model, snap);
         } catch (const std::runtime_error& e) {
@@ -58,36 +120,64 @@ void add_simulate_command(CLI::App& app, std::function<int()>& run) {
         }
         fmt::print("wrote {}{}\n", o->export_path, what);
       };
-      Progress progress("frame", o->frames);
-      // A diverged run stops with the message; --export still writes a finite cloth: the
-      // newest frame that passed the check.
+      // Sequences are written as the frames come: the start state now, then every K-th frame.
+      std::unique_ptr<FrameExport> frames;
+      auto export_guarded = [&](auto&& write) {
+        try {
+          write();
+        } catch (const std::runtime_error& e) {
+          throw ExitError(kExitBadInput, fmt::format("--export {}", e.what()));
+        }
+      };
+      if (sequence)
+        export_guarded([&] {
+          frames = open_frame_export(kind, o->export_path, model, start, o->export_every, backend->snapshot());
+        });
+      Progress progress(frames ? "export frame" : "frame", o->frames);
+      // A diverged run stops with the message. A sequence keeps the frames written so far (all
+      // passed the check); a single OBJ gets the newest frame that passed; no state is saved.
       auto stop_if_diverged = [&](const std::vector<FrameCheck>& checks) {
         for (const FrameCheck& check : checks) {
           const auto message = divergence_message(scene, model, check);
           if (!message) continue;
           progress.finish();
-          if (!o->export_path.empty()) {
+          if (frames) {
+            export_guarded([&] { frames->finish(); });
+            fmt::print("wrote {} (the frames before the divergence)\n", frames->summary());
+          } else if (kind == ExportKind::Obj) {
             int kept = 0;
             const ClothSnapshot good = backend->last_good(&kept);
             export_obj(good, fmt::format(" (frame {}, the last one that passed the divergence check)", kept));
           }
+          if (!o->save_path.empty()) fmt::print(stderr, "--save-state {}: not saved, the run diverged\n", o->save_path);
           throw ExitError(kExitCheckFailed, *message);
         }
       };
-      const auto start = std::chrono::steady_clock::now();
+      const auto t0 = std::chrono::steady_clock::now();
       for (int f = 1; f <= o->frames; ++f) {
         backend->step_frame();
+        const int64_t frame = start + f;
+        const bool write = frames && frames->wants(frame);
         // The divergence check: on the GPU a reduction whose 32-byte result arrives at most one
-        // frame late, so the loop never waits for the frame it has just queued.
-        stop_if_diverged(backend->take_checks(false));
+        // frame late, so the loop never waits for the frame it has just queued. A frame to be
+        // written is read back anyway, so its check is waited for: no failed frame is exported.
+        stop_if_diverged(backend->take_checks(write));
+        if (write) export_guarded([&] { frames->add(frame, backend->snapshot()); });
         progress.update(f);
       }
       stop_if_diverged(backend->take_checks(true));
       progress.finish();
-      const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      const ClothSnapshot snap = backend->snapshot();
-      if (o->stats) print_stats(scene, measure(scene, model, snap), o->frames, wall);
-      export_obj(snap, "");
+      const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      if (frames) {
+        export_guarded([&] { frames->finish(); });
+        fmt::print("wrote {}\n", frames->summary());
+      }
+      if (o->stats || kind == ExportKind::Obj) {
+        const ClothSnapshot snap = backend->snapshot();
+        if (o->stats) print_stats(scene, measure(scene, model, snap), o->frames, wall);
+        if (kind == ExportKind::Obj) export_obj(snap, "");
+      }
+      if (!o->save_path.empty()) save_state(o->save_path, scene, model, *backend);
       return kExitOk;
     };
   });

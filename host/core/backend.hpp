@@ -1,6 +1,6 @@
 // A simulation backend: something that advances the cloth one rendered frame at a time,
 // checks every frame for divergence (divergence.hpp), and can hand back a copy of its state
-// on request (export, stats, validation).
+// on request (export, stats, validation), or its raw state for a checkpoint (checkpoint.hpp).
 #pragma once
 
 #include <memory>
@@ -8,6 +8,7 @@
 #include <utility>
 #include <vector>
 
+#include "checkpoint.hpp"
 #include "diagnostics.hpp"
 #include "divergence.hpp"
 #include "reference.hpp"
@@ -31,6 +32,13 @@ class Backend {
   // The newest frame that passed its check before any failed (0 = the initial state), with
   // CPU-computed normals: what a diverged run exports instead of NaNs.
   virtual ClothSnapshot last_good(int* frame) = 0;
+  // The raw state streams in the backend's own scalar, with the frames and seconds simulated:
+  // loading them into a fresh backend of the same cloth continues the run bit for bit.
+  virtual SavedState save_state() = 0;
+  // Continues from `saved` (check_fits it first): the next step_frame is frame saved.frame + 1,
+  // and the divergence guard starts over with the loaded positions as its last good frame.
+  virtual void load_state(const SavedState& saved) = 0;
+  virtual int scalar_bytes() const = 0;  // 4 (float) or 8 (double)
 };
 
 // The CPU reference as a backend, in float (what the GPU computes) or double.
@@ -38,13 +46,14 @@ template <class R> class CpuBackend final : public Backend {
  public:
   CpuBackend(const Scene& scene, const ClothModel& model)
       : model_(model), constants_(make_constants<R>(scene, model)), state_(initial_state<R>(model)),
-        limits_(divergence_limits(scene, model)) {
+        limits_(divergence_limits(scene, model)), frame_seconds_(1.0 / scene.simulation.frames_per_sec) {
     kept_.pos = state_.pos;
   }
 
   void step_frame() override {
     for (int k = 0; k < int(constants_.steps); ++k) step(model_, constants_, state_);
     compute_normals(model_, state_);
+    time_ += frame_seconds_;
     const FrameCheck check{++frame_, check_divergence(state_.pos)};
     keep_last_good(check.bounds, limits_, check.frame, state_.pos, kept_);
     if (checks_.size() >= 2) checks_.erase(checks_.begin());
@@ -63,6 +72,16 @@ template <class R> class CpuBackend final : public Backend {
     return s;
   }
   std::string name() const override { return sizeof(R) == 4 ? "cpu (float)" : "cpu (double)"; }
+  SavedState save_state() override { return save_streams(state_, frame_, time_); }
+  void load_state(const SavedState& saved) override {
+    load_streams(saved, state_);
+    compute_normals(model_, state_);
+    frame_ = int(saved.frame);
+    time_ = saved.time;
+    kept_ = {state_.pos, frame_, false};
+    checks_.clear();
+  }
+  int scalar_bytes() const override { return int(sizeof(R)); }
 
   State<R>& state() { return state_; }
   const Constants<R>& constants() const { return constants_; }
@@ -73,7 +92,9 @@ template <class R> class CpuBackend final : public Backend {
   State<R> state_;
   DivergenceLimits limits_;
   KeptFrame<R> kept_;
+  double frame_seconds_;
   int frame_ = 0;
+  double time_ = 0;  // simulated seconds
   std::vector<FrameCheck> checks_;  // not yet taken
 };
 

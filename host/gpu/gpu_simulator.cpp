@@ -184,7 +184,8 @@ void GpuSimulator::attach_views() {
 GpuBackend::GpuBackend(std::unique_ptr<gl::GlContext> context, const Scene& scene, const ClothModel& model,
                        const std::filesystem::path& compute_dir)
     : context_(std::move(context)), model_(model),
-      sim_(std::make_unique<GpuSimulator>(scene, model, compute_dir)) {}
+      sim_(std::make_unique<GpuSimulator>(scene, model, compute_dir)),
+      frame_seconds_(1.0 / scene.simulation.frames_per_sec) {}
 
 ClothSnapshot GpuBackend::snapshot() {
   State<float> s;

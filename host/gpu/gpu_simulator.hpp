@@ -126,19 +126,27 @@ class GpuBackend final : public Backend {
  public:
   GpuBackend(std::unique_ptr<gl::GlContext> context, const Scene& scene, const ClothModel& model,
              const std::filesystem::path& compute_dir);
-  void step_frame() override { sim_->step_frame(); }
+  void step_frame() override {
+    sim_->step_frame();
+    time_ += frame_seconds_;
+  }
   ClothSnapshot snapshot() override;
   std::vector<FrameCheck> take_checks(bool all) override { return sim_->divergence().take(all); }
   ClothSnapshot last_good(int* frame) override {
     return snapshot_of_positions(model_, sim_->divergence().last_good(frame));
   }
   std::string name() const override;
+  SavedState save_state() override;
+  void load_state(const SavedState& saved) override;
+  int scalar_bytes() const override { return int(sizeof(float)); }
   GpuSimulator& simulator() { return *sim_; }
 
  private:
   std::unique_ptr<gl::GlContext> context_;
   const ClothModel& model_;
   std::unique_ptr<GpuSimulator> sim_;
+  double frame_seconds_;
+  double time_ = 0;  // simulated seconds
 };
 
 // Where the GLSL files are: $CLOTHSIM_ROOT, then the directory above the executable

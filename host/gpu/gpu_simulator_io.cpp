@@ -42,4 +42,21 @@ void GpuSimulator::download(State<float>& s) {
   s.normal = gl::download_vector<Vec4<float>>(normals_);
 }
 
+// A checkpoint is the two state buffers as they are, read back and uploaded bit for bit.
+SavedState GpuBackend::save_state() {
+  State<float> s;
+  sim_->download(s);
+  return save_streams(s, sim_->divergence().frame(), time_);
+}
+
+void GpuBackend::load_state(const SavedState& saved) {
+  State<float> s;
+  sim_->download(s);  // for the inverse masses of this scene
+  load_streams(saved, s);
+  sim_->upload(s);
+  sim_->compute_normals();
+  sim_->divergence().restart(s.pos, int(saved.frame));
+  time_ = saved.time;
+}
+
 }  // namespace clothsim

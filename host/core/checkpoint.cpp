@@ -1,0 +1,210 @@
+#include "checkpoint.hpp"
+
+#include <algorithm>
+#include <bit>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+
+#include <fmt/format.h>
+
+namespace clothsim {
+namespace {
+
+// State file, little endian (README "Checkpoints"):
+//   char[16] "clothsim state\n\0", u32 version, u32 scalar bytes, u32 nw, u32 nh, u64 cloth hash,
+//   i64 frame, f64 time, u32 scene name length, u32 backend name length, u32 pinned particles,
+//   u32 zero (reserved), the two names,
+//   positions (nw*nh*4 scalars), displacements (nw*nh*4 scalars), u64 FNV-1a of all before.
+static_assert(std::endian::native == std::endian::little, "state files are written in host byte order");
+constexpr char kMagic[16] = "clothsim state\n";
+constexpr uint32_t kVersion = 1;
+constexpr size_t kHeaderBytes = 72;
+constexpr uint32_t kMaxName = 4096;
+
+constexpr uint64_t kFnvOffset = 0xcbf29ce484222325ull, kFnvPrime = 0x100000001b3ull;
+
+void fnv(uint64_t& h, const void* data, size_t n) {
+  const auto* p = static_cast<const uint8_t*>(data);
+  for (size_t i = 0; i < n; ++i) h = (h ^ p[i]) * kFnvPrime;
+}
+
+template <class T> void put(std::vector<uint8_t>& out, T v) {
+  const auto* p = reinterpret_cast<const uint8_t*>(&v);
+  out.insert(out.end(), p, p + sizeof v);
+}
+
+template <class T> T get(const uint8_t* p) {
+  T v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+
+template <class R> std::vector<uint8_t> bytes_of(const std::vector<Vec4<R>>& v) {
+  static_assert(sizeof(Vec4<R>) == 4 * sizeof(R));
+  std::vector<uint8_t> b(v.size() * sizeof(Vec4<R>));
+  if (!b.empty()) std::memcpy(b.data(), v.data(), b.size());
+  return b;
+}
+
+const char* scalar_name(int bytes) { return bytes == 8 ? "double" : bytes == 4 ? "float" : "unknown"; }
+
+}  // namespace
+
+int pinned_count(const ClothModel& model) {
+  int n = 0;
+  for (uint8_t p : model.pinned) n += p != 0;
+  return n;
+}
+
+template <class R> SavedState save_streams(const State<R>& s, int64_t frame, double time) {
+  SavedState out;
+  out.scalar_bytes = int(sizeof(R));
+  out.frame = frame;
+  out.time = time;
+  out.positions = bytes_of(s.pos);
+  out.displacement = bytes_of(s.disp);
+  return out;
+}
+
+template <class R> void load_streams(const SavedState& saved, State<R>& s) {
+  // check_fits refuses these for users; this guards callers that skip it.
+  if (saved.scalar_bytes != int(sizeof(R)) || saved.particles() != s.pos.size() ||
+      saved.displacement.size() != saved.positions.size())
+    throw CheckpointError(fmt::format("a state of {} {}-byte particles does not fit a cloth of {} {}-byte particles",
+                                      saved.particles(), saved.scalar_bytes, s.pos.size(), sizeof(R)));
+  for (size_t i = 0; i < s.pos.size(); ++i) {
+    Vec4<R> p;
+    std::memcpy(&p, saved.positions.data() + i * sizeof p, sizeof p);
+    s.pos[i] = Vec4<R>(p.x, p.y, p.z, s.pos[i].w);
+  }
+  s.disp.resize(s.pos.size());
+  std::memcpy(s.disp.data(), saved.displacement.data(), saved.displacement.size());
+}
+
+uint64_t cloth_hash(const ClothModel& m) {
+  uint64_t h = kFnvOffset;
+  const int32_t grid[2] = {m.nw, m.nh};
+  fnv(h, grid, sizeof grid);
+  fnv(h, m.initial.data(), m.initial.size() * sizeof(glm::dvec3));
+  fnv(h, m.pinned.data(), m.pinned.size());
+  return h;
+}
+
+void write_checkpoint(const std::string& path, const Checkpoint& c) {
+  const SavedState& s = c.state;
+  std::vector<uint8_t> head(kMagic, kMagic + sizeof kMagic);
+  put<uint32_t>(head, kVersion);
+  put<uint32_t>(head, uint32_t(s.scalar_bytes));
+  put<uint32_t>(head, uint32_t(c.nw));
+  put<uint32_t>(head, uint32_t(c.nh));
+  put<uint64_t>(head, c.cloth);
+  put<int64_t>(head, s.frame);
+  put<double>(head, s.time);
+  put<uint32_t>(head, uint32_t(c.scene.size()));
+  put<uint32_t>(head, uint32_t(c.backend.size()));
+  put<uint32_t>(head, uint32_t(c.pins));
+  put<uint32_t>(head, 0);
+  head.insert(head.end(), c.scene.begin(), c.scene.end());
+  head.insert(head.end(), c.backend.begin(), c.backend.end());
+
+  const std::string tmp = path + ".tmp";
+  std::FILE* f = std::fopen(tmp.c_str(), "wb");
+  if (!f) throw CheckpointError(fmt::format("{}: cannot open for writing ({})", tmp, std::strerror(errno)));
+  uint64_t h = kFnvOffset;
+  bool ok = true;
+  const std::vector<uint8_t>* parts[] = {&head, &s.positions, &s.displacement};
+  for (const std::vector<uint8_t>* part : parts) {
+    fnv(h, part->data(), part->size());
+    ok = ok && std::fwrite(part->data(), 1, part->size(), f) == part->size();
+  }
+  ok = ok && std::fwrite(&h, sizeof h, 1, f) == 1;
+  ok = std::fclose(f) == 0 && ok;
+  std::error_code ec;
+  if (ok) std::filesystem::rename(tmp, path, ec);
+  if (!ok || ec) {
+    std::filesystem::remove(tmp, ec);
+    throw CheckpointError(fmt::format("{}: writing the state failed", path));
+  }
+}
+
+Checkpoint read_checkpoint(const std::string& path) {
+  std::error_code ec;
+  const uintmax_t size = std::filesystem::file_size(path, ec);
+  std::ifstream in(path, std::ios::binary);
+  if (ec || !in) throw CheckpointError(fmt::format("{}: cannot open the state file", path));
+  auto fail = [&](const std::string& why) { return CheckpointError(fmt::format("{}: {}", path, why)); };
+  uint8_t head[kHeaderBytes] = {};
+  in.read(reinterpret_cast<char*>(head), std::streamsize(std::min<uintmax_t>(size, kHeaderBytes)));
+  if (size < sizeof kMagic || std::memcmp(head, kMagic, sizeof kMagic) != 0)
+    throw fail("not a clothsim state file (no 'clothsim state' header)");
+  if (size < kHeaderBytes) throw fail(fmt::format("truncated ({} bytes, shorter than the header)", size));
+  if (const uint32_t v = get<uint32_t>(head + 16); v != kVersion)
+    throw fail(fmt::format("state file version {}, this clothsim reads version {}", v, kVersion));
+
+  Checkpoint c;
+  SavedState& s = c.state;
+  const uint32_t scalar = get<uint32_t>(head + 20), nw = get<uint32_t>(head + 24), nh = get<uint32_t>(head + 28);
+  const uint32_t scene_len = get<uint32_t>(head + 56), backend_len = get<uint32_t>(head + 60);
+  if (scalar != 4 && scalar != 8) throw fail(fmt::format("scalar size {} bytes (expected 4 or 8)", scalar));
+  if (nw < 2 || nh < 2 || uint64_t(nw) * nh > uint64_t(kMaxParticles))
+    throw fail(fmt::format("grid {}x{} is out of range", nw, nh));
+  if (scene_len > kMaxName || backend_len > kMaxName) throw fail("corrupted header (name lengths out of range)");
+  const uint64_t stream = uint64_t(nw) * nh * 4 * scalar;
+  const uint64_t expected = kHeaderBytes + scene_len + backend_len + 2 * stream + sizeof(uint64_t);
+  if (size != expected)
+    throw fail(fmt::format("{} ({} bytes, a {}x{} cloth of {}-byte scalars needs {})",
+                           size < expected ? "truncated" : "has trailing bytes", size, nw, nh, scalar, expected));
+  s.scalar_bytes = int(scalar);
+  c.nw = int(nw);
+  c.nh = int(nh);
+  c.cloth = get<uint64_t>(head + 32);
+  c.pins = int(get<uint32_t>(head + 64));
+  s.frame = get<int64_t>(head + 40);
+  s.time = get<double>(head + 48);
+  c.scene.resize(scene_len);
+  c.backend.resize(backend_len);
+  s.positions.resize(stream);
+  s.displacement.resize(stream);
+  uint64_t stored = 0;
+  in.read(c.scene.data(), scene_len);
+  in.read(c.backend.data(), backend_len);
+  in.read(reinterpret_cast<char*>(s.positions.data()), std::streamsize(stream));
+  in.read(reinterpret_cast<char*>(s.displacement.data()), std::streamsize(stream));
+  in.read(reinterpret_cast<char*>(&stored), sizeof stored);
+  if (!in) throw fail("read failed");
+  uint64_t h = kFnvOffset;
+  fnv(h, head, kHeaderBytes);
+  fnv(h, c.scene.data(), scene_len);
+  fnv(h, c.backend.data(), backend_len);
+  fnv(h, s.positions.data(), stream);
+  fnv(h, s.displacement.data(), stream);
+  if (h != stored) throw fail("corrupted (checksum mismatch)");
+  return c;
+}
+
+void check_fits(const Checkpoint& c, const std::string& path, const Scene& scene, const ClothModel& model,
+                int scalar_bytes, const std::string& backend) {
+  const uint64_t here = cloth_hash(model);
+  if (c.cloth != here)
+    throw CheckpointError(fmt::format(
+        "{}: a different cloth: the state was saved from a {}x{} cloth with {} pinned particles (scene {}, cloth "
+        "hash {:016x}), but scene {} has a {}x{} cloth with {} (cloth hash {:016x}). A state loads only into the "
+        "cloth it was saved from: same grid, width, height, orientation and pins (other parameters may change)",
+        path, c.nw, c.nh, c.pins, c.scene, c.cloth, scene.source, model.nw, model.nh, pinned_count(model), here));
+  if (c.state.scalar_bytes != scalar_bytes)
+    throw CheckpointError(fmt::format(
+        "{}: the state holds {}-byte ({}) scalars, saved by backend {}, but backend {} runs in {}-byte ({}). "
+        "States are kept bit for bit, so they load only into a backend of the same precision",
+        path, c.state.scalar_bytes, scalar_name(c.state.scalar_bytes), c.backend, backend, scalar_bytes,
+        scalar_name(scalar_bytes)));
+}
+
+#define CLOTHSIM_INSTANTIATE(R)                                                  \
+  template SavedState save_streams<R>(const State<R>&, int64_t, double);        \
+  template void load_streams<R>(const SavedState&, State<R>&);
+CLOTHSIM_INSTANTIATE(float)
+CLOTHSIM_INSTANTIATE(double)
+
+}  // namespace clothsim

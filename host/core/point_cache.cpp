@@ -1,0 +1,102 @@
+#include "point_cache.hpp"
+
+#include <bit>
+#include <cerrno>
+#include <cstring>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+namespace clothsim {
+namespace {
+
+static_assert(std::endian::native == std::endian::little, "PC2 is little endian, written in host order");
+constexpr char kMagic[12] = "POINTCACHE2";  // with its terminating NUL: 12 bytes
+constexpr long kHeaderBytes = 32;
+constexpr long kSamplesOffset = 28;  // where the sample count sits in the header
+
+void encode(const Pc2Header& h, uint8_t out[kHeaderBytes]) {
+  std::memcpy(out, kMagic, 12);
+  std::memcpy(out + 12, &h.version, 4);
+  std::memcpy(out + 16, &h.points, 4);
+  std::memcpy(out + 20, &h.start_frame, 4);
+  std::memcpy(out + 24, &h.sample_rate, 4);
+  std::memcpy(out + 28, &h.samples, 4);
+}
+
+}  // namespace
+
+Pc2Writer::Pc2Writer(const std::string& path, int points, float start_frame, float sample_rate)
+    : path_(path), buffer_(size_t(points) * 3) {
+  header_.points = points;
+  header_.start_frame = start_frame;
+  header_.sample_rate = sample_rate;
+  file_ = std::fopen(path.c_str(), "wb");
+  if (!file_) throw std::runtime_error(fmt::format("{}: cannot open for writing ({})", path, std::strerror(errno)));
+  uint8_t head[kHeaderBytes];
+  encode(header_, head);
+  if (std::fwrite(head, 1, sizeof head, file_) != sizeof head) {
+    std::fclose(file_);
+    file_ = nullptr;
+    throw std::runtime_error(fmt::format("{}: write failed", path));
+  }
+}
+
+Pc2Writer::~Pc2Writer() {
+  if (file_) std::fclose(file_);
+}
+
+void Pc2Writer::add(const std::vector<glm::dvec4>& pos) {
+  if (!file_) throw std::logic_error("Pc2Writer::add after close");
+  if (pos.size() != size_t(header_.points))
+    throw std::logic_error(fmt::format("{}: a sample of {} points in a cache of {}", path_, pos.size(), header_.points));
+  for (size_t i = 0; i < pos.size(); ++i)
+    for (int c = 0; c < 3; ++c) buffer_[3 * i + size_t(c)] = float(pos[i][c]);
+  ++header_.samples;
+  // The seek flushes the sample before the new count is written, so the count on disk never
+  // exceeds the samples on disk, even if the process is killed.
+  const bool ok = std::fwrite(buffer_.data(), sizeof(float), buffer_.size(), file_) == buffer_.size() &&
+                  std::fseek(file_, kSamplesOffset, SEEK_SET) == 0 &&
+                  std::fwrite(&header_.samples, 4, 1, file_) == 1 && std::fseek(file_, 0, SEEK_END) == 0;
+  if (!ok) throw std::runtime_error(fmt::format("{}: write failed ({})", path_, std::strerror(errno)));
+}
+
+void Pc2Writer::close() {
+  if (!file_) return;
+  const int rc = std::fclose(file_);
+  file_ = nullptr;
+  if (rc != 0) throw std::runtime_error(fmt::format("{}: write failed", path_));
+}
+
+Pc2Header read_pc2_header(const std::string& path) {
+  std::FILE* f = std::fopen(path.c_str(), "rb");
+  if (!f) throw std::runtime_error(fmt::format("{}: cannot open", path));
+  uint8_t head[kHeaderBytes];
+  const bool ok = std::fread(head, 1, sizeof head, f) == sizeof head;
+  std::fclose(f);
+  if (!ok || std::memcmp(head, kMagic, 12) != 0) throw std::runtime_error(fmt::format("{}: not a PC2 file", path));
+  Pc2Header h;
+  std::memcpy(&h.version, head + 12, 4);
+  std::memcpy(&h.points, head + 16, 4);
+  std::memcpy(&h.start_frame, head + 20, 4);
+  std::memcpy(&h.sample_rate, head + 24, 4);
+  std::memcpy(&h.samples, head + 28, 4);
+  return h;
+}
+
+std::vector<glm::vec3> read_pc2_sample(const std::string& path, int sample) {
+  const Pc2Header h = read_pc2_header(path);
+  if (sample < 0 || sample >= h.samples || h.points < 0)
+    throw std::runtime_error(fmt::format("{}: no sample {} (the cache has {})", path, sample, h.samples));
+  std::vector<glm::vec3> out(size_t(h.points));
+  std::FILE* f = std::fopen(path.c_str(), "rb");
+  if (!f) throw std::runtime_error(fmt::format("{}: cannot open", path));
+  const long offset = kHeaderBytes + long(sample) * h.points * long(sizeof(glm::vec3));
+  const bool ok = std::fseek(f, offset, SEEK_SET) == 0 &&
+                  std::fread(out.data(), sizeof(glm::vec3), out.size(), f) == out.size();
+  std::fclose(f);
+  if (!ok) throw std::runtime_error(fmt::format("{}: sample {} is truncated", path, sample));
+  return out;
+}
+
+}  // namespace clothsim

@@ -1,0 +1,50 @@
+// PC2 point caches, the vertex-animation format Blender's Mesh Cache modifier (and 3ds Max,
+// Maya, Houdini) reads: a 32-byte header, then float32 x, y, z per point per sample, little
+// endian. Written one sample at a time, so memory does not grow with the length of a run.
+#pragma once
+
+#include <cstdint>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+
+namespace clothsim {
+
+struct Pc2Header {
+  int32_t version = 1;
+  int32_t points = 0;
+  float start_frame = 0;  // the frame of sample 0
+  float sample_rate = 1;  // frames between samples
+  int32_t samples = 0;
+};
+
+class Pc2Writer {
+ public:
+  // Opens `path` and writes a header with no samples; throws std::runtime_error naming the path.
+  Pc2Writer(const std::string& path, int points, float start_frame, float sample_rate);
+  ~Pc2Writer();
+  Pc2Writer(const Pc2Writer&) = delete;
+  Pc2Writer& operator=(const Pc2Writer&) = delete;
+
+  // Appends one sample (xyz of each point, rounded to float) and rewrites the header's sample
+  // count, so the file is a valid cache of the samples so far whenever the run stops.
+  void add(const std::vector<glm::dvec4>& positions);
+  void close();  // flushes; throws if anything failed to write
+  int samples() const { return header_.samples; }
+  const std::string& path() const { return path_; }
+
+ private:
+  std::string path_;
+  std::FILE* file_ = nullptr;
+  Pc2Header header_;
+  std::vector<float> buffer_;  // one sample, reused
+};
+
+// Reading back (tests, and checking a cache before handing it to a DCC tool).
+Pc2Header read_pc2_header(const std::string& path);
+std::vector<glm::vec3> read_pc2_sample(const std::string& path, int sample);
+
+}  // namespace clothsim
