@@ -19,6 +19,11 @@ bool gpu_required() {
   return value && std::string(value) == "1";
 }
 
+TestCaseGlState& current_test_case_gl_state() {
+  static TestCaseGlState state;
+  return state;
+}
+
 std::filesystem::path source_path(const std::string& relative) {
   return std::filesystem::path(CLOTHSIM_SOURCE_DIR) / relative;
 }
