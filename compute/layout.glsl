@@ -132,6 +132,8 @@ struct MeshVertex {
   F(float, contact_distance)   /* m, 2 thickness: self-collision keeps masses this far */  \
   F(float, inv_cell)           /* 1/m, 1 / the hash cell edge (edge = contact_distance) */ \
   F(float, steps)              /* simulation_steps, as a float */                          \
+  F(float, alpha)              /* xpbd: 1 / (ks dt^2), structural and shearing springs */  \
+  F(float, alpha_bending)      /* xpbd: 1 / (0.2 ks dt^2) */                               \
   F(uint, width)               /* grid points along a row */                               \
   F(uint, height)              /* rows */                                                  \
   F(uint, count)               /* particles, width * height */                             \

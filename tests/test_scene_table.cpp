@@ -14,7 +14,7 @@
 namespace clothsim {
 namespace {
 
-enum class Solver { Classic, Xpbd };
+enum class DemoSolver { Classic, Xpbd };
 constexpr const char* kSolverNames[] = {"classic", "xpbd"};
 
 struct Gust {
@@ -28,7 +28,7 @@ struct Wind {
   bool operator==(const Wind&) const = default;
 };
 struct Demo {
-  Solver solver = Solver::Classic;
+  DemoSolver solver = DemoSolver::Classic;
   std::optional<Wind> wind;
   int iterations = 3;
   bool operator==(const Demo&) const = default;
@@ -88,7 +88,7 @@ TEST_CASE("table rows: absent keys keep the struct's defaults, optional objects 
 
 TEST_CASE("table rows: an enum as a string and nested optional objects load and write back", "[scene][table]") {
   const Demo d = read(R"({"solver": "xpbd", "wind": {"velocity": [1, 0, 2], "gust": {"strength": 3}}})");
-  CHECK(d.solver == Solver::Xpbd);
+  CHECK(d.solver == DemoSolver::Xpbd);
   REQUIRE(d.wind.has_value());
   CHECK(d.wind->velocity == glm::dvec3(1, 0, 2));
   REQUIRE(d.wind->gust.has_value());

@@ -16,6 +16,7 @@ namespace {
 struct Opts {
   std::vector<int> sizes{32, 64, 128, 256, 512, 1024};
   std::vector<std::string> backends{"gpu", "cpu"};
+  std::vector<std::string> solvers{"classic", "xpbd"};
   int frames = 10;
   std::string self_collision = "both", json_path, root;
   double cpu_limit_s = 60;
@@ -32,21 +33,22 @@ int run_bench(const Opts& o) {
   BenchRunner runner(o.root, o.frames);
   nlohmann::json out = {{"gl_renderer", runner.renderer()}, {"frames", o.frames}, {"results", nlohmann::json::array()},
                         {"skipped", nlohmann::json::array()}};
-  fmt::print("{:>7} {:>5} {:>4} {:>9} {:>10} {:>14} {:>6} {:>6} {:>9}\n", "backend", "size", "self", "particles",
-             "ms/frame", "p-substeps/s", "disp", "barr", "GPU MiB");
+  fmt::print("{:>7} {:>7} {:>5} {:>4} {:>9} {:>10} {:>14} {:>6} {:>6} {:>9}\n", "backend", "solver", "size", "self",
+             "particles", "ms/frame", "p-substeps/s", "disp", "barr", "GPU MiB");
   int done = 0;
-  const int total = int(o.sizes.size() * o.backends.size() * sc_modes.size());
+  const int total = int(o.sizes.size() * o.backends.size() * sc_modes.size() * o.solvers.size());
   Progress progress("bench configuration", total);
   for (const auto& backend : o.backends)
+    for (const auto& solver : o.solvers)
     for (bool sc : sc_modes)
       for (int n : o.sizes) {
         progress.update(done);
-        const Scene scene = bench_scene(n, sc);
+        const Scene scene = bench_scene(n, sc, solver == "xpbd" ? Solver::Xpbd : Solver::Classic);
         if (backend == "cpu") {
           const double estimate = runner.estimate_cpu_seconds(scene);
           if (estimate > o.cpu_limit_s) {
-            const std::string why = fmt::format("cpu {}x{} self-collision {}: skipped, estimated {:.0f} s > {:.0f} s",
-                                                n, n, sc ? "on" : "off", estimate, o.cpu_limit_s);
+            const std::string why = fmt::format("cpu {} {}x{} self-collision {}: skipped, estimated {:.0f} s > {:.0f} s",
+                                                solver, n, n, sc ? "on" : "off", estimate, o.cpu_limit_s);
             progress.finish();
             fmt::print("{}\n", why);
             out["skipped"].push_back(why);
@@ -56,10 +58,10 @@ int run_bench(const Opts& o) {
         }
         const BenchResult r = backend == "gpu" ? runner.run_gpu(scene) : runner.run_cpu(scene);
         progress.finish();
-        fmt::print("{:>7} {:>5} {:>4} {:>9} {:>10.3f} {:>14.3e} {:>6} {:>6} {:>9.1f}\n", backend, n, sc ? "on" : "off",
-                   r.particles, r.ms_per_frame, r.particle_substeps_per_s, r.dispatches_per_frame, r.barriers_per_frame,
+        fmt::print("{:>7} {:>7} {:>5} {:>4} {:>9} {:>10.3f} {:>14.3e} {:>6} {:>6} {:>9.1f}\n", backend, solver, n,
+                   sc ? "on" : "off", r.particles, r.ms_per_frame, r.particle_substeps_per_s, r.dispatches_per_frame, r.barriers_per_frame,
                    r.gpu_memory_bytes / 1048576.0);
-        out["results"].push_back(to_json(r, backend, n, sc));
+        out["results"].push_back(to_json(r, backend, solver, n, sc));
         ++done;
       }
   progress.finish();
@@ -78,6 +80,10 @@ void add_bench_command(CLI::App& app, std::function<int()>& run) {
   CLI::App* cmd = app.add_subcommand("bench", "measure throughput of the GPU and CPU backends on square cloths");
   cmd->add_option("--sizes", o->sizes, "cloth sizes (points per side), comma separated")->delimiter(',')->capture_default_str();
   cmd->add_option("--backend", o->backends, "gpu, cpu or gpu,cpu")->delimiter(',')->capture_default_str();
+  cmd->add_option("--solver", o->solvers, "classic, xpbd or classic,xpbd (simulation.solver)")
+      ->delimiter(',')
+      ->check(CLI::IsMember({"classic", "xpbd"}))
+      ->capture_default_str();
   cmd->add_option("--frames", o->frames, "timed frames per configuration (after 2 warm-up frames)")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();

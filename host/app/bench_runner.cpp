@@ -69,17 +69,19 @@ std::map<std::string, double> time_passes_with_queries(int substeps, const PassL
 
 }  // namespace
 
-Scene bench_scene(int n, bool self_collision) {
+Scene bench_scene(int n, bool self_collision, Solver solver) {
   const double spacing = 1.0 / (n - 1), classic_spacing = 1.0 / 49;
-  const double ks = 5000.0 * (spacing / classic_spacing) * (spacing / classic_spacing);
+  const bool xpbd = solver == Solver::Xpbd;
+  const double ks = xpbd ? 5000.0 : 5000.0 * (spacing / classic_spacing) * (spacing / classic_spacing);
   const std::string json = fmt::format(
       R"({{"cloth": {{"width": 1, "height": 1, "num_width_points": {0}, "num_height_points": {0},
-           "thickness": {1}, "orientation": 0, "ks": {2}, "pinned": [[0,0],[{3},0],[0,{3}],[{3},{3}]]}},
+           "thickness": {1}, "orientation": 0, "ks": {2}, "density": {5}, "pinned": [[0,0],[{3},0],[0,{3}],[{3},{3}]]}},
          "sphere": {{"origin": [0.5, 0.55, 0.5], "radius": 0.25, "friction": 0.3}},
          "plane": {{"point": [0, 0, 0], "normal": [0, 1, 0], "friction": 0.5}},
-         "simulation": {{"self_collision": {4}}}}})",
-      n, 0.0095 / classic_spacing * spacing, ks, n - 1, self_collision ? "true" : "false");
-  return parse_scene(json, fmt::format("<bench {}x{}>", n, n));
+         "simulation": {{"self_collision": {4}, "solver": "{6}"}}}})",
+      n, 0.0095 / classic_spacing * spacing, ks, n - 1, self_collision ? "true" : "false", xpbd ? 0.15 : 150.0,
+      xpbd ? "xpbd" : "classic");
+  return parse_scene(json, fmt::format("<bench {}x{}{}>", n, n, xpbd ? " xpbd" : ""));
 }
 
 BenchRunner::BenchRunner(const std::string& root, int frames)
@@ -105,15 +107,17 @@ BenchResult BenchRunner::run_gpu(const Scene& scene) {
   r.gpu_memory_bytes = sim.memory_bytes();
   // The passes of GpuSimulator::step, collide_self as its five stages; collide_objects is
   // fused into advance or resolve_self_contacts.
-  const bool sc = scene.simulation.self_collision;
+  const bool sc = scene.simulation.self_collision, xpbd = sim.constants().xpbd;
   const bool colliders = sim.constants().has_colliders();
-  PassList passes{{{"advance", [&] { sim.advance(colliders && !sc); }},
+  PassList passes{{{xpbd ? "predict" : "advance",
+                    [&] { xpbd ? sim.predict(colliders && !sc) : sim.advance(colliders && !sc); }},
                    {"count_cells", [&] { if (sc) sim.count_cells(); }},
                    {"scan_cells", [&] { if (sc) sim.scan_cells(); }},
                    {"fill_cells", [&] { if (sc) sim.fill_cells(); }},
                    {"sort_cells", [&] { if (sc) sim.sort_cells(); }},
                    {"resolve_self_contacts", [&] { if (sc) sim.resolve_self_contacts(colliders); }},
-                   {"solve_length_constraints", [&] { sim.solve_length_constraints(); }}},
+                   {xpbd ? "solve_distance_constraints" : "solve_length_constraints",
+                    [&] { xpbd ? sim.solve_distance_constraints() : sim.solve_length_constraints(); }}},
                   {{"compute_normals", [&] { sim.compute_normals(); }},
                    // The divergence guard: its reduction and the copy of a passing frame.
                    {"check_divergence", [&] { sim.divergence().check(sim.positions()); }}}};
@@ -142,10 +146,11 @@ BenchResult BenchRunner::run_cpu(const Scene& scene) {
   r.ms_per_frame = ms_since(t) / frames_;
   const auto& c = cpu.constants();
   auto& s = cpu.state();
-  PassList passes{{{"advance", [&] { advance(model, c, s); }},
+  PassList passes{{{c.xpbd ? "predict" : "advance", [&] { c.xpbd ? predict(c, s) : advance(model, c, s); }},
                    {"collide_self", [&] { if (c.self_collision) collide_self(c, s); }},
                    {"collide_objects", [&] { collide_objects(c, s); }},
-                   {"solve_length_constraints", [&] { solve_length_constraints(model, c, s); }}},
+                   {c.xpbd ? "solve_distance_constraints" : "solve_length_constraints",
+                    [&] { c.xpbd ? solve_distance_constraints(model, c, s) : solve_length_constraints(model, c, s); }}},
                   {{"compute_normals", [&] { compute_normals(model, s); }},
                    {"check_divergence", [&] {
                       KeptFrame<float> kept;
@@ -166,8 +171,10 @@ double BenchRunner::estimate_cpu_seconds(const Scene& scene) const {
   return double(scene.particle_count()) * scene.simulation.simulation_steps * (frames_ + kWarmupFrames + 1) / rate;
 }
 
-nlohmann::json to_json(const BenchResult& r, const std::string& backend, int size, bool sc) {
+nlohmann::json to_json(const BenchResult& r, const std::string& backend, const std::string& solver, int size,
+                       bool sc) {
   return {{"backend", backend},
+          {"solver", solver},
           {"size", size},
           {"particles", r.particles},
           {"self_collision", sc},

@@ -39,8 +39,10 @@ ClothModel build_cloth(const ClothParams& params);
 // Mass of every particle: width * height * density / particle count (kg).
 double particle_mass(const ClothParams& params);
 
-// The z offset of a vertical cloth's particle i, in [-1e-3, 1e-3]: a hash of the index, so
-// the same cloth comes out on every machine and both backends (no std:: distribution).
-double vertical_offset(uint32_t i);
+// The z offset of a vertical cloth's particle i, in [-amplitude, amplitude]: a hash of the
+// index, so the same cloth comes out on every machine and both backends (no std:: distribution).
+double vertical_offset(uint32_t i, double amplitude);
+// The amplitude for a grid spacing: 1e-3 m (the classic), at most 5 % of the spacing.
+double jitter_amplitude(double spacing);
 
 }  // namespace clothsim

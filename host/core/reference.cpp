@@ -21,6 +21,10 @@ template <class R> Constants<R> make_constants(const Scene& scene, const ClothMo
   c.contact_distance = R(2.0 * cp.thickness);
   c.inv_cell = R(1.0 / (2.0 * cp.thickness));
   c.steps = R(sp.simulation_steps);
+  // 1 / (ks dt^2): ks = 0 gives +inf, a constraint that never pulls.
+  c.alpha = R(1.0 / (cp.ks * dt * dt));
+  c.alpha_bending = R(1.0 / (0.2 * cp.ks * dt * dt));
+  c.xpbd = sp.solver == Solver::Xpbd;
   c.enabled[0] = cp.enable_structural;
   c.enabled[1] = cp.enable_shearing;
   c.enabled[2] = cp.enable_bending;
@@ -185,6 +189,66 @@ template <class R> void solve_length_constraints(const ClothModel& m, const Cons
     for (int colour = 0; colour < NUM_COLOURS; ++colour) solve_length_constraint_colour(m, c, colour, s);
 }
 
+template <class R> void predict(const Constants<R>& c, State<R>& s) {
+  for (size_t i = 0; i < s.pos.size(); ++i) {
+    const R w = s.pos[i].w;
+    if (w == R(0)) continue;  // pinned: keeps its position
+    const Vec3<R> d = Vec3<R>(s.disp[i]) * c.keep_velocity + c.gravity * c.dt2;
+    s.disp[i] = Vec4<R>(d, R(0));
+    s.pos[i] = Vec4<R>(Vec3<R>(s.pos[i]) + d, w);
+  }
+}
+
+template <class R>
+void solve_distance_constraint_colour(const ClothModel& m, const Constants<R>& c, int colour, State<R>& s) {
+  const int dir = colour / 2;
+  const Direction& d = kDirections[dir];
+  if (!c.enabled[int(d.type)]) return;
+  const R alpha = d.type == SpringType::Bending ? c.alpha_bending : c.alpha;
+  for (int y = 0; y < m.nh; ++y)
+    for (int x = 0; x < m.nw; ++x) {
+      if (spring_colour(dir, x, y) != colour || !in_grid(x + d.dx, y + d.dy, m.nw, m.nh)) continue;
+      const int i = m.index(x, y), j = m.index(x + d.dx, y + d.dy);
+      const R wi = s.pos[i].w, wj = s.pos[j].w, wsum = wi + wj;
+      if (wsum == R(0)) continue;
+      const R rest = R(m.rest[i][dir]);
+      Vec3<R> xi(s.pos[i]), xj(s.pos[j]), di(s.disp[i]), dj(s.disp[j]);
+      Vec3<R> e = xj - xi;
+      R len = length3(e);
+      if (len > R(0)) {
+        // XPBD with the multiplier starting at 0 (one solve per substep): dlambda = -C / (w + alpha~),
+        // C = len - rest, moving i by -wi grad_i C dlambda and j by -wj grad_j C dlambda.
+        const Vec3<R> corr = e * ((len - rest) * (R(1) / len) * (R(1) / (wsum + alpha)));
+        const Vec3<R> ci = corr * wi, cj = corr * wj;
+        xi = xi + ci;
+        xj = xj - cj;
+        di = di + ci;
+        dj = dj - cj;
+        e = xj - xi;
+        len = length3(e);
+      }
+      // max_stretch stays a hard limit: Provot's projection, as in solve_length_constraints.
+      const R limit = c.stretch_limit * rest;
+      if (len > limit) {
+        const Vec3<R> corr = e * ((len - limit) * (R(1) / len));
+        const R inv_wsum = R(1) / wsum;
+        const Vec3<R> ci = corr * (wi * inv_wsum), cj = corr * (wj * inv_wsum);
+        xi = xi + ci;
+        xj = xj - cj;
+        di = di + ci;
+        dj = dj - cj;
+      }
+      s.pos[i] = Vec4<R>(xi, wi);
+      s.pos[j] = Vec4<R>(xj, wj);
+      s.disp[i] = Vec4<R>(di, R(0));
+      s.disp[j] = Vec4<R>(dj, R(0));
+    }
+}
+
+template <class R> void solve_distance_constraints(const ClothModel& m, const Constants<R>& c, State<R>& s) {
+  for (int colour = 0; colour < NUM_COLOURS; ++colour) solve_distance_constraint_colour(m, c, colour, s);
+}
+
 template <class R> void compute_normals(const ClothModel& m, State<R>& s) {
   for (int y = 0; y < m.nh; ++y)
     for (int x = 0; x < m.nw; ++x) {
@@ -219,7 +283,10 @@ template <class R> void compute_normals(const ClothModel& m, State<R>& s) {
   template void collide_objects<R>(const Constants<R>&, State<R>&);                                   \
   template void solve_length_constraint_colour<R>(const ClothModel&, const Constants<R>&, int, State<R>&); \
   template void solve_length_constraints<R>(const ClothModel&, const Constants<R>&, State<R>&);       \
-  template void compute_normals<R>(const ClothModel&, State<R>&);
+  template void compute_normals<R>(const ClothModel&, State<R>&);                                     \
+  template void predict<R>(const Constants<R>&, State<R>&);                                           \
+  template void solve_distance_constraint_colour<R>(const ClothModel&, const Constants<R>&, int, State<R>&); \
+  template void solve_distance_constraints<R>(const ClothModel&, const Constants<R>&, State<R>&);
 CLOTHSIM_INSTANTIATE(float)
 CLOTHSIM_INSTANTIATE(double)
 

@@ -34,9 +34,12 @@ template <class R> struct Constants {
   R contact_distance;   // 2 * thickness
   R inv_cell;           // 1 / cell edge (cell edge = 2 * thickness)
   R steps;              // simulation_steps
+  // xpbd: the time-scaled compliance alpha~ = 1 / (ks' dt^2) of a spring's distance constraint.
+  R alpha, alpha_bending;
   bool enabled[3];      // by SpringType
   int iterations;
   bool self_collision;
+  bool xpbd;            // simulation.solver
   std::vector<SphereC<R>> spheres;
   std::vector<PlaneC<R>> planes;
   bool has_colliders() const { return !spheres.empty() || !planes.empty(); }
@@ -86,8 +89,23 @@ template <class R> void advance(const ClothModel& m, const Constants<R>& c, Stat
 // One constraint colour (used by the per-pass check that dispatches colours one by one).
 template <class R> void solve_length_constraint_colour(const ClothModel& m, const Constants<R>& c, int colour, State<R>& s);
 
-// One substep: the pass list of DESIGN.md §1.
+// The xpbd solver (docs/model.md): predict moves every free particle by its damped
+// displacement and gravity alone (the springs are constraints now); solve_distance_constraints
+// then solves each spring's XPBD distance constraint once, colour by colour, each followed by
+// the max_stretch limit in the same spring's visit.
+template <class R> void predict(const Constants<R>& c, State<R>& s);
+template <class R> void solve_distance_constraint_colour(const ClothModel& m, const Constants<R>& c, int colour, State<R>& s);
+template <class R> void solve_distance_constraints(const ClothModel& m, const Constants<R>& c, State<R>& s);
+
+// One substep: the pass list of DESIGN.md §1, or of docs/model.md for xpbd.
 template <class R> void step(const ClothModel& m, const Constants<R>& c, State<R>& s) {
+  if (c.xpbd) {
+    predict(c, s);
+    if (c.self_collision) collide_self(c, s);
+    collide_objects(c, s);
+    solve_distance_constraints(m, c, s);
+    return;
+  }
   advance(m, c, s);
   if (c.self_collision) collide_self(c, s);
   collide_objects(c, s);

@@ -81,6 +81,12 @@ Scene parse_scene(const std::string& text, const std::string& source, const std:
   Scene s;
   s.source = source;
   read_params(j, source, "", s);  // the rows of scene_table.cpp
+  // Special case, across two rows: XPBD's compliance is exact for one solve per substep (its
+  // Lagrange multipliers start at zero every substep); a stiffer xpbd cloth needs more substeps.
+  if (s.simulation.solver == Solver::Xpbd && s.simulation.constraint_iterations != 1)
+    throw SceneError(fmt::format("{}: simulation.constraint_iterations: expected 1 with solver \"xpbd\" (one solve "
+                                 "per substep; raise simulation_steps for a stiffer cloth), got {}",
+                                 source, s.simulation.constraint_iterations));
   return s;
 }
 

@@ -12,6 +12,9 @@
 namespace clothsim {
 
 enum class Orientation { Horizontal = 0, Vertical = 1 };
+// classic: the CS184 mass-spring model (explicit springs, Verlet, Provot); xpbd: the springs
+// as XPBD distance constraints with small steps (docs/model.md).
+enum class Solver { Classic = 0, Xpbd = 1 };
 
 // Field names are the JSON keys (one name end to end: file, code, GUI).
 struct ClothParams {
@@ -55,6 +58,7 @@ struct SimulationParams {
   double max_stretch = 0.1;
   int constraint_iterations = 1;
   bool self_collision = true;
+  Solver solver = Solver::Classic;
 
   bool operator==(const SimulationParams&) const = default;
 };

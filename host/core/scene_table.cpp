@@ -33,6 +33,8 @@ const char* normalise_normal(glm::dvec3& n) {
   return nullptr;
 }
 
+const char* const kSolvers[] = {"classic", "xpbd"};
+
 const ParamInfo kFriction{.key = "friction", .required = true, .lo = 0, .hi = 1,
                           .expected = "a friction coefficient in [0, 1]",
                           .meaning = "0: a touching mass keeps its motion, 1: it sticks"};
@@ -120,6 +122,11 @@ const Param<SimulationParams> kSimulation[] = {
                                                    .widget = drag(0.1f, 0, 100, "%d")}),
     row<&SimulationParams::self_collision>({.key = "self_collision", .meaning = "hashed-grid self-collision on/off",
                                             .widget = kCheckbox}),
+    row<&SimulationParams::solver>({.key = "solver",
+                                    .meaning = "classic: mass-spring + Verlet + Provot (CS184); xpbd: springs as XPBD "
+                                               "distance constraints, one iteration per substep (docs/model.md)",
+                                    .widget = {.style = Widget::Drag},  // a combo box
+                                    .choices = kSolvers}),
 };
 
 }  // namespace

@@ -61,6 +61,8 @@ layout::StepParams make_step_params(const Constants<float>& c, const ClothModel&
   p.contact_distance = c.contact_distance;
   p.inv_cell = c.inv_cell;
   p.steps = c.steps;
+  p.alpha = c.alpha;
+  p.alpha_bending = c.alpha_bending;
   p.width = uint32_t(m.nw);
   p.height = uint32_t(m.nh);
   p.count = uint32_t(m.count());
@@ -91,19 +93,17 @@ GpuSimulator::GpuSimulator(const Scene& scene, const ClothModel& model, const st
       fill_cells_(load_pass(dir, "fill_cells")),
       sort_cells_(load_pass(dir, "sort_cells")),
       resolve_self_contacts_(load_pass(dir, "resolve_self_contacts")),
+      predict_(load_pass(dir, "predict")),
+      solve_distance_constraints_(load_pass(dir, "solve_distance_constraints")),
       scan_(dir, hash_table_size(uint32_t(model.count()))),
       guard_(scene, model, dir) {
   advance_collide_objects_ = advance_.location("u_collide_objects");
   resolve_collide_objects_ = resolve_self_contacts_.location("u_collide_objects");
-  colour_location_ = solve_length_constraints_.location("u_colour");
-  // The colour spans depend only on the grid: set once, picked per dispatch by u_colour.
-  std::vector<glm::ivec4> spans;
-  for (int colour = 0; colour < NUM_COLOURS; ++colour) {
-    const ColourSpan span = colour_span(colour, model.nw, model.nh);
-    spans.push_back(span_uniform(span.x));
-    spans.push_back(span_uniform(span.y));
-  }
-  solve_length_constraints_.set(solve_length_constraints_.location("u_spans[0]"), spans.data(), GLsizei(spans.size()));
+  predict_collide_objects_ = predict_.location("u_collide_objects");
+  length_colour_ = solve_length_constraints_.location("u_colour");
+  distance_colour_ = solve_distance_constraints_.location("u_colour");
+  set_colour_spans(solve_length_constraints_);
+  set_colour_spans(solve_distance_constraints_);
   const size_t n = model.count();
   std::vector<layout::RestLengths> rest(n);
   for (size_t i = 0; i < n; ++i) {
@@ -127,6 +127,17 @@ GpuSimulator::GpuSimulator(const Scene& scene, const ClothModel& model, const st
   normals_.allocate(n * sizeof(glm::vec4));
   upload(initial_state<float>(model));  // attaches the views
   compute_normals();
+}
+
+void GpuSimulator::set_colour_spans(gl::Program& program) {
+  // The colour spans depend only on the grid: set once, picked per dispatch by u_colour.
+  std::vector<glm::ivec4> spans;
+  for (int colour = 0; colour < NUM_COLOURS; ++colour) {
+    const ColourSpan span = colour_span(colour, model_.nw, model_.nh);
+    spans.push_back(span_uniform(span.x));
+    spans.push_back(span_uniform(span.y));
+  }
+  program.set(program.location("u_spans[0]"), spans.data(), GLsizei(spans.size()));
 }
 
 void GpuSimulator::barrier(GLbitfield bits) {

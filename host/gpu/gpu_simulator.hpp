@@ -37,6 +37,11 @@ class GpuSimulator {
   void solve_length_constraint_colour(int colour);
   void solve_length_constraints();
   void compute_normals();
+  // The xpbd solver's passes (docs/model.md): step() runs predict (+ collide_objects when
+  // self-collision is off), [collide_self], solve_distance_constraints.
+  void predict(bool then_collide_objects = false);
+  void solve_distance_constraint_colour(int colour);
+  void solve_distance_constraints();
 
   // The stages of collide_self, named like their shaders and CPU twins (spatial_hash.hpp).
   void count_cells();
@@ -89,7 +94,10 @@ class GpuSimulator {
   void upload_colliders();  // from constants_
   void barrier(GLbitfield bits);  // glMemoryBarrier, counted
   void dispatch(gl::Program& program);
-  void dispatch_colour(int colour);  // one colour of the length constraint, bindings already set
+  // One colour of a constraint pass (solve_length_constraints or solve_distance_constraints),
+  // bindings already set.
+  void dispatch_colour(gl::Program& program, GLint colour_location, int colour);
+  void set_colour_spans(gl::Program& program);
 
   const ClothModel& model_;
   const std::filesystem::path dir_;
@@ -112,8 +120,10 @@ class GpuSimulator {
   bool in_step_ = false;
   gl::Program accumulate_forces_, integrate_, advance_, collide_objects_, solve_length_constraints_, compute_normals_;
   gl::Program count_cells_, fill_cells_, sort_cells_, resolve_self_contacts_;
+  gl::Program predict_, solve_distance_constraints_;
   // Uniforms set before a dispatch, looked up once.
-  GLint advance_collide_objects_ = -1, resolve_collide_objects_ = -1, colour_location_ = -1;
+  GLint advance_collide_objects_ = -1, resolve_collide_objects_ = -1, predict_collide_objects_ = -1;
+  GLint length_colour_ = -1, distance_colour_ = -1;
   PrefixScan scan_;
   GpuDivergenceGuard guard_;
 };

@@ -107,17 +107,16 @@ void GpuSimulator::collide_objects() {
 
 void GpuSimulator::solve_length_constraint_colour(int colour) {
   bind_for_pass();
-  dispatch_colour(colour);
+  dispatch_colour(solve_length_constraints_, length_colour_, colour);
 }
 
-void GpuSimulator::dispatch_colour(int colour) {
+void GpuSimulator::dispatch_colour(gl::Program& program, GLint colour_location, int colour) {
   const ColourSpan span = colour_span(colour, model_.nw, model_.nh);
   if (span.x.count == 0 || span.y.count == 0) return;  // a grid too narrow for this colour
-  solve_length_constraints_.set(colour_location_, colour);  // the spans were set once
-  solve_length_constraints_.dispatch(gl::workgroups_for(span.x.count, GRID_WORKGROUP_X),
-                                     gl::workgroups_for(span.y.count, GRID_WORKGROUP_Y));
+  program.set(colour_location, colour);  // the spans were set once
+  program.dispatch(gl::workgroups_for(span.x.count, GRID_WORKGROUP_X), gl::workgroups_for(span.y.count, GRID_WORKGROUP_Y));
   ++counters_.dispatches;
-  // The next colour (or the next substep's advance) reads these positions.
+  // The next colour (or the next substep's first pass) reads these positions and displacements.
   barrier(kComputeReads);
 }
 
@@ -126,8 +125,28 @@ void GpuSimulator::solve_length_constraints() {
   for (int it = 0; it < constants_.iterations; ++it)
     for (int colour = 0; colour < NUM_COLOURS; ++colour) {
       if (!constants_.enabled[int(kDirections[colour / 2].type)]) continue;
-      dispatch_colour(colour);
+      dispatch_colour(solve_length_constraints_, length_colour_, colour);
     }
+}
+
+void GpuSimulator::predict(bool then_collide_objects) {
+  predict_.set(predict_collide_objects_, int(then_collide_objects));
+  dispatch(predict_);
+  // The hash passes or the constraints read the predicted positions and displacements next.
+  barrier(kComputeReads);
+}
+
+void GpuSimulator::solve_distance_constraint_colour(int colour) {
+  bind_for_pass();
+  dispatch_colour(solve_distance_constraints_, distance_colour_, colour);
+}
+
+void GpuSimulator::solve_distance_constraints() {
+  bind_for_pass();
+  for (int colour = 0; colour < NUM_COLOURS; ++colour) {
+    if (!constants_.enabled[int(kDirections[colour / 2].type)]) continue;
+    dispatch_colour(solve_distance_constraints_, distance_colour_, colour);
+  }
 }
 
 void GpuSimulator::compute_normals() {
@@ -142,9 +161,16 @@ void GpuSimulator::step() {
   const bool colliders = constants_.has_colliders();
   bind_all();  // once: nothing in the step binds over these (swap_positions rebinds its two)
   in_step_ = true;
-  advance(colliders && !constants_.self_collision);
-  if (constants_.self_collision) collide_self(colliders);
-  solve_length_constraints();
+  const bool objects_first = colliders && !constants_.self_collision;
+  if (constants_.xpbd) {
+    predict(objects_first);
+    if (constants_.self_collision) collide_self(colliders);
+    solve_distance_constraints();
+  } else {
+    advance(objects_first);
+    if (constants_.self_collision) collide_self(colliders);
+    solve_length_constraints();
+  }
   in_step_ = false;
 }
 
@@ -159,7 +185,9 @@ int GpuSimulator::dispatches_per_substep() const {
   for (int colour = 0; colour < NUM_COLOURS; ++colour)
     enabled_colours += constants_.enabled[int(kDirections[colour / 2].type)];
   const int self = constants_.self_collision ? 4 + scan_.dispatches(table_size_) : 0;  // count, fill, sort, collide + scan
-  return 1 + self + constants_.iterations * enabled_colours;
+  // xpbd: predict, then one solve of every enabled colour; classic: advance, then the colours
+  // once per constraint iteration.
+  return 1 + self + (constants_.xpbd ? 1 : constants_.iterations) * enabled_colours;
 }
 
 }  // namespace clothsim

@@ -7,7 +7,7 @@ import json
 import math
 import sys
 
-FIELDS = {"backend": str, "size": int, "particles": int, "self_collision": bool, "substeps_per_frame": int,
+FIELDS = {"backend": str, "solver": str, "size": int, "particles": int, "self_collision": bool, "substeps_per_frame": int,
           "ms_per_frame": float, "particle_substeps_per_s": float, "pass_ms": dict, "pass_timing": str,
           "dispatches_per_frame": (int, float), "barriers_per_frame": (int, float), "gpu_memory_bytes": int}
 # The passes each backend's step runs (the GPU fuses collide_objects into advance or
@@ -16,6 +16,8 @@ PASSES = {"gpu": {"advance", "count_cells", "scan_cells", "fill_cells", "sort_ce
                   "solve_length_constraints", "compute_normals", "check_divergence"},
           "cpu": {"advance", "collide_self", "collide_objects", "solve_length_constraints", "compute_normals",
                   "check_divergence"}}
+# xpbd predicts instead of advancing and solves distance constraints instead of Provot's.
+XPBD_NAMES = {"advance": "predict", "solve_length_constraints": "solve_distance_constraints"}
 
 
 def main():
@@ -33,11 +35,17 @@ def main():
             else:
                 assert isinstance(value, kind), f"{key} has type {type(value).__name__}"
         assert r["particles"] == r["size"] ** 2
-        assert set(r["pass_ms"]) == PASSES[r["backend"]], sorted(r["pass_ms"])
+        assert r["solver"] in ("classic", "xpbd"), r["solver"]
+        passes = PASSES[r["backend"]]
+        if r["solver"] == "xpbd":
+            passes = {XPBD_NAMES.get(p, p) for p in passes}
+        assert set(r["pass_ms"]) == passes, sorted(r["pass_ms"])
         if r["backend"] == "gpu":
             assert r["dispatches_per_frame"] > 0 and r["barriers_per_frame"] > 0 and r["gpu_memory_bytes"] > 0
             # one dispatch per pass, per colour: at least advance + 12 colours per substep
             assert r["dispatches_per_frame"] >= 13 * r["substeps_per_frame"]
+    solvers = {r["solver"] for r in results}
+    assert solvers == {"classic", "xpbd"}, f"solvers {solvers}: the tiny bench runs both"
     print(f"{sys.argv[1]}: {len(results)} results, all fields present")
 
 
