@@ -58,6 +58,7 @@ using uint = uint32_t;
 #define TEXTURE_PLANES 12            // RGBA32F, PLANE_TEXELS per PlaneCollider
 #define TEXTURE_CELL_START 13        // R32UI, one texel per hash bucket (+1 sentinel)
 #define TEXTURE_SORTED_POSITIONS 14  // RGBA32F, one texel per hash entry
+#define TEXTURE_TETHERS 15           // RGBA32F, one texel per particle: x its nearest pin (-1: none), y the rest distance
 // RGBA32F texels per struct in the views above: member m of element k is texel
 // k * STRUCT_TEXELS + m (tests/test_gpu_layout.cpp checks these against the std430 strides).
 #define REST_TEXELS 2
@@ -134,6 +135,7 @@ struct MeshVertex {
   F(float, steps)              /* simulation_steps, as a float */                          \
   F(float, alpha)              /* xpbd: 1 / (ks dt^2), structural and shearing springs */  \
   F(float, alpha_bending)      /* xpbd: 1 / (0.2 ks dt^2) */                               \
+  F(float, tether_limit)       /* xpbd: 1 + tether_stretch */                              \
   F(uint, width)               /* grid points along a row */                               \
   F(uint, height)              /* rows */                                                  \
   F(uint, count)               /* particles, width * height */                             \

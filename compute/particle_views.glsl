@@ -15,6 +15,7 @@ layout(binding = TEXTURE_SPHERES) uniform samplerBuffer spheres_view;
 layout(binding = TEXTURE_PLANES) uniform samplerBuffer planes_view;
 layout(binding = TEXTURE_CELL_START) uniform usamplerBuffer cell_start_view;
 layout(binding = TEXTURE_SORTED_POSITIONS) uniform samplerBuffer sorted_positions_view;
+layout(binding = TEXTURE_TETHERS) uniform samplerBuffer tethers_view;
 
 vec4 position_of(int i) { return texelFetch(positions_view, i); }
 vec4 displacement_of(int i) { return texelFetch(displacement_view, i); }

@@ -146,7 +146,7 @@ BenchResult BenchRunner::run_cpu(const Scene& scene) {
   r.ms_per_frame = ms_since(t) / frames_;
   const auto& c = cpu.constants();
   auto& s = cpu.state();
-  PassList passes{{{c.xpbd ? "predict" : "advance", [&] { c.xpbd ? predict(c, s) : advance(model, c, s); }},
+  PassList passes{{{c.xpbd ? "predict" : "advance", [&] { c.xpbd ? predict(model, c, s) : advance(model, c, s); }},
                    {"collide_self", [&] { if (c.self_collision) collide_self(c, s); }},
                    {"collide_objects", [&] { collide_objects(c, s); }},
                    {c.xpbd ? "solve_distance_constraints" : "solve_length_constraints",

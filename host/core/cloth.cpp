@@ -65,6 +65,7 @@ ClothModel build_cloth(const ClothParams& p) {
       m.triangles.push_back({a, c, b});
       m.triangles.push_back({b, c, d});
     }
+  build_tethers(m);
   return m;
 }
 

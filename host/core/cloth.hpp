@@ -24,6 +24,10 @@ struct ClothModel {
   std::vector<std::array<double, NUM_DIRECTIONS>> rest;  // rest length per stored direction (0 = no spring)
   std::vector<std::array<uint32_t, 3>> triangles;         // (A, C, B), (B, C, D) per cell
   std::vector<glm::dvec2> uv;
+  // xpbd's long-range attachments (tethers.cpp): each particle's nearest pin along the rest
+  // cloth (-1: none, for pins and for a cloth without pins) and the distance to it.
+  std::vector<int32_t> tether_pin;
+  std::vector<double> tether_rest;
 
   int count() const { return nw * nh; }
   int index(int x, int y) const { return y * nw + x; }
@@ -35,6 +39,7 @@ struct ClothModel {
 };
 
 ClothModel build_cloth(const ClothParams& params);
+void build_tethers(ClothModel& model);  // called by build_cloth
 
 // Mass of every particle: width * height * density / particle count (kg).
 double particle_mass(const ClothParams& params);

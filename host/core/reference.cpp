@@ -25,6 +25,7 @@ template <class R> Constants<R> make_constants(const Scene& scene, const ClothMo
   c.alpha = R(1.0 / (cp.ks * dt * dt));
   c.alpha_bending = R(1.0 / (0.2 * cp.ks * dt * dt));
   c.xpbd = sp.solver == Solver::Xpbd;
+  c.tether_limit = R(1.0 + sp.tether_stretch);
   c.enabled[0] = cp.enable_structural;
   c.enabled[1] = cp.enable_shearing;
   c.enabled[2] = cp.enable_bending;
@@ -189,13 +190,24 @@ template <class R> void solve_length_constraints(const ClothModel& m, const Cons
     for (int colour = 0; colour < NUM_COLOURS; ++colour) solve_length_constraint_colour(m, c, colour, s);
 }
 
-template <class R> void predict(const Constants<R>& c, State<R>& s) {
+template <class R> void predict(const ClothModel& m, const Constants<R>& c, State<R>& s) {
   for (size_t i = 0; i < s.pos.size(); ++i) {
     const R w = s.pos[i].w;
-    if (w == R(0)) continue;  // pinned: keeps its position
-    const Vec3<R> d = Vec3<R>(s.disp[i]) * c.keep_velocity + c.gravity * c.dt2;
+    if (w == R(0)) continue;  // pinned: keeps its position (and is never written: tethers read it)
+    Vec3<R> d = Vec3<R>(s.disp[i]) * c.keep_velocity + c.gravity * c.dt2;
+    Vec3<R> x = Vec3<R>(s.pos[i]) + d;
+    if (const int pin = m.tether_pin[i]; pin >= 0) {
+      const Vec3<R> e = x - Vec3<R>(s.pos[pin]);
+      const R len = length3(e);
+      const R limit = c.tether_limit * R(m.tether_rest[i]);
+      if (len > limit) {
+        const Vec3<R> corr = e * ((limit - len) * (R(1) / len));
+        x = x + corr;
+        d = d + corr;
+      }
+    }
     s.disp[i] = Vec4<R>(d, R(0));
-    s.pos[i] = Vec4<R>(Vec3<R>(s.pos[i]) + d, w);
+    s.pos[i] = Vec4<R>(x, w);
   }
 }
 
@@ -284,7 +296,7 @@ template <class R> void compute_normals(const ClothModel& m, State<R>& s) {
   template void solve_length_constraint_colour<R>(const ClothModel&, const Constants<R>&, int, State<R>&); \
   template void solve_length_constraints<R>(const ClothModel&, const Constants<R>&, State<R>&);       \
   template void compute_normals<R>(const ClothModel&, State<R>&);                                     \
-  template void predict<R>(const Constants<R>&, State<R>&);                                           \
+  template void predict<R>(const ClothModel&, const Constants<R>&, State<R>&);                                           \
   template void solve_distance_constraint_colour<R>(const ClothModel&, const Constants<R>&, int, State<R>&); \
   template void solve_distance_constraints<R>(const ClothModel&, const Constants<R>&, State<R>&);
 CLOTHSIM_INSTANTIATE(float)

@@ -36,6 +36,7 @@ template <class R> struct Constants {
   R steps;              // simulation_steps
   // xpbd: the time-scaled compliance alpha~ = 1 / (ks' dt^2) of a spring's distance constraint.
   R alpha, alpha_bending;
+  R tether_limit;       // xpbd: 1 + tether_stretch
   bool enabled[3];      // by SpringType
   int iterations;
   bool self_collision;
@@ -90,17 +91,19 @@ template <class R> void advance(const ClothModel& m, const Constants<R>& c, Stat
 template <class R> void solve_length_constraint_colour(const ClothModel& m, const Constants<R>& c, int colour, State<R>& s);
 
 // The xpbd solver (docs/model.md): predict moves every free particle by its damped
-// displacement and gravity alone (the springs are constraints now); solve_distance_constraints
+// displacement and gravity alone (the springs are constraints now), then pulls it back onto
+// its tether to the nearest pin if it got further than (1 + tether_stretch) times the rest
+// distance (long-range attachments, tethers.cpp); solve_distance_constraints
 // then solves each spring's XPBD distance constraint once, colour by colour, each followed by
 // the max_stretch limit in the same spring's visit.
-template <class R> void predict(const Constants<R>& c, State<R>& s);
+template <class R> void predict(const ClothModel& m, const Constants<R>& c, State<R>& s);
 template <class R> void solve_distance_constraint_colour(const ClothModel& m, const Constants<R>& c, int colour, State<R>& s);
 template <class R> void solve_distance_constraints(const ClothModel& m, const Constants<R>& c, State<R>& s);
 
 // One substep: the pass list of DESIGN.md §1, or of docs/model.md for xpbd.
 template <class R> void step(const ClothModel& m, const Constants<R>& c, State<R>& s) {
   if (c.xpbd) {
-    predict(c, s);
+    predict(m, c, s);
     if (c.self_collision) collide_self(c, s);
     collide_objects(c, s);
     solve_distance_constraints(m, c, s);

@@ -59,6 +59,7 @@ struct SimulationParams {
   int constraint_iterations = 1;
   bool self_collision = true;
   Solver solver = Solver::Classic;
+  double tether_stretch = 0.01;  // xpbd only: long-range attachments to the nearest pin
 
   bool operator==(const SimulationParams&) const = default;
 };

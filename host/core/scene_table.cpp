@@ -127,6 +127,11 @@ const Param<SimulationParams> kSimulation[] = {
                                                "distance constraints, one iteration per substep (docs/model.md)",
                                     .widget = {.style = Widget::Drag},  // a combo box
                                     .choices = kSolvers}),
+    row<&SimulationParams::tether_stretch>(
+        {.key = "tether_stretch", .lo = 0, .expected = "a stretch ratio >= 0",
+         .meaning = "xpbd only: no mass gets further than (1 + tether_stretch) · its rest distance from its nearest "
+                    "pin (long-range attachments); a large value turns them off",
+         .widget = drag(0.001f, 0.0, 10.0, "%.3f")}),
 };
 
 }  // namespace

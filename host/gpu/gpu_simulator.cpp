@@ -63,6 +63,7 @@ layout::StepParams make_step_params(const Constants<float>& c, const ClothModel&
   p.steps = c.steps;
   p.alpha = c.alpha;
   p.alpha_bending = c.alpha_bending;
+  p.tether_limit = c.tether_limit;
   p.width = uint32_t(m.nw);
   p.height = uint32_t(m.nh);
   p.count = uint32_t(m.count());
@@ -113,6 +114,10 @@ GpuSimulator::GpuSimulator(const Scene& scene, const ClothModel& model, const st
     rest[i].far = glm::vec4(float(r[4]), float(r[5]), 0.f, 0.f);
   }
   gl::upload_vector(rest_, rest, GL_STATIC_DRAW);
+  std::vector<glm::vec4> tethers(n);
+  for (size_t i = 0; i < n; ++i)  // a pin index is exact in a float: at most 2^24 particles
+    tethers[i] = glm::vec4(float(model.tether_pin[i]), float(model.tether_rest[i]), 0.f, 0.f);
+  gl::upload_vector(tethers_, tethers, GL_STATIC_DRAW);
   upload_colliders();
   step_params_.allocate(sizeof(params_), &params_, GL_DYNAMIC_DRAW);
   forces_.allocate(n * sizeof(glm::vec4));
@@ -154,7 +159,7 @@ size_t GpuSimulator::memory_bytes() const {
   size_t total = 0;
   for (const gl::Buffer* b : {&positions_, &displacement_, &forces_, &normals_, &rest_, &spheres_, &planes_,
                               &step_params_, &positions_out_, &cell_count_, &cell_start_, &cell_entries_,
-                              &sorted_positions_})
+                              &sorted_positions_, &tethers_})
     total += b->size();
   return total + scan_.memory_bytes() + guard_.memory_bytes();
 }
@@ -179,6 +184,7 @@ void GpuSimulator::bind_all() const {
   planes_view_.bind(TEXTURE_PLANES);
   cell_start_view_.bind(TEXTURE_CELL_START);
   sorted_positions_view_.bind(TEXTURE_SORTED_POSITIONS);
+  tethers_view_.bind(TEXTURE_TETHERS);
 }
 
 void GpuSimulator::attach_views() {
@@ -190,6 +196,7 @@ void GpuSimulator::attach_views() {
   planes_view_.attach(planes_, GL_RGBA32F);
   cell_start_view_.attach(cell_start_, GL_R32UI);
   sorted_positions_view_.attach(sorted_positions_, GL_RGBA32F);
+  tethers_view_.attach(tethers_, GL_RGBA32F);
 }
 
 GpuBackend::GpuBackend(std::unique_ptr<gl::GlContext> context, const Scene& scene, const ClothModel& model,

@@ -110,12 +110,12 @@ class GpuSimulator {
   gl::Buffer positions_{"positions"}, displacement_{"displacement"}, forces_{"forces"}, normals_{"normals"};
   gl::Buffer rest_{"rest lengths"}, spheres_{"spheres"}, planes_{"planes"}, step_params_{"step params"};
   gl::Buffer positions_out_{"positions out"}, cell_count_{"cell count"}, cell_start_{"cell start"};
-  gl::Buffer cell_entries_{"cell entries"}, sorted_positions_{"sorted positions"};
+  gl::Buffer cell_entries_{"cell entries"}, sorted_positions_{"sorted positions"}, tethers_{"tethers"};
   // Read-only views of the buffers above (compute/particle_views.glsl).
   gl::BufferTexture positions_view_{"positions view"}, positions_out_view_{"positions out view"};
   gl::BufferTexture displacement_view_{"displacement view"}, rest_view_{"rest view"}, spheres_view_{"spheres view"};
   gl::BufferTexture planes_view_{"planes view"}, cell_start_view_{"cell start view"};
-  gl::BufferTexture sorted_positions_view_{"sorted positions view"};
+  gl::BufferTexture sorted_positions_view_{"sorted positions view"}, tethers_view_{"tethers view"};
   uint32_t table_size_ = 0;
   bool in_step_ = false;
   gl::Program accumulate_forces_, integrate_, advance_, collide_objects_, solve_length_constraints_, compute_normals_;

@@ -143,12 +143,12 @@ std::vector<PassError> check_passes(const Scene& scene, const ClothModel& model,
         [&] { gpu.solve_length_constraints(); }, both);
   // The xpbd solver's passes, whichever solver the scene uses (validate checks every pass).
   const State<float> classic_done = s;
-  check("predict", [&] { predict(c, s); }, [&] { gpu.predict(); }, both);
+  check("predict", [&] { predict(model, c, s); }, [&] { gpu.predict(); }, both);
   if (colliders) {
     s = classic_done;
     check("predict (+ collide_objects)",
           [&] {
-            predict(c, s);
+            predict(model, c, s);
             collide_objects(c, s);
           },
           [&] { gpu.predict(true); }, both);
