@@ -58,6 +58,7 @@ class PanelRows final : public ParamVisitor {
       changed |= ImGui::Combo(p.key, &v, p.choices.data(), int(p.choices.size()));
   }
   void grid_indices(const ParamInfo&, GridIndices&, int, int) override {}  // pins: edit the file
+  void keyframes(const ParamInfo&, Keyframes&) override {}  // motions: edit the file
   void object(const ParamInfo& p, ObjectRef& o) override {
     if (!o.present()) return;
     ImGui::PushID(p.key);  // the same key may appear in two objects
