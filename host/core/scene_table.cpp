@@ -44,7 +44,9 @@ const Param<Scene> kScene[] = {
     row<&Scene::planes>({.key = "plane", .meaning = "Plane colliders, applied after the spheres: one object or an array",
                          .one_or_many = true}),
     row<&Scene::simulation>({.key = "simulation", .meaning = "Time stepping and global forces"}),
-    row<&Scene::wind>({.key = "wind", .meaning = "Air: aerodynamic drag and lift on every triangle of the cloth"}),
+    // The checkbox: the viewer can add or remove the wind live.
+    row<&Scene::wind>({.key = "wind", .meaning = "Air: aerodynamic drag and lift on every triangle of the cloth",
+                       .widget = kCheckbox}),
 };
 
 const Param<MotionParams> kMotion[] = {
@@ -149,7 +151,8 @@ const Param<WindParams> kWind[] = {
     row<&WindParams::air_density>({.key = "air_density", .lo = 0, .hi = 1e4, .expected = "a density in [0, 1e4] (kg/m^3)",
                                    .unit = "kg/m^3", .meaning = "ρ (sea-level air: 1.225)",
                                    .widget = drag(0.01f, 0.0, 100.0, "%.3f")}),
-    row<&WindParams::gust>({.key = "gust", .meaning = "deterministic gusts travelling with the wind"}),
+    row<&WindParams::gust>({.key = "gust", .meaning = "deterministic gusts travelling with the wind",
+                            .widget = kCheckbox}),
 };
 
 const Param<GustParams> kGust[] = {
