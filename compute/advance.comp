@@ -8,10 +8,12 @@
 #include "common.glsl"
 #include "forces.glsl"
 #include "collide_objects.glsl"
+#include "pinned_motion.glsl"
 
 layout(local_size_x = GRID_WORKGROUP_X, local_size_y = GRID_WORKGROUP_Y) in;
 layout(std430, binding = BINDING_DISPLACEMENT) writeonly buffer Displacements { vec4 disp[]; };
 layout(std430, binding = BINDING_POSITIONS_OUT) writeonly buffer Output { vec4 pos_out[]; };
+layout(std430, binding = BINDING_WIND_FORCES) readonly buffer WindForces { vec4 wind_force[]; };
 
 uniform bool u_collide_objects;
 
@@ -21,11 +23,15 @@ void main() {
   int i = grid_index(c);
   vec4 p = position_of(i);
   if (p.w == 0.0) {
-    pos_out[i] = p;
+    vec4 next;
+    vec3 moved;
+    if (move_pinned(i, p, next, moved)) disp[i] = vec4(moved, 0.0);
+    pos_out[i] = next;
     return;
   }
   vec3 x = p.xyz;
-  vec3 f = spring_force(c, i, x);
+  precise vec3 f = spring_force(c, i, x);
+  if (params.wind_enabled != 0u) f = f + wind_force[i].xyz;  // compute_wind_forces ran before
   precise vec3 a = f * p.w;
   precise vec3 d = displacement_of(i).xyz * params.keep_velocity + a * params.dt2;
   precise vec3 next = x + d;

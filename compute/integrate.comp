@@ -3,6 +3,7 @@
 // The step runs advance, which fuses this with the forces; this pass stays for the pass checks.
 #include "layout.glsl"
 #include "common.glsl"
+#include "pinned_motion.glsl"
 
 layout(local_size_x = WORKGROUP_SIZE) in;
 layout(std430, binding = BINDING_POSITIONS) buffer Positions { vec4 pos[]; };
@@ -13,7 +14,15 @@ void main() {
   uint i = gl_GlobalInvocationID.x;
   if (i >= particle_count()) return;
   vec4 p = pos[i];
-  if (p.w == 0.0) return;
+  if (p.w == 0.0) {
+    vec4 next;
+    vec3 moved;
+    if (move_pinned(int(i), p, next, moved)) {
+      disp[i] = vec4(moved, 0.0);
+      pos[i] = next;
+    }
+    return;
+  }
   precise vec3 a = force[i].xyz * p.w;
   // d' = (1 - damping) d + a dt^2, x' = x + d' (DESIGN.md §1 step 2 with d = x - x_prev).
   precise vec3 d = disp[i].xyz * params.keep_velocity + a * params.dt2;

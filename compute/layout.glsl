@@ -48,6 +48,10 @@ using uint = uint32_t;
 #define BINDING_DRAW_POSITIONS 17  // vec4: xyz position of each vertex drawn
 #define BINDING_DRAW_NORMALS 18    // vec4: xyz unit normal of each vertex drawn
 #define BINDING_DRAW_EXTRAS 19     // MeshVertex extras (uv, tangent) of collider meshes
+// Moving cloth and air (compute/wind.glsl, compute/pinned_motion.glsl); one dummy element each
+// when the scene has no wind / no pinned_motion. 21 is the layout test's probe.
+#define BINDING_WIND_FORCES 22  // vec4: xyz aerodynamic force of this substep (compute_wind_forces)
+#define BINDING_ANCHORS 23      // vec4: xyz start position, w 1 for a pinned mass (pinned_motion)
 // Texture units of the read-only texel views (GL_TEXTURE_BUFFER) of the simulation's buffers,
 // through which the hot passes read (compute/particle_views.glsl says why). Above the units
 // the renderer uses (0-2: fabric, height map, sky), so drawing a frame leaves them bound.
@@ -62,8 +66,8 @@ using uint = uint32_t;
 // RGBA32F texels per struct in the views above: member m of element k is texel
 // k * STRUCT_TEXELS + m (tests/test_gpu_layout.cpp checks these against the std430 strides).
 #define REST_TEXELS 2
-#define SPHERE_TEXELS 2
-#define PLANE_TEXELS 2
+#define SPHERE_TEXELS 3
+#define PLANE_TEXELS 3
 // Uniform block binding.
 #define BINDING_STEP_PARAMS 0
 
@@ -100,14 +104,18 @@ struct RestLengths {
   vec4 far;   // rest length of DIR_RIGHT2, DIR_DOWN2, unused, unused
 };
 
+// `motion`: the collider's displacement over this substep (keyframed motion, set by the host
+// every substep); exactly 0 for a static collider, which then takes the classic formulas.
 struct SphereCollider {
-  vec4 origin_radius;  // xyz origin, w radius
+  vec4 origin_radius;  // xyz origin (at the substep's end), w radius
   vec4 keep;           // x = 1 - friction
+  vec4 motion;         // xyz m over this substep
 };
 
 struct PlaneCollider {
-  vec4 point;   // xyz a point on the plane
+  vec4 point;   // xyz a point on the plane (at the substep's end)
   vec4 normal;  // xyz unit normal, w = 1 - friction
+  vec4 motion;  // xyz m over this substep
 };
 
 // Per-vertex extras of a collider mesh (the cloth derives them from its grid instead).
@@ -125,6 +133,14 @@ struct MeshVertex {
 #define STEP_PARAMS_FIELDS(F)                                                               \
   F(vec3, gravity)             /* m/s^2 */                                                 \
   F(float, mass)               /* kg, of one particle */                                   \
+  F(vec3, wind_velocity)       /* m/s, of the air (WindC in host/core/reference.hpp) */    \
+  F(float, wind_drag)          /* -rho C_d / 12 */                                         \
+  F(vec3, gust_velocity)       /* m/s, strength * wind_velocity */                         \
+  F(float, wind_lift)          /* -rho C_l / 12 */                                         \
+  F(vec3, wind_direction)      /* unit wind_velocity (gusts travel along it) */            \
+  F(float, gust_phase)         /* fract(t / period) at the substep's start */              \
+  F(vec3, pin_offset)          /* m, pinned_motion at the substep's end */                 \
+  F(float, wind_inv_3dt)       /* 1/s, 1 / (3 dt) */                                       \
   F(float, ks)                 /* N/m, structural and shearing springs */                  \
   F(float, ks_bending)         /* N/m, 0.2 ks */                                           \
   F(float, keep_velocity)      /* 1 - damping / 100 */                                     \
@@ -144,7 +160,11 @@ struct MeshVertex {
   F(uint, shearing_enabled)    /* 1 = the shearing springs do */                           \
   F(uint, bending_enabled)     /* 1 = the bending springs do */                            \
   F(uint, sphere_count)        /* SphereCollider entries in use */                         \
-  F(uint, plane_count)         /* PlaneCollider entries in use */
+  F(uint, plane_count)         /* PlaneCollider entries in use */                          \
+  F(float, gust_inv_length3)   /* 1/m, 1 / (3 gust length) */                              \
+  F(uint, wind_enabled)        /* 1 = compute_wind_forces runs and advance adds its force */ \
+  F(uint, gust_enabled)        /* 1 = the wind has gusts */                                \
+  F(uint, pins_moving)         /* 1 = pinned masses follow pinned_motion */
 #define STEP_PARAMS_DECLARE(type, name) type name;
 // std140 rounds the block's size up to 16 bytes; alignas makes sizeof agree.
 STRUCT_ALIGN16 StepParams { STEP_PARAMS_FIELDS(STEP_PARAMS_DECLARE) };

@@ -1,30 +1,55 @@
-// Reads positions and displacements (through the views) and the colliders; writes positions
-// and displacements in place. One invocation per particle: the xpbd solver's first pass
-// (docs/model.md), damped Verlet under gravity alone, the springs being constraints solved
-// after it, then the particle's tether to its nearest pin; with u_collide_objects the collision objects follow in the same invocation. The
-// CPU twin is predict() in host/core/reference.cpp. Pinned particles (w = 0) stay.
+// Reads positions and displacements (through the views), the wind forces, the tethers and the
+// colliders; writes positions and displacements in place. One invocation per particle: the
+// xpbd solver's first pass (docs/model.md), damped Verlet under gravity (and the wind) alone,
+// the springs being constraints solved after it, then the particle's tether to its nearest pin;
+// with u_collide_objects the collision objects follow in the same invocation. The CPU twin is
+// predict() in host/core/reference.cpp. Pinned particles (w = 0) stay, or follow pinned_motion.
 #include "layout.glsl"
 #include "common.glsl"
 #include "collide_objects.glsl"
+#include "pinned_motion.glsl"
 
 layout(local_size_x = WORKGROUP_SIZE) in;
 layout(std430, binding = BINDING_POSITIONS) writeonly buffer Positions { vec4 pos[]; };
 layout(std430, binding = BINDING_DISPLACEMENT) writeonly buffer Displacements { vec4 disp[]; };
+layout(std430, binding = BINDING_WIND_FORCES) readonly buffer WindForces { vec4 wind_force[]; };
 
 uniform bool u_collide_objects;
+
+// Where pin k is at the end of this substep. A moving pin is read from its anchor, not from
+// the positions this pass is writing, so the tethers race with nothing.
+vec3 pin_position(int k) {
+  if (params.pins_moving != 0u) {
+    vec4 a = anchor[k];
+    if (a.w != 0.0) {
+      precise vec3 x = a.xyz + params.pin_offset;
+      return x;
+    }
+  }
+  return position_of(k).xyz;
+}
 
 void main() {
   int i = int(gl_GlobalInvocationID.x);
   if (i >= int(particle_count())) return;
   vec4 p = position_of(i);
-  if (p.w == 0.0) return;
-  precise vec3 d = displacement_of(i).xyz * params.keep_velocity + params.gravity * params.dt2;
+  if (p.w == 0.0) {
+    vec4 next;
+    vec3 moved;
+    if (move_pinned(i, p, next, moved)) {
+      pos[i] = next;
+      disp[i] = vec4(moved, 0.0);
+    }
+    return;
+  }
+  precise vec3 acc = params.gravity;
+  if (params.wind_enabled != 0u) acc = acc + wind_force[i].xyz * p.w;  // compute_wind_forces ran before
+  precise vec3 d = displacement_of(i).xyz * params.keep_velocity + acc * params.dt2;
   precise vec3 next = p.xyz + d;
-  // The tether to the nearest pin (long-range attachments, host/core/tethers.cpp). Pins are
-  // never written by this pass, so reading one races with nothing.
+  // The tether to the nearest pin (long-range attachments, host/core/tethers.cpp).
   vec4 tether = texelFetch(tethers_view, i);
   if (tether.x >= 0.0) {
-    precise vec3 e = next - position_of(int(tether.x)).xyz;
+    precise vec3 e = next - pin_position(int(tether.x));
     float len = length3(e);
     precise float limit = params.tether_limit * tether.y;
     if (len > limit) {

@@ -83,9 +83,11 @@ TEST_CASE("rest lengths and colliders have the C++ offsets and strides in std430
   check_storage_array(program, "Rest", BINDING_REST, sizeof(layout::RestLengths),
                       {MEMBER(RestLengths, "rest[0].", near), MEMBER(RestLengths, "rest[0].", far)});
   check_storage_array(program, "Spheres", BINDING_SPHERES, sizeof(layout::SphereCollider),
-                      {MEMBER(SphereCollider, "spheres[0].", origin_radius), MEMBER(SphereCollider, "spheres[0].", keep)});
+                      {MEMBER(SphereCollider, "spheres[0].", origin_radius), MEMBER(SphereCollider, "spheres[0].", keep),
+                       MEMBER(SphereCollider, "spheres[0].", motion)});
   check_storage_array(program, "Planes", BINDING_PLANES, sizeof(layout::PlaneCollider),
-                      {MEMBER(PlaneCollider, "planes[0].", point), MEMBER(PlaneCollider, "planes[0].", normal)});
+                      {MEMBER(PlaneCollider, "planes[0].", point), MEMBER(PlaneCollider, "planes[0].", normal),
+                       MEMBER(PlaneCollider, "planes[0].", motion)});
   CHECK_NO_GL_ERRORS();
 }
 
@@ -123,6 +125,8 @@ TEST_CASE("the texel views step through each struct by its std430 stride", "[gpu
   CHECK(resource_property(program, GL_BUFFER_VARIABLE, "planes[0].point", GL_TOP_LEVEL_ARRAY_STRIDE) ==
         PLANE_TEXELS * 16);
   CHECK(resource_property(program, GL_BUFFER_VARIABLE, "planes[0].normal", GL_OFFSET) == 16);
+  CHECK(resource_property(program, GL_BUFFER_VARIABLE, "spheres[0].motion", GL_OFFSET) == 32);
+  CHECK(resource_property(program, GL_BUFFER_VARIABLE, "planes[0].motion", GL_OFFSET) == 32);
   CHECK_NO_GL_ERRORS();
 }
 
@@ -161,9 +165,11 @@ TEST_CASE("values written through the C++ layout structs are the values the shad
 #undef STEP_PARAMS_FILL
   const auto rest = two_of<layout::RestLengths>({{-1, -2, -3, -4}, {-5, -6, -7, -8}}, {{1, 2, 3, 4}, {5, 6, 7, 8}});
   const auto spheres =
-      two_of<layout::SphereCollider>({{-1, -1, -1, -1}, {-1, -1, -1, -1}}, {{11, 12, 13, 14}, {15, 16, 17, 18}});
+      two_of<layout::SphereCollider>({{-1, -1, -1, -1}, {-1, -1, -1, -1}, {-1, -1, -1, -1}},
+                                     {{11, 12, 13, 14}, {15, 16, 17, 18}, {19, 20, 21, 22}});
   const auto planes =
-      two_of<layout::PlaneCollider>({{-1, -1, -1, -1}, {-1, -1, -1, -1}}, {{21, 22, 23, 24}, {25, 26, 27, 28}});
+      two_of<layout::PlaneCollider>({{-1, -1, -1, -1}, {-1, -1, -1, -1}, {-1, -1, -1, -1}},
+                                    {{21, 22, 23, 24}, {25, 26, 27, 28}, {29, 30, 31, 32}});
 
   gl::Buffer params_buffer("probe params"), rest_buffer("probe rest"), spheres_buffer("probe spheres"),
       planes_buffer("probe planes"), floats("probe floats"), uints("probe uints");
@@ -171,7 +177,7 @@ TEST_CASE("values written through the C++ layout structs are the values the shad
   gl::upload_vector(rest_buffer, rest);
   gl::upload_vector(spheres_buffer, spheres);
   gl::upload_vector(planes_buffer, planes);
-  floats.allocate(6 * sizeof(glm::vec4));
+  floats.allocate(8 * sizeof(glm::vec4));
   uints.allocate(want_uints.size() * sizeof(uint32_t));
   params_buffer.bind_base(GL_UNIFORM_BUFFER, BINDING_STEP_PARAMS);
   rest_buffer.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_REST);
@@ -184,7 +190,8 @@ TEST_CASE("values written through the C++ layout structs are the values the shad
   glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
 
   const std::vector<glm::vec4> want_floats = {rest[1].near,    rest[1].far,     spheres[1].origin_radius,
-                                              spheres[1].keep, planes[1].point, planes[1].normal};
+                                              spheres[1].keep, planes[1].point, planes[1].normal,
+                                              spheres[1].motion, planes[1].motion};
   const auto got_floats = gl::download_vector<glm::vec4>(floats);
   const auto got_uints = gl::download_vector<uint32_t>(uints);
   REQUIRE(got_floats.size() == want_floats.size());

@@ -46,14 +46,17 @@ template <class R> class CpuBackend final : public Backend {
  public:
   CpuBackend(const Scene& scene, const ClothModel& model)
       : model_(model), constants_(make_constants<R>(scene, model)), state_(initial_state<R>(model)),
-        limits_(divergence_limits(scene, model)), frame_seconds_(1.0 / scene.simulation.frames_per_sec) {
+        limits_(divergence_limits(scene, model)), dt_(scene.dt()) {
     kept_.pos = state_.pos;
   }
 
   void step_frame() override {
-    for (int k = 0; k < int(constants_.steps); ++k) step(model_, constants_, state_);
+    for (int k = 0; k < int(constants_.steps); ++k) {
+      prepare_substep();
+      step(model_, constants_, state_);
+      time_ += dt_;  // per substep, exactly as GpuSimulator::step counts it
+    }
     compute_normals(model_, state_);
-    time_ += frame_seconds_;
     const FrameCheck check{++frame_, check_divergence(state_.pos)};
     keep_last_good(check.bounds, limits_, check.frame, state_.pos, kept_);
     if (checks_.size() >= 2) checks_.erase(checks_.begin());
@@ -85,6 +88,11 @@ template <class R> class CpuBackend final : public Backend {
 
   State<R>& state() { return state_; }
   const Constants<R>& constants() const { return constants_; }
+  // The moving parts (colliders, pins, gusts) set for the substep that starts now.
+  void prepare_substep() {
+    if (constants_.timeline.moves()) set_substep_time(constants_, time_);
+  }
+  double time() const { return time_; }
 
  private:
   const ClothModel& model_;
@@ -92,7 +100,7 @@ template <class R> class CpuBackend final : public Backend {
   State<R> state_;
   DivergenceLimits limits_;
   KeptFrame<R> kept_;
-  double frame_seconds_;
+  double dt_;
   int frame_ = 0;
   double time_ = 0;  // simulated seconds
   std::vector<FrameCheck> checks_;  // not yet taken

@@ -58,6 +58,9 @@ class Doc final : public ParamVisitor {
   void grid_indices(const ParamInfo& p, GridIndices&, int, int) override {
     add(p, "[[x, y], ...]", "[]", "inside the grid");
   }
+  void keyframes(const ParamInfo& p, Keyframes&) override {
+    add(p, "[[t, [x, y, z]], ...]", "", "t ≥ 0 ascending, finite");
+  }
   void object(const ParamInfo& p, ObjectRef& o) override {
     add(p, "object", o.optional() ? "absent" : "", "");
     Doc sub(out_, prefix_ + p.key + ".");
@@ -99,6 +102,7 @@ class Sections final : public ParamVisitor {
   void vec3(const ParamInfo&, glm::dvec3&) override {}
   void choice(const ParamInfo&, int&) override {}
   void grid_indices(const ParamInfo&, GridIndices&, int, int) override {}
+  void keyframes(const ParamInfo&, Keyframes&) override {}
 
  private:
   void head(const ParamInfo& p, const char* presence) {

@@ -79,6 +79,8 @@ class ListRef {
 };
 
 using GridIndices = std::vector<std::array<int, 2>>;
+struct Keyframe;
+using Keyframes = std::vector<Keyframe>;
 
 // One method per kind of value a row can hold.
 class ParamVisitor {
@@ -90,6 +92,8 @@ class ParamVisitor {
   virtual void choice(const ParamInfo&, int& index) = 0;  // index into info.choices
   // Special case: `pinned`, a list of [x, y] indices into the owner's nw x nh grid.
   virtual void grid_indices(const ParamInfo&, GridIndices&, int nw, int nh) = 0;
+  // `[[t, [x, y, z]], ...]`: times finite, >= 0 and strictly ascending, values finite.
+  virtual void keyframes(const ParamInfo&, Keyframes&) = 0;
   virtual void object(const ParamInfo&, ObjectRef&) = 0;
   virtual void list(const ParamInfo&, ListRef&) = 0;
  protected:
@@ -172,6 +176,7 @@ void visit_member(typename member_traits<decltype(M)>::owner& s, const ParamInfo
   else if constexpr (std::is_same_v<T, bool>) v.boolean(info, m);
   else if constexpr (std::is_same_v<T, glm::dvec3>) v.vec3(info, m);
   else if constexpr (std::is_same_v<T, GridIndices>) v.grid_indices(info, m, s.num_width_points, s.num_height_points);
+  else if constexpr (std::is_same_v<T, Keyframes>) v.keyframes(info, m);  // before the list of objects
   else if constexpr (std::is_enum_v<T>) {
     // An enum is a JSON string when the row names its values, else its integer (orientation 0/1).
     int i = int(m);

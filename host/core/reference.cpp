@@ -2,17 +2,84 @@
 
 #include <numeric>
 
+#include "motion.hpp"
+
 namespace clothsim {
+
+bool Timeline::moves() const {
+  for (auto& k : spheres) if (k) return true;
+  for (auto& k : planes) if (k) return true;
+  return pins.has_value() || gust_period > 0;
+}
+
+namespace {
+
+template <class R> void make_wind(const Scene& scene, Constants<R>& c) {
+  if (!scene.wind) return;
+  const WindParams& w = *scene.wind;
+  WindC<R>& wc = c.wind;
+  wc.enabled = true;
+  wc.velocity = Vec3<R>(w.velocity);
+  wc.drag = R(-w.air_density * w.drag_coefficient / 12.0);
+  wc.lift = R(-w.air_density * w.lift_coefficient / 12.0);
+  wc.inv_3dt = R(1.0 / (3.0 * scene.dt()));
+  const double speed = std::sqrt(w.velocity.x * w.velocity.x + w.velocity.y * w.velocity.y + w.velocity.z * w.velocity.z);
+  // Gusts need a direction to travel along: none in still air.
+  if (w.gust && w.gust->strength > 0 && speed > 0) {
+    wc.gusts = true;
+    wc.gust_velocity = Vec3<R>(w.velocity * w.gust->strength);
+    wc.direction = Vec3<R>(w.velocity / speed);
+    wc.gust_inv_length3 = R(1.0 / (3.0 * w.gust->length));
+    c.timeline.gust_period = w.gust->period;
+  }
+}
+
+template <class R> void make_timeline(const Scene& scene, const ClothModel& model, Constants<R>& c) {
+  Timeline& tl = c.timeline;
+  tl.dt = scene.dt();
+  for (auto& s : scene.spheres) tl.spheres.push_back(s.motion ? std::optional(s.motion->keyframes) : std::nullopt);
+  for (auto& p : scene.planes) tl.planes.push_back(p.motion ? std::optional(p.motion->keyframes) : std::nullopt);
+  if (scene.cloth.pinned_motion) {
+    tl.pins = scene.cloth.pinned_motion->keyframes;
+    for (int i = 0; i < model.count(); ++i)
+      c.anchors.push_back(Vec4<R>(Vec3<R>(model.initial[i]), model.pinned[i] ? R(1) : R(0)));
+  }
+  // Where the colliders are at t = 0, at rest: set_substep_time takes over from the first substep.
+  for (size_t k = 0; k < tl.spheres.size(); ++k)
+    if (tl.spheres[k]) c.spheres[k].origin = Vec3<R>(interpolate(*tl.spheres[k], 0.0));
+  for (size_t k = 0; k < tl.planes.size(); ++k)
+    if (tl.planes[k]) c.planes[k].point = Vec3<R>(interpolate(*tl.planes[k], 0.0));
+}
+
+}  // namespace
+
+template <class R> void set_substep_time(Constants<R>& c, double t) {
+  const Timeline& tl = c.timeline;
+  const double t1 = t + tl.dt;
+  for (size_t k = 0; k < tl.spheres.size(); ++k)
+    if (tl.spheres[k]) {
+      const glm::dvec3 at = interpolate(*tl.spheres[k], t1);
+      c.spheres[k].origin = Vec3<R>(at);
+      c.spheres[k].motion = Vec3<R>(at - interpolate(*tl.spheres[k], t));  // rounded once, from double
+    }
+  for (size_t k = 0; k < tl.planes.size(); ++k)
+    if (tl.planes[k]) {
+      const glm::dvec3 at = interpolate(*tl.planes[k], t1);
+      c.planes[k].point = Vec3<R>(at);
+      c.planes[k].motion = Vec3<R>(at - interpolate(*tl.planes[k], t));
+    }
+  if (tl.pins) c.pin_offset = Vec3<R>(interpolate(*tl.pins, t1));
+  if (tl.gust_period > 0) c.wind.gust_phase = R(gust_phase(t, tl.gust_period));
+}
 
 template <class R> Constants<R> make_constants(const Scene& scene, const ClothModel& model) {
   const ClothParams& cp = scene.cloth;
   const SimulationParams& sp = scene.simulation;
-  Constants<R> c;
+  Constants<R> c{};
   const double dt = scene.dt();
   // Derived values are formed in double and rounded once, identically for the GPU upload.
   c.gravity = Vec3<R>(sp.gravity);
   c.mass = R(particle_mass(cp));  // from the scene, so a live density edit takes effect
-  (void)model;
   c.ks = R(cp.ks);
   c.ks_bending = R(0.2 * cp.ks);
   c.keep_velocity = R(1.0 - cp.damping / 100.0);
@@ -33,6 +100,8 @@ template <class R> Constants<R> make_constants(const Scene& scene, const ClothMo
   c.self_collision = sp.self_collision;
   for (auto& s : scene.spheres) c.spheres.push_back({Vec3<R>(s.origin), R(s.radius), R(1.0 - s.friction)});
   for (auto& p : scene.planes) c.planes.push_back({Vec3<R>(p.point), Vec3<R>(p.normal), R(1.0 - p.friction)});
+  make_wind(scene, c);
+  make_timeline(scene, model, c);
   return c;
 }
 
@@ -59,6 +128,64 @@ inline double rest_of(const ClothModel& m, int x, int y, const SpringRef& ref, i
   return ref.sign > 0 ? m.rest[m.index(x, y)][ref.direction] : m.rest[*j][ref.direction];
 }
 
+// The parabolic stand-in for sin(2 pi phase) of the gusts: + - * and floor only, which both
+// backends round alike (a shader's sin does not match std::sin); within 0.056 of the sine.
+template <class R> R gust_wave(R phase) {
+  const R w = phase - std::floor(phase);
+  const R h = w < R(0.5) ? w : w - R(0.5);
+  const R bump = R(16) * h * (R(0.5) - h);
+  return w < R(0.5) ? bump : -bump;
+}
+
+// The share of one corner in the aerodynamic force on triangle (a, b, c), from its corners'
+// positions and displacements (docs/model.md, "Wind"; wind.glsl is the twin).
+template <class R>
+Vec3<R> triangle_wind_share(const WindC<R>& w, const Vec3<R>& pa, const Vec3<R>& pb, const Vec3<R>& pc,
+                            const Vec3<R>& da, const Vec3<R>& db, const Vec3<R>& dc) {
+  const Vec3<R> u = pb - pa, v = pc - pa;
+  const Vec3<R> twice_area_n(u.y * v.z - u.z * v.y, u.z * v.x - u.x * v.z, u.x * v.y - u.y * v.x);
+  const R len = length3(twice_area_n);
+  if (!(len > R(0))) return Vec3<R>(0);  // a degenerate triangle catches no air
+  const Vec3<R> n = twice_area_n * (R(1) / len);
+  Vec3<R> air = w.velocity;
+  if (w.gusts) {
+    const R phase = w.gust_phase - dot3((pa + pb) + pc, w.direction) * w.gust_inv_length3;
+    air = w.velocity + w.gust_velocity * gust_wave(phase);
+  }
+  const Vec3<R> rel = ((da + db) + dc) * w.inv_3dt - air;  // the triangle's velocity relative to the air
+  const R speed = length3(rel);
+  if (!(speed > R(0))) return Vec3<R>(0);
+  const R normal_speed = dot3(rel, n);
+  // Drag -1/2 rho C_d A |v| (v.n) n; lift -1/2 rho C_l A (v.n) (|v| n - (v.n)/|v| v), where
+  // |v| n - (v.n)/|v| v is |v| times the part of n across v.
+  const Vec3<R> drag = n * (w.drag * len * speed * normal_speed);
+  const Vec3<R> across = n * speed - rel * (normal_speed * (R(1) / speed));
+  return drag + across * (w.lift * len * normal_speed);
+}
+
+template <class R> void compute_wind_forces(const ClothModel& m, const Constants<R>& c, State<R>& s) {
+  s.wind.resize(s.pos.size());
+  for (int y = 0; y < m.nh; ++y)
+    for (int x = 0; x < m.nw; ++x) {
+      const int self = m.index(x, y);
+      Vec3<R> f(0);
+      // The up to six triangles around (x, y), in compute_normals' order: cells (x-1..x, y-1..y),
+      // each split into (A, C, B) and (B, C, D).
+      for (int cy = y - 1; cy <= y; ++cy)
+        for (int cx = x - 1; cx <= x; ++cx) {
+          if (cx < 0 || cy < 0 || cx + 1 >= m.nw || cy + 1 >= m.nh) continue;
+          const int a = m.index(cx, cy), b = m.index(cx + 1, cy), cc = m.index(cx, cy + 1), dd = m.index(cx + 1, cy + 1);
+          const int tris[2][3] = {{a, cc, b}, {b, cc, dd}};
+          for (auto& t : tris) {
+            if (t[0] != self && t[1] != self && t[2] != self) continue;
+            f += triangle_wind_share(c.wind, Vec3<R>(s.pos[t[0]]), Vec3<R>(s.pos[t[1]]), Vec3<R>(s.pos[t[2]]),
+                                     Vec3<R>(s.disp[t[0]]), Vec3<R>(s.disp[t[1]]), Vec3<R>(s.disp[t[2]]));
+          }
+        }
+      s.wind[self] = Vec4<R>(f, R(0));
+    }
+}
+
 template <class R> void accumulate_forces(const ClothModel& m, const Constants<R>& c, State<R>& s) {
   for (int y = 0; y < m.nh; ++y)
     for (int x = 0; x < m.nw; ++x) {
@@ -79,6 +206,7 @@ template <class R> void accumulate_forces(const ClothModel& m, const Constants<R
           f += e * (k * (len - rest) * inv);
         }
       }
+      if (c.wind.enabled) f += Vec3<R>(s.wind[i]);  // after the springs, as advance.comp adds it
       s.force[i] = Vec4<R>(f, R(0));
     }
 }
@@ -86,7 +214,17 @@ template <class R> void accumulate_forces(const ClothModel& m, const Constants<R
 template <class R> void integrate(const Constants<R>& c, State<R>& s) {
   for (size_t i = 0; i < s.pos.size(); ++i) {
     const R w = s.pos[i].w;
-    if (w == R(0)) continue;  // pinned: keeps its position
+    if (w == R(0)) {
+      // Pinned: keeps its position, or with pinned_motion goes to its anchor + the offset at
+      // the substep's end, and its displacement is that move (its velocity, for the springs'
+      // constraints, friction and the wind).
+      if (c.moving_pins() && c.anchors[i].w != R(0)) {
+        const Vec3<R> next = Vec3<R>(c.anchors[i]) + c.pin_offset;
+        s.disp[i] = Vec4<R>(next - Vec3<R>(s.pos[i]), R(0));
+        s.pos[i] = Vec4<R>(next, w);
+      }
+      continue;
+    }
     const Vec3<R> a = Vec3<R>(s.force[i]) * w;
     // x' = x + (1 - damping) (x - x_prev) + a dt^2, with d = x - x_prev kept as its own vector.
     const Vec3<R> d = Vec3<R>(s.disp[i]) * c.keep_velocity + a * c.dt2;
@@ -132,6 +270,27 @@ template <class R> void blend_to(const Vec3<R>& t_minus_x, R keep, Vec3<R>& x, V
   d = next_d;
 }
 
+// The blend relative to a collider that moved by m this substep: in its frame the previous
+// position is x_prev + m, so x' = (x_prev + m) + keep (t - (x_prev + m)), i.e.
+// d' = keep ((t - x) + d - m) + m: friction damps the motion relative to the collider's.
+template <class R> void blend_to_moving(const Vec3<R>& t_minus_x, R keep, const Vec3<R>& m, Vec3<R>& x, Vec3<R>& d) {
+  const Vec3<R> next_d = ((t_minus_x + d) - m) * keep + m;
+  x = x + (next_d - d);
+  d = next_d;
+}
+
+// A moving sphere: e = x - o at the substep's end, e_prev = x_prev - o_prev = e - d + m at its
+// start. A mass normally enters by at most its motion relative to the sphere per substep and
+// is pushed out along e. Should that motion carry it past the centre (e . e_prev < 0, a
+// sphere moving by more than its radius in one substep), pushing along e would pass it
+// through: it is put back on the side it came from, along e_prev (no tunnelling at any speed).
+template <class R> Vec3<R> moving_sphere_push(const Vec3<R>& e, R dist, R r, const Vec3<R>& d, const Vec3<R>& m) {
+  const Vec3<R> e_prev = (e - d) + m;
+  const R prev_dist = length3(e_prev);
+  if (dot3(e, e_prev) < R(0) && prev_dist > R(0)) return e_prev * (r * (R(1) / prev_dist)) - e;
+  return dist > R(0) ? e * ((r - dist) * (R(1) / dist)) : Vec3<R>(0, r, 0);
+}
+
 template <class R> void collide_objects(const Constants<R>& c, State<R>& s) {
   for (size_t i = 0; i < s.pos.size(); ++i) {
     if (s.pos[i].w == R(0)) continue;
@@ -140,12 +299,26 @@ template <class R> void collide_objects(const Constants<R>& c, State<R>& s) {
       const Vec3<R> e = x - sp.origin;
       const R dist = length3(e);
       if (dist > sp.radius) continue;
+      if (sp.motion != Vec3<R>(0)) {
+        blend_to_moving(moving_sphere_push(e, dist, sp.radius, d, sp.motion), sp.keep, sp.motion, x, d);
+        continue;
+      }
       // t - x = e (r / |e| - 1): the push out to the surface. A mass exactly at the centre
       // has no outward direction: it goes up.
       const Vec3<R> t_minus_x = dist > R(0) ? e * ((sp.radius - dist) * (R(1) / dist)) : Vec3<R>(0, sp.radius, 0);
       blend_to(t_minus_x, sp.keep, x, d);
     }
     for (const PlaneC<R>& pl : c.planes) {
+      if (pl.motion != Vec3<R>(0)) {
+        // The side test in the plane's frame: x_prev - p_prev = (x - p) - (d - m). It sees a
+        // plane that swept over a mass at any speed.
+        const R dist = dot3(x - pl.point, pl.normal);
+        const R dist_prev = dist - dot3(d - pl.motion, pl.normal);
+        if (dist * dist_prev > R(0)) continue;
+        const R side = dist_prev > R(0) ? R(1) : (dist_prev < R(0) ? R(-1) : R(0));
+        blend_to_moving(pl.normal * (R(1e-4) * side - dist), pl.keep, pl.motion, x, d);
+        continue;
+      }
       const R dist = dot3(x - pl.point, pl.normal);
       const R dist_prev = dist - dot3(d, pl.normal);  // (x_prev - p) . n
       if (dist * dist_prev > R(0)) continue;
@@ -191,13 +364,29 @@ template <class R> void solve_length_constraints(const ClothModel& m, const Cons
 }
 
 template <class R> void predict(const ClothModel& m, const Constants<R>& c, State<R>& s) {
+  // Where pin k is at the end of this substep; a moving one from its anchor (as on the GPU,
+  // where predict writes the pins while it reads them for the tethers).
+  auto pin_position = [&](int k) {
+    if (c.moving_pins() && c.anchors[k].w != R(0)) return Vec3<R>(Vec3<R>(c.anchors[k]) + c.pin_offset);
+    return Vec3<R>(s.pos[k]);
+  };
   for (size_t i = 0; i < s.pos.size(); ++i) {
     const R w = s.pos[i].w;
-    if (w == R(0)) continue;  // pinned: keeps its position (and is never written: tethers read it)
-    Vec3<R> d = Vec3<R>(s.disp[i]) * c.keep_velocity + c.gravity * c.dt2;
+    if (w == R(0)) {
+      // Pinned: keeps its position, or follows pinned_motion as in integrate.
+      if (c.moving_pins() && c.anchors[i].w != R(0)) {
+        const Vec3<R> next = Vec3<R>(c.anchors[i]) + c.pin_offset;
+        s.disp[i] = Vec4<R>(next - Vec3<R>(s.pos[i]), R(0));
+        s.pos[i] = Vec4<R>(next, w);
+      }
+      continue;
+    }
+    Vec3<R> acc = c.gravity;
+    if (c.wind.enabled) acc = acc + Vec3<R>(s.wind[i]) * w;  // compute_wind_forces ran before
+    Vec3<R> d = Vec3<R>(s.disp[i]) * c.keep_velocity + acc * c.dt2;
     Vec3<R> x = Vec3<R>(s.pos[i]) + d;
     if (const int pin = m.tether_pin[i]; pin >= 0) {
-      const Vec3<R> e = x - Vec3<R>(s.pos[pin]);
+      const Vec3<R> e = x - pin_position(pin);
       const R len = length3(e);
       const R limit = c.tether_limit * R(m.tether_rest[i]);
       if (len > limit) {
@@ -288,6 +477,8 @@ template <class R> void compute_normals(const ClothModel& m, State<R>& s) {
 #define CLOTHSIM_INSTANTIATE(R)                                                                         \
   template Constants<R> make_constants<R>(const Scene&, const ClothModel&);                           \
   template State<R> initial_state<R>(const ClothModel&);                                              \
+  template void set_substep_time<R>(Constants<R>&, double);                                           \
+  template void compute_wind_forces<R>(const ClothModel&, const Constants<R>&, State<R>&);            \
   template void accumulate_forces<R>(const ClothModel&, const Constants<R>&, State<R>&);              \
   template void integrate<R>(const Constants<R>&, State<R>&);                                         \
   template void collide_self<R>(const Constants<R>&, State<R>&);                                      \

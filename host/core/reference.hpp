@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cmath>
+#include <optional>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -23,8 +24,32 @@ template <class R> using Vec4 = glm::vec<4, R>;
 template <class R> R length3(const Vec3<R>& v) { return std::sqrt(v.x * v.x + v.y * v.y + v.z * v.z); }
 template <class R> R dot3(const Vec3<R>& a, const Vec3<R>& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
 
-template <class R> struct SphereC { Vec3<R> origin; R radius; R keep; };  // keep = 1 - friction
-template <class R> struct PlaneC { Vec3<R> point; Vec3<R> normal; R keep; };
+// keep = 1 - friction; motion = the collider's displacement over this substep (0: static, and
+// then exactly the classic formulas run).
+template <class R> struct SphereC { Vec3<R> origin; R radius; R keep; Vec3<R> motion{0}; };
+template <class R> struct PlaneC { Vec3<R> point; Vec3<R> normal; R keep; Vec3<R> motion{0}; };
+
+// The wind as the passes use it (docs/model.md, "Wind"). The factors fold the constants of
+// the formulas: drag = -rho C_d / 12 is -1/2 rho C_d, times 1/2 (the cross product of two
+// edges is twice the area), times 1/3 (each corner gathers a third); lift likewise.
+template <class R> struct WindC {
+  bool enabled = false;
+  bool gusts = false;
+  Vec3<R> velocity{0}, gust_velocity{0}, direction{0};  // gust_velocity = strength * velocity
+  R drag = 0, lift = 0;
+  R inv_3dt = 0;            // 1 / (3 dt): the mean of three displacements as a velocity
+  R gust_phase = 0;         // fract(t / period) at the substep's start
+  R gust_inv_length3 = 0;   // 1 / (3 length): the centroid's phase is dot(sum of corners, direction) times this
+};
+
+// What moves with time, in double: evaluated once per substep by set_substep_time.
+struct Timeline {
+  std::vector<std::optional<Keyframes>> spheres, planes;  // by collider, in file order
+  std::optional<Keyframes> pins;                          // offsets of the pinned masses
+  double gust_period = 0;                                 // 0: no gusts
+  double dt = 0;
+  bool moves() const;  // anything above is set
+};
 
 // Scene parameters converted once to R: the GPU uploads exactly Constants<float>.
 template <class R> struct Constants {
@@ -43,10 +68,23 @@ template <class R> struct Constants {
   bool xpbd;            // simulation.solver
   std::vector<SphereC<R>> spheres;
   std::vector<PlaneC<R>> planes;
+  WindC<R> wind;
+  // Moving pins: every pinned mass is at anchor + pin_offset at the end of each substep.
+  // anchors: per particle, xyz the start position, w 1 for a pinned mass; empty without pinned_motion.
+  std::vector<Vec4<R>> anchors;
+  Vec3<R> pin_offset{0};
+  Timeline timeline;
   bool has_colliders() const { return !spheres.empty() || !planes.empty(); }
+  bool moving_pins() const { return !anchors.empty(); }
 };
 
 template <class R> Constants<R> make_constants(const Scene& scene, const ClothModel& model);
+
+// The time-dependent constants of the substep from t to t + dt: the colliders where they are
+// at t + dt (when the collision passes run) with their motion over the substep, the pins'
+// offset at t + dt (advance moves them there), the gusts' phase at t (when the forces are
+// computed). A no-op for a scene in which nothing moves (!c.timeline.moves()).
+template <class R> void set_substep_time(Constants<R>& c, double t);
 
 // What changes during a run: positions (w = inverse mass, 0 = pinned), the displacement of
 // the last substep (d = x - x_prev, w unused), forces and normals, all vec4 like the GPU
@@ -55,6 +93,7 @@ template <class R> Constants<R> make_constants(const Scene& scene, const ClothMo
 // every substep (docs/model.md, "State"). Every change of a position is added to both.
 template <class R> struct State {
   std::vector<Vec4<R>> pos, disp, force, normal;
+  std::vector<Vec4<R>> wind;        // aerodynamic force per particle (compute_wind_forces); empty without wind
   SpatialHash hash;                 // self-collision scratch, sized once
   std::vector<Vec4<R>> pos_out;     // self-collision Jacobi output
 };
@@ -68,6 +107,8 @@ template <class R> void rescale_displacement(State<R>& s, double dt_ratio) {
 }
 
 // The passes, in step order.
+// With wind: the aerodynamic force of every particle's triangles, gathered (wind.glsl).
+template <class R> void compute_wind_forces(const ClothModel& m, const Constants<R>& c, State<R>& s);
 template <class R> void accumulate_forces(const ClothModel& m, const Constants<R>& c, State<R>& s);
 template <class R> void integrate(const Constants<R>& c, State<R>& s);
 // Builds the hash (count_cells, scan_cells, fill_cells, sort_cells in spatial_hash.hpp), then
@@ -102,6 +143,7 @@ template <class R> void solve_distance_constraints(const ClothModel& m, const Co
 
 // One substep: the pass list of DESIGN.md §1, or of docs/model.md for xpbd.
 template <class R> void step(const ClothModel& m, const Constants<R>& c, State<R>& s) {
+  if (c.wind.enabled) compute_wind_forces(m, c, s);  // advance or predict add them
   if (c.xpbd) {
     predict(m, c, s);
     if (c.self_collision) collide_self(c, s);

@@ -3,6 +3,7 @@
 
 #include <array>
 #include <filesystem>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -15,6 +16,24 @@ enum class Orientation { Horizontal = 0, Vertical = 1 };
 // classic: the CS184 mass-spring model (explicit springs, Verlet, Provot); xpbd: the springs
 // as XPBD distance constraints with small steps (docs/model.md).
 enum class Solver { Classic = 0, Xpbd = 1 };
+
+// One key of a keyframed motion: at `time` (simulated seconds) the value is `value`.
+struct Keyframe {
+  double time = 0;
+  glm::dvec3 value{0.0};
+
+  bool operator==(const Keyframe&) const = default;
+};
+// Times strictly ascending (the loader checks it), at least one key.
+using Keyframes = std::vector<Keyframe>;
+
+// `"motion": {"keyframes": [[t, [x, y, z]], ...]}`: linear between keys, held before the first
+// and after the last (motion.hpp evaluates it).
+struct MotionParams {
+  Keyframes keyframes;
+
+  bool operator==(const MotionParams&) const = default;
+};
 
 // Field names are the JSON keys (one name end to end: file, code, GUI).
 struct ClothParams {
@@ -31,6 +50,7 @@ struct ClothParams {
   double damping = 0.2;   // percent
   double density = 150;   // kg/m^2
   double ks = 5000;       // N/m
+  std::optional<MotionParams> pinned_motion;  // keys are offsets [dx, dy, dz] of every pinned mass
 
   bool operator==(const ClothParams&) const = default;
 };
@@ -39,6 +59,7 @@ struct SphereParams {
   glm::dvec3 origin{0.0};
   double radius = 0;
   double friction = 0;
+  std::optional<MotionParams> motion;  // keys are origins; replaces `origin` while present
 
   bool operator==(const SphereParams&) const = default;
 };
@@ -47,6 +68,7 @@ struct PlaneParams {
   glm::dvec3 point{0.0};
   glm::dvec3 normal{0, 1, 0};  // unit length after loading
   double friction = 0;
+  std::optional<MotionParams> motion;  // keys are points on the plane; replaces `point` while present
 
   bool operator==(const PlaneParams&) const = default;
 };
@@ -64,12 +86,34 @@ struct SimulationParams {
   bool operator==(const SimulationParams&) const = default;
 };
 
+// Deterministic gusts: the wind velocity at x is velocity * (1 + strength * wave(t/period -
+// (x . unit velocity)/length)), wave a parabolic stand-in for sin(2 pi phase) (docs/model.md).
+struct GustParams {
+  double strength = 0.5;  // fraction of the velocity
+  double period = 2;      // s
+  double length = 4;      // m, the gusts' wavelength along the wind
+
+  bool operator==(const GustParams&) const = default;
+};
+
+// Aerodynamic drag and lift on every triangle (docs/model.md, "Wind").
+struct WindParams {
+  glm::dvec3 velocity{0.0};     // m/s, of the air
+  double drag_coefficient = 1.2;  // along the triangle normal (a flat plate across the flow: about 1.2)
+  double lift_coefficient = 0.3;  // across the relative velocity
+  double air_density = 1.225;     // kg/m^3, sea-level air
+  std::optional<GustParams> gust;
+
+  bool operator==(const WindParams&) const = default;
+};
+
 struct Scene {
   std::string source;  // file name used in messages ("<built-in>" for the default scene)
   ClothParams cloth;
   std::vector<SphereParams> spheres;  // applied in file order
   std::vector<PlaneParams> planes;    // applied in file order
   SimulationParams simulation;
+  std::optional<WindParams> wind;     // absent: no air at all (the classic model)
 
   std::string name() const;  // file stem, for titles and output names
   double dt() const { return 1.0 / simulation.frames_per_sec / simulation.simulation_steps; }

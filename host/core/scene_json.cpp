@@ -139,6 +139,28 @@ class Reader final : public ParamVisitor {
       m.push_back({x, y});
     }
   }
+  void keyframes(const ParamInfo& info, Keyframes& m) override {
+    const char* expected = "a non-empty array of [t, [x, y, z]] keys";
+    const json* p = r_.get(info, expected);
+    if (!p) return;
+    const std::string kp0 = r_.key(info.key);
+    if (!p->is_array() || p->empty()) r_.fail(kp0, fmt::format("expected {}, got {}", expected, ObjectReader::describe(*p)));
+    m.clear();
+    for (size_t k = 0; k < p->size(); ++k) {
+      const json& e = (*p)[k];
+      const std::string kp = fmt::format("{}[{}]", kp0, k);
+      if (!e.is_array() || e.size() != 2 || !e[1].is_array() || e[1].size() != 3)
+        r_.fail(kp, "expected a key [t, [x, y, z]], got " + ObjectReader::describe(e));
+      Keyframe key;
+      key.time = r_.check_number(e[0], kp + "[0]", 0, HUGE_VAL, "a time >= 0 (seconds)");
+      if (!m.empty() && !(key.time > m.back().time))
+        r_.fail(kp + "[0]", fmt::format("expected keys in ascending time order, got t = {} after t = {}", key.time,
+                                        m.back().time));
+      for (int c = 0; c < 3; ++c)
+        key.value[c] = r_.check_number(e[1][c], fmt::format("{}[1][{}]", kp, c), -HUGE_VAL, HUGE_VAL, "a finite number");
+      m.push_back(key);
+    }
+  }
   void object(const ParamInfo& info, ObjectRef& o) override {
     const json* v = r_.get(info, fmt::format("the {} object", info.key));
     o.set_present(v != nullptr);
@@ -182,6 +204,11 @@ class Writer final : public ParamVisitor {
     json pins = json::array();
     for (auto& p : m) pins.push_back({p[0], p[1]});
     j_[info.key] = std::move(pins);
+  }
+  void keyframes(const ParamInfo& info, Keyframes& m) override {
+    json keys = json::array();
+    for (auto& k : m) keys.push_back({k.time, json::array({k.value.x, k.value.y, k.value.z})});
+    j_[info.key] = std::move(keys);
   }
   void object(const ParamInfo& info, ObjectRef& o) override {
     if (o.present()) j_[info.key] = write_object(o);

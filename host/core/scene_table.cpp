@@ -46,6 +46,15 @@ const Param<Scene> kScene[] = {
     row<&Scene::planes>({.key = "plane", .meaning = "Plane colliders, applied after the spheres: one object or an array",
                          .one_or_many = true}),
     row<&Scene::simulation>({.key = "simulation", .meaning = "Time stepping and global forces"}),
+    // The checkbox: the viewer can add or remove the wind live.
+    row<&Scene::wind>({.key = "wind", .meaning = "Air: aerodynamic drag and lift on every triangle of the cloth",
+                       .widget = kCheckbox}),
+};
+
+const Param<MotionParams> kMotion[] = {
+    row<&MotionParams::keyframes>({.key = "keyframes", .required = true, .unit = "s, m",
+                                   .meaning = "[t, [x, y, z]] keys: linear between them, held before the first "
+                                              "and after the last"}),
 };
 
 // num_width_points..orientation need a new cloth: the viewer shows them read-only (Reload).
@@ -87,6 +96,9 @@ const Param<ClothParams> kCloth[] = {
     row<&ClothParams::ks>({.key = "ks", .lo = 0, .expected = "a spring constant >= 0 (N/m)", .unit = "N/m",
                            .meaning = "spring constant; bending springs use 0.2 · ks",
                            .widget = drag(10.f, 0.0, 1e7, "%.0f")}),
+    row<&ClothParams::pinned_motion>({.key = "pinned_motion",
+                                      .meaning = "moves every pinned mass: keys are offsets [dx, dy, dz] from "
+                                                 "its start"}),
 };
 
 const Param<SphereParams> kSphere[] = {
@@ -94,6 +106,8 @@ const Param<SphereParams> kSphere[] = {
     row<&SphereParams::radius>({.key = "radius", .required = true, .lo = 1e-12, .expected = "a radius > 0 (metres)",
                                 .unit = "m", .meaning = "radius"}),
     row<&SphereParams::friction>(kFriction),
+    row<&SphereParams::motion>({.key = "motion", .meaning = "keyframed origin, in place of `origin`; friction "
+                                                            "acts relative to it"}),
 };
 
 const Param<PlaneParams> kPlane[] = {
@@ -102,6 +116,8 @@ const Param<PlaneParams> kPlane[] = {
                                .meaning = "non-zero, either sign; made unit length on loading",
                                .after_read = normalise_normal}),
     row<&PlaneParams::friction>(kFriction),
+    row<&PlaneParams::motion>({.key = "motion", .meaning = "keyframed point, in place of `point` (the plane "
+                                                           "translates); friction acts relative to it"}),
 };
 
 const Param<SimulationParams> kSimulation[] = {
@@ -134,6 +150,35 @@ const Param<SimulationParams> kSimulation[] = {
          .widget = drag(0.001f, 0.0, 10.0, "%.3f")}),
 };
 
+const Param<WindParams> kWind[] = {
+    row<&WindParams::velocity>({.key = "velocity", .unit = "m/s",
+                                .meaning = "of the air; [0, 0, 0] still leaves air resistance",
+                                .widget = drag(0.05f, 0, 0, "%.2f")}),
+    row<&WindParams::drag_coefficient>({.key = "drag_coefficient", .lo = 0, .hi = 100, .expected = "a coefficient in [0, 100]",
+                                        .meaning = "C_d: force along the triangle normal, ½ ρ C_d A |v| (v·n)",
+                                        .widget = drag(0.01f, 0.0, 100.0, "%.2f")}),
+    row<&WindParams::lift_coefficient>({.key = "lift_coefficient", .lo = 0, .hi = 100, .expected = "a coefficient in [0, 100]",
+                                        .meaning = "C_l: force across the relative velocity, ½ ρ C_l A |v| (v·n)",
+                                        .widget = drag(0.01f, 0.0, 100.0, "%.2f")}),
+    row<&WindParams::air_density>({.key = "air_density", .lo = 0, .hi = 1e4, .expected = "a density in [0, 1e4] (kg/m^3)",
+                                   .unit = "kg/m^3", .meaning = "ρ (sea-level air: 1.225)",
+                                   .widget = drag(0.01f, 0.0, 100.0, "%.3f")}),
+    row<&WindParams::gust>({.key = "gust", .meaning = "deterministic gusts travelling with the wind",
+                            .widget = kCheckbox}),
+};
+
+const Param<GustParams> kGust[] = {
+    row<&GustParams::strength>({.key = "strength", .lo = 0, .hi = 10, .expected = "a fraction in [0, 10]",
+                                .meaning = "the wind speed swings by ± this fraction of `velocity`",
+                                .widget = drag(0.01f, 0.0, 10.0, "%.2f")}),
+    row<&GustParams::period>({.key = "period", .lo = 1e-3, .hi = 1e6, .expected = "a period in [1e-3, 1e6] (seconds)",
+                              .unit = "s", .meaning = "time between two gusts at one place",
+                              .widget = drag(0.01f, 0.001, 1000.0, "%.2f")}),
+    row<&GustParams::length>({.key = "length", .lo = 1e-3, .hi = 1e6, .expected = "a length in [1e-3, 1e6] (metres)",
+                              .unit = "m", .meaning = "distance between two gusts along the wind",
+                              .widget = drag(0.01f, 0.001, 1000.0, "%.2f")}),
+};
+
 }  // namespace
 
 template <> std::span<const Param<Scene>> param_rows<Scene>() { return kScene; }
@@ -141,5 +186,8 @@ template <> std::span<const Param<ClothParams>> param_rows<ClothParams>() { retu
 template <> std::span<const Param<SphereParams>> param_rows<SphereParams>() { return kSphere; }
 template <> std::span<const Param<PlaneParams>> param_rows<PlaneParams>() { return kPlane; }
 template <> std::span<const Param<SimulationParams>> param_rows<SimulationParams>() { return kSimulation; }
+template <> std::span<const Param<MotionParams>> param_rows<MotionParams>() { return kMotion; }
+template <> std::span<const Param<WindParams>> param_rows<WindParams>() { return kWind; }
+template <> std::span<const Param<GustParams>> param_rows<GustParams>() { return kGust; }
 
 }  // namespace clothsim

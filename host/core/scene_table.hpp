@@ -16,6 +16,9 @@ template <> std::span<const Param<ClothParams>> param_rows<ClothParams>();
 template <> std::span<const Param<SphereParams>> param_rows<SphereParams>();
 template <> std::span<const Param<PlaneParams>> param_rows<PlaneParams>();
 template <> std::span<const Param<SimulationParams>> param_rows<SimulationParams>();
+template <> std::span<const Param<MotionParams>> param_rows<MotionParams>();
+template <> std::span<const Param<WindParams>> param_rows<WindParams>();
+template <> std::span<const Param<GustParams>> param_rows<GustParams>();
 
 // Reads the rows of `object` from `j`, the value at key path `path` ("" for the top level) of
 // the file `source`: strict (unknown keys, wrong types, values out of range are a SceneError

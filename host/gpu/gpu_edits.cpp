@@ -7,21 +7,51 @@ namespace clothsim {
 void GpuSimulator::upload_colliders() {
   auto v4 = [](const Vec3<float>& v, float w) { return glm::vec4(v.x, v.y, v.z, w); };
   std::vector<layout::SphereCollider> spheres;
-  for (auto& s : constants_.spheres) spheres.push_back({v4(s.origin, s.radius), {s.keep, 0.f, 0.f, 0.f}});
+  for (auto& s : constants_.spheres) spheres.push_back({v4(s.origin, s.radius), {s.keep, 0.f, 0.f, 0.f}, v4(s.motion, 0.f)});
   std::vector<layout::PlaneCollider> planes;
-  for (auto& p : constants_.planes) planes.push_back({v4(p.point, 0.f), v4(p.normal, p.keep)});
+  for (auto& p : constants_.planes) planes.push_back({v4(p.point, 0.f), v4(p.normal, p.keep), v4(p.motion, 0.f)});
   // A storage buffer may not be empty when bound: keep one dummy element for zero colliders.
   if (spheres.empty()) spheres.resize(1);
   if (planes.empty()) planes.resize(1);
-  gl::upload_vector(spheres_, spheres, GL_STATIC_DRAW);
-  gl::upload_vector(planes_, planes, GL_STATIC_DRAW);
+  const size_t sphere_bytes = spheres.size() * sizeof(spheres[0]), plane_bytes = planes.size() * sizeof(planes[0]);
+  if (spheres_.size() == sphere_bytes && planes_.size() == plane_bytes) {
+    // Moving colliders, every substep: rewrite in place (the views stay attached).
+    spheres_.upload(0, sphere_bytes, spheres.data());
+    planes_.upload(0, plane_bytes, planes.data());
+    return;
+  }
+  gl::upload_vector(spheres_, spheres, GL_DYNAMIC_DRAW);
+  gl::upload_vector(planes_, planes, GL_DYNAMIC_DRAW);
   spheres_view_.attach(spheres_, GL_RGBA32F);
   planes_view_.attach(planes_, GL_RGBA32F);
 }
 
+void GpuSimulator::upload_anchors() {
+  std::vector<glm::vec4> anchors(constants_.anchors.begin(), constants_.anchors.end());
+  if (anchors.empty()) anchors.resize(1);
+  gl::upload_vector(anchors_, anchors, GL_STATIC_DRAW);
+}
+
+void GpuSimulator::apply_substep_time() {
+  set_substep_time(constants_, time_);
+  params_ = make_step_params(constants_, model_);
+  step_params_.upload(0, sizeof(params_), &params_);
+  upload_colliders();
+}
+
+void GpuSimulator::set_time(double t) {
+  time_ = t;
+  if (constants_.timeline.moves()) apply_substep_time();
+}
+
 void GpuSimulator::set_parameters(const Scene& scene) {
   const float old_mass = constants_.mass;
+  const bool had_anchors = constants_.moving_pins(), had_wind = constants_.wind.enabled;
   constants_ = make_constants<float>(scene, model_);
+  if (constants_.timeline.moves()) set_substep_time(constants_, time_);
+  if (constants_.moving_pins() != had_anchors) upload_anchors();
+  if (constants_.wind.enabled != had_wind)
+    wind_forces_.allocate((constants_.wind.enabled ? model_.count() : 1) * sizeof(glm::vec4));
   inverse_mass_ = float(1.0 / particle_mass(scene.cloth));
   params_ = make_step_params(constants_, model_);
   step_params_.upload(0, sizeof(params_), &params_);
@@ -62,6 +92,7 @@ void GpuSimulator::release_particle(int i) {
 }
 
 void GpuSimulator::reset() {
+  set_time(0);
   State<float> s = initial_state<float>(model_);
   for (auto& p : s.pos) if (p.w != 0.f) p.w = inverse_mass_;
   upload(s);

@@ -73,6 +73,19 @@ layout::StepParams make_step_params(const Constants<float>& c, const ClothModel&
   p.bending_enabled = c.enabled[int(SpringType::Bending)];
   p.sphere_count = uint32_t(c.spheres.size());
   p.plane_count = uint32_t(c.planes.size());
+  const WindC<float>& w = c.wind;
+  p.wind_enabled = w.enabled;
+  p.wind_velocity = glm::vec3(w.velocity.x, w.velocity.y, w.velocity.z);
+  p.wind_drag = w.drag;
+  p.wind_lift = w.lift;
+  p.wind_inv_3dt = w.inv_3dt;
+  p.gust_enabled = w.gusts;
+  p.gust_velocity = glm::vec3(w.gust_velocity.x, w.gust_velocity.y, w.gust_velocity.z);
+  p.wind_direction = glm::vec3(w.direction.x, w.direction.y, w.direction.z);
+  p.gust_phase = w.gust_phase;
+  p.gust_inv_length3 = w.gust_inv_length3;
+  p.pins_moving = c.moving_pins();
+  p.pin_offset = glm::vec3(c.pin_offset.x, c.pin_offset.y, c.pin_offset.z);
   return p;
 }
 
@@ -84,6 +97,7 @@ GpuSimulator::GpuSimulator(const Scene& scene, const ClothModel& model, const st
       inverse_mass_(float(1.0 / model.mass)),
       dt_(scene.dt()),
       groups_(gl::workgroups_for(model.count(), WORKGROUP_SIZE)),
+      compute_wind_forces_(load_pass(dir, "compute_wind_forces")),
       accumulate_forces_(load_pass(dir, "accumulate_forces")),
       integrate_(load_pass(dir, "integrate")),
       advance_(load_pass(dir, "advance")),
@@ -119,8 +133,11 @@ GpuSimulator::GpuSimulator(const Scene& scene, const ClothModel& model, const st
     tethers[i] = glm::vec4(float(model.tether_pin[i]), float(model.tether_rest[i]), 0.f, 0.f);
   gl::upload_vector(tethers_, tethers, GL_STATIC_DRAW);
   upload_colliders();
+  upload_anchors();
   step_params_.allocate(sizeof(params_), &params_, GL_DYNAMIC_DRAW);
   forces_.allocate(n * sizeof(glm::vec4));
+  // A storage buffer may not be empty when bound: one dummy element without wind.
+  wind_forces_.allocate((constants_.wind.enabled ? n : 1) * sizeof(glm::vec4));
   // The hash table is sized once; start[table_size] is the total, always n.
   table_size_ = params_.table_size;
   cell_count_.allocate(table_size_ * sizeof(uint32_t));
@@ -159,7 +176,7 @@ size_t GpuSimulator::memory_bytes() const {
   size_t total = 0;
   for (const gl::Buffer* b : {&positions_, &displacement_, &forces_, &normals_, &rest_, &spheres_, &planes_,
                               &step_params_, &positions_out_, &cell_count_, &cell_start_, &cell_entries_,
-                              &sorted_positions_, &tethers_})
+                              &sorted_positions_, &tethers_, &wind_forces_, &anchors_})
     total += b->size();
   return total + scan_.memory_bytes() + guard_.memory_bytes();
 }
@@ -177,6 +194,8 @@ void GpuSimulator::bind_all() const {
   cell_start_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_CELL_START);
   cell_entries_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_CELL_ENTRIES);
   sorted_positions_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_SORTED_POSITIONS);
+  wind_forces_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_WIND_FORCES);
+  anchors_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_ANCHORS);
   positions_view_.bind(TEXTURE_POSITIONS);
   displacement_view_.bind(TEXTURE_DISPLACEMENT);
   rest_view_.bind(TEXTURE_REST);
@@ -202,8 +221,7 @@ void GpuSimulator::attach_views() {
 GpuBackend::GpuBackend(std::unique_ptr<gl::GlContext> context, const Scene& scene, const ClothModel& model,
                        const std::filesystem::path& compute_dir)
     : context_(std::move(context)), model_(model),
-      sim_(std::make_unique<GpuSimulator>(scene, model, compute_dir)),
-      frame_seconds_(1.0 / scene.simulation.frames_per_sec) {}
+      sim_(std::make_unique<GpuSimulator>(scene, model, compute_dir)) {}
 
 ClothSnapshot GpuBackend::snapshot() {
   State<float> s;

@@ -29,6 +29,7 @@ class GpuSimulator {
   // advance, [collide_self], solve_length_constraints, with collide_objects fused into the
   // last per-particle pass before the constraints. accumulate_forces, integrate and
   // collide_objects on their own are kept only for the pass checks (pass_check.cpp).
+  void compute_wind_forces();  // with wind: the aerodynamic force per particle, which advance adds
   void accumulate_forces();
   void integrate();
   void advance(bool then_collide_objects = false);  // accumulate_forces + integrate [+ collide_objects]
@@ -56,13 +57,19 @@ class GpuSimulator {
   // The scanner, for tests of arbitrary lengths (up to the hash table size).
   PrefixScan& prefix_scan() { return scan_; }
 
-  void step();        // one substep, the pass list of §1
+  void step();        // one substep, the pass list of §1; then time() is one substep later
   void step_frame();  // simulation_steps substeps, then normals, then the divergence guard's check
   GpuDivergenceGuard& divergence() { return guard_; }
 
+  // Simulated seconds at the start of the next substep. set_time also sets the moving parts
+  // (colliders, pins, gusts) for the substep starting at t, as set_substep_time does on the
+  // CPU (a checkpoint's time, or a pass check's).
+  double time() const { return time_; }
+  void set_time(double t);
+
   // Explicit transfers for export, validation and tests.
-  void upload(const State<float>& state);  // pos, disp, and force when present
-  void download(State<float>& state);  // pos, disp, force, normal
+  void upload(const State<float>& state);  // pos, disp, and force and wind when present
+  void download(State<float>& state);  // pos, disp, force, normal, and wind with wind
 
   // Live edits from the viewer. Parameters that keep the grid (stiffness, damping, density,
   // gravity, steps, thickness, ...) apply without a restart; a changed mass rescales every
@@ -92,6 +99,8 @@ class GpuSimulator {
   void dispatch_grid(gl::Program& program);  // 2-D, one invocation per grid point
   void swap_positions();  // the Jacobi/ping-pong output becomes the positions (rebinds the two)
   void upload_colliders();  // from constants_
+  void upload_anchors();    // from constants_ (one dummy element without pinned_motion)
+  void apply_substep_time();  // the moving parts of constants_ for the substep at time_, uploaded
   void barrier(GLbitfield bits);  // glMemoryBarrier, counted
   void dispatch(gl::Program& program);
   // One colour of a constraint pass (solve_length_constraints or solve_distance_constraints),
@@ -105,12 +114,14 @@ class GpuSimulator {
   layout::StepParams params_{};
   float inverse_mass_;
   double dt_;  // the substep length the displacements are per
+  double time_ = 0;  // simulated seconds at the start of the next substep
   GpuCounters counters_;  // of a free particle, for the current density
   GLuint groups_ = 0;
   gl::Buffer positions_{"positions"}, displacement_{"displacement"}, forces_{"forces"}, normals_{"normals"};
   gl::Buffer rest_{"rest lengths"}, spheres_{"spheres"}, planes_{"planes"}, step_params_{"step params"};
   gl::Buffer positions_out_{"positions out"}, cell_count_{"cell count"}, cell_start_{"cell start"};
   gl::Buffer cell_entries_{"cell entries"}, sorted_positions_{"sorted positions"}, tethers_{"tethers"};
+  gl::Buffer wind_forces_{"wind forces"}, anchors_{"anchors"};
   // Read-only views of the buffers above (compute/particle_views.glsl).
   gl::BufferTexture positions_view_{"positions view"}, positions_out_view_{"positions out view"};
   gl::BufferTexture displacement_view_{"displacement view"}, rest_view_{"rest view"}, spheres_view_{"spheres view"};
@@ -118,7 +129,7 @@ class GpuSimulator {
   gl::BufferTexture sorted_positions_view_{"sorted positions view"}, tethers_view_{"tethers view"};
   uint32_t table_size_ = 0;
   bool in_step_ = false;
-  gl::Program accumulate_forces_, integrate_, advance_, collide_objects_, solve_length_constraints_, compute_normals_;
+  gl::Program compute_wind_forces_, accumulate_forces_, integrate_, advance_, collide_objects_, solve_length_constraints_, compute_normals_;
   gl::Program count_cells_, fill_cells_, sort_cells_, resolve_self_contacts_;
   gl::Program predict_, solve_distance_constraints_;
   // Uniforms set before a dispatch, looked up once.
@@ -136,10 +147,7 @@ class GpuBackend final : public Backend {
  public:
   GpuBackend(std::unique_ptr<gl::GlContext> context, const Scene& scene, const ClothModel& model,
              const std::filesystem::path& compute_dir);
-  void step_frame() override {
-    sim_->step_frame();
-    time_ += frame_seconds_;
-  }
+  void step_frame() override { sim_->step_frame(); }
   ClothSnapshot snapshot() override;
   std::vector<FrameCheck> take_checks(bool all) override { return sim_->divergence().take(all); }
   ClothSnapshot last_good(int* frame) override {
@@ -155,8 +163,6 @@ class GpuBackend final : public Backend {
   std::unique_ptr<gl::GlContext> context_;
   const ClothModel& model_;
   std::unique_ptr<GpuSimulator> sim_;
-  double frame_seconds_;
-  double time_ = 0;  // simulated seconds
 };
 
 // Where the GLSL files are: $CLOTHSIM_ROOT, then the directory above the executable

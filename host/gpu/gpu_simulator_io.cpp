@@ -28,6 +28,7 @@ void GpuSimulator::upload(const State<float>& s) {
   gl::upload_vector(positions_, s.pos);
   gl::upload_vector(displacement_, s.disp);
   if (s.force.size() == s.pos.size()) gl::upload_vector(forces_, s.force);
+  if (constants_.wind.enabled && s.wind.size() == s.pos.size()) gl::upload_vector(wind_forces_, s.wind);
   // The Jacobi/ping-pong output matches the buffer it stands in for.
   positions_out_.allocate(positions_.size());
   attach_views();
@@ -40,13 +41,14 @@ void GpuSimulator::download(State<float>& s) {
   s.disp = gl::download_vector<Vec4<float>>(displacement_);
   s.force = gl::download_vector<Vec4<float>>(forces_);
   s.normal = gl::download_vector<Vec4<float>>(normals_);
+  if (constants_.wind.enabled) s.wind = gl::download_vector<Vec4<float>>(wind_forces_);
 }
 
 // A checkpoint is the two state buffers as they are, read back and uploaded bit for bit.
 SavedState GpuBackend::save_state() {
   State<float> s;
   sim_->download(s);
-  return save_streams(s, sim_->divergence().frame(), time_);
+  return save_streams(s, sim_->divergence().frame(), sim_->time());
 }
 
 void GpuBackend::load_state(const SavedState& saved) {
@@ -56,7 +58,7 @@ void GpuBackend::load_state(const SavedState& saved) {
   sim_->upload(s);
   sim_->compute_normals();
   sim_->divergence().restart(s.pos, int(saved.frame));
-  time_ = saved.time;
+  sim_->set_time(saved.time);
 }
 
 }  // namespace clothsim

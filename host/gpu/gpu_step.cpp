@@ -32,6 +32,12 @@ void GpuSimulator::dispatch(gl::Program& program) {
   ++counters_.dispatches;
 }
 
+void GpuSimulator::compute_wind_forces() {
+  dispatch_grid(compute_wind_forces_);
+  // advance (or accumulate_forces) reads the wind forces next.
+  barrier(GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
 void GpuSimulator::accumulate_forces() {
   dispatch_grid(accumulate_forces_);
   // integrate reads the forces next.
@@ -159,9 +165,12 @@ void GpuSimulator::step() {
   // collide_objects reads only a particle's own position and displacement, so it rides
   // along with the last per-particle pass before the constraints.
   const bool colliders = constants_.has_colliders();
+  // Moving colliders, pins and gusts: the small parameter upload of this substep's time.
+  if (constants_.timeline.moves()) apply_substep_time();
   bind_all();  // once: nothing in the step binds over these (swap_positions rebinds its two)
   in_step_ = true;
   const bool objects_first = colliders && !constants_.self_collision;
+  if (constants_.wind.enabled) compute_wind_forces();  // advance or predict add them
   if (constants_.xpbd) {
     predict(objects_first);
     if (constants_.self_collision) collide_self(colliders);
@@ -172,6 +181,7 @@ void GpuSimulator::step() {
     solve_length_constraints();
   }
   in_step_ = false;
+  time_ += dt_;  // per substep, exactly as CpuBackend counts it
 }
 
 void GpuSimulator::step_frame() {
@@ -186,8 +196,8 @@ int GpuSimulator::dispatches_per_substep() const {
     enabled_colours += constants_.enabled[int(kDirections[colour / 2].type)];
   const int self = constants_.self_collision ? 4 + scan_.dispatches(table_size_) : 0;  // count, fill, sort, collide + scan
   // xpbd: predict, then one solve of every enabled colour; classic: advance, then the colours
-  // once per constraint iteration.
-  return 1 + self + (constants_.xpbd ? 1 : constants_.iterations) * enabled_colours;
+  // once per constraint iteration; with wind, its pass first.
+  return 1 + int(constants_.wind.enabled) + self + (constants_.xpbd ? 1 : constants_.iterations) * enabled_colours;
 }
 
 }  // namespace clothsim

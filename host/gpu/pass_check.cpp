@@ -83,6 +83,9 @@ void check_self_collision_stages(const Constants<float>& c, State<float>& s, Gpu
 std::vector<PassError> check_passes(const Scene& scene, const ClothModel& model, GpuSimulator& gpu, int warmup) {
   CpuBackend<float> cpu(scene, model);
   for (int f = 0; f < warmup; ++f) cpu.step_frame();
+  // Both sides at the same time: the moving colliders, pins and gusts of the next substep.
+  cpu.prepare_substep();
+  gpu.set_time(cpu.time());
   const Constants<float>& c = cpu.constants();
   State<float>& s = cpu.state();
   State<float> g;
@@ -111,6 +114,15 @@ std::vector<PassError> check_passes(const Scene& scene, const ClothModel& model,
   };
   // The unfused passes, then (from the same state) the fused ones GpuSimulator::step runs:
   // collide_objects rides along with advance, or with collide_self when that is on.
+  if (c.wind.enabled) {
+    // Judged like the spring forces, by the displacement it causes in one substep.
+    auto wind = [&](const State<float>& st) {
+      std::vector<Vec4<float>> v(st.wind.size());
+      for (size_t i = 0; i < v.size(); ++i) v[i] = st.wind[i] * (s.pos[i].w * c.dt2);
+      return v;
+    };
+    check("compute_wind_forces", [&] { compute_wind_forces(model, c, s); }, [&] { gpu.compute_wind_forces(); }, wind);
+  }
   const State<float> start = s;
   check("accumulate_forces", [&] { accumulate_forces(model, c, s); }, [&] { gpu.accumulate_forces(); }, displacement);
   check("integrate", [&] { integrate(c, s); }, [&] { gpu.integrate(); }, both);

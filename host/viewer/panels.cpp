@@ -58,7 +58,16 @@ class PanelRows final : public ParamVisitor {
       changed |= ImGui::Combo(p.key, &v, p.choices.data(), int(p.choices.size()));
   }
   void grid_indices(const ParamInfo&, GridIndices&, int, int) override {}  // pins: edit the file
+  void keyframes(const ParamInfo&, Keyframes&) override {}  // motions: edit the file
   void object(const ParamInfo& p, ObjectRef& o) override {
+    // An optional object whose row has a checkbox (wind, gust) can be added and removed live.
+    if (o.optional() && p.widget.style == Widget::Checkbox) {
+      bool on = o.present();
+      if (ImGui::Checkbox(p.key, &on)) {
+        o.set_present(on);
+        changed = true;
+      }
+    }
     if (!o.present()) return;
     ImGui::PushID(p.key);  // the same key may appear in two objects
     o.visit(*this);
@@ -85,6 +94,7 @@ void simulation_panel(ViewerState& st) {
   }
   ImGui::TextDisabled("P pause  N step  R reset  Space camera  S screenshot  F1 panels");
   ImGui::TextDisabled("drag: orbit  right/ctrl-drag: pan  wheel: zoom  shift-drag: grab");
+  ImGui::TextDisabled("alt-drag a sphere: move it (its keyframes too) in the plane facing you");
 }
 
 void appearance_panel(ViewerState& st) {

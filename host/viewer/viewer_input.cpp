@@ -1,6 +1,10 @@
 // Keys and mouse of the viewer, as the classic app: P pause, N step, R reset, Space camera,
 // Esc quit; plus F1 panels and S screenshot. Left-drag orbits, right- or ctrl-drag pans, the
-// wheel zooms, shift-click grabs the particle under the cursor until the button is released.
+// wheel zooms, shift-click grabs the particle under the cursor until the button is released,
+// alt-click drags the sphere under it (origin and keyframes, applied live).
+#include <cmath>
+#include <optional>
+
 #include <fmt/format.h>
 
 #include "viewer_app.hpp"
@@ -8,6 +12,24 @@
 namespace clothsim {
 namespace {
 Viewer* self(GLFWwindow* w) { return static_cast<Viewer*>(glfwGetWindowUserPointer(w)); }
+
+// The sphere whose surface the ray meets first, and where.
+std::optional<std::pair<int, glm::vec3>> pick_sphere(const Ray& ray, const std::vector<SphereParams>& spheres) {
+  std::optional<std::pair<int, glm::vec3>> best;
+  float best_t = INFINITY;
+  for (size_t k = 0; k < spheres.size(); ++k) {
+    const glm::vec3 oc = ray.origin - glm::vec3(spheres[k].origin);
+    const float b = glm::dot(oc, ray.direction), c = glm::dot(oc, oc) - float(spheres[k].radius * spheres[k].radius);
+    const float disc = b * b - c;
+    if (disc < 0.f) continue;
+    const float t = -b - std::sqrt(disc);
+    if (t > 0.f && t < best_t) {
+      best_t = t;
+      best = std::pair{int(k), ray.origin + ray.direction * t};
+    }
+  }
+  return best;
+}
 }  // namespace
 
 void Viewer::install_callbacks() {
@@ -41,6 +63,10 @@ void Viewer::on_mouse_button(int button, int action, int mods) {
   if (action == GLFW_RELEASE) {
     if (grab_.active()) session_.sim->release_particle(grab_.particle);
     grab_ = {};
+    if (sphere_drag_.sphere >= 0)  // the collider meshes are built with the renderer: rebuild it there
+      session_.renderer = std::make_unique<Renderer>(opts_.root, st_.scene, *session_.model,
+                                                     RendererOptions{opts_.sphere_lat, opts_.sphere_lon});
+    sphere_drag_ = {};
     drag_button_ = -1;
     return;
   }
@@ -59,6 +85,13 @@ void Viewer::on_mouse_button(int button, int action, int mods) {
     }
     return;
   }
+  if (button == GLFW_MOUSE_BUTTON_LEFT && (mods & GLFW_MOD_ALT)) {
+    int w = 0, h = 0;
+    glfwGetWindowSize(window_->handle(), &w, &h);
+    if (auto hit = pick_sphere(pick_ray(st_.camera, glm::vec2(cursor_), glm::vec2(w, h)), st_.scene.spheres))
+      sphere_drag_ = {hit->first, begin_grab(0, hit->second, st_.camera), hit->second, glm::dvec3(0.0)};
+    return;
+  }
   drag_button_ = button;
   drag_pan_ = button == GLFW_MOUSE_BUTTON_RIGHT || (mods & GLFW_MOD_CONTROL);
 }
@@ -71,6 +104,18 @@ void Viewer::on_cursor(double x, double y) {
   if (grab_.active()) {
     grab_target_ = grab_.target(pick_ray(st_.camera, glm::vec2(now), glm::vec2(w, h)));
     session_.sim->hold_particle(grab_.particle, grab_target_);  // visible even while paused
+    return;
+  }
+  if (sphere_drag_.sphere >= 0) {
+    // The whole path moves with the sphere, so a keyframed one keeps its motion.
+    const glm::dvec3 delta = glm::dvec3(sphere_drag_.plane.target(pick_ray(st_.camera, glm::vec2(now), glm::vec2(w, h))) -
+                                        sphere_drag_.start);
+    SphereParams& s = st_.scene.spheres[size_t(sphere_drag_.sphere)];
+    s.origin += delta - sphere_drag_.moved;
+    if (s.motion)
+      for (Keyframe& k : s.motion->keyframes) k.value += delta - sphere_drag_.moved;
+    sphere_drag_.moved = delta;
+    st_.parameters_changed = true;  // set_parameters uploads the colliders before the next step
     return;
   }
   if (drag_button_ < 0) return;

@@ -68,6 +68,14 @@ class InRange final : public ParamVisitor {
     for (const auto& q : pins)
       expect(q[0] >= 0 && q[1] >= 0 && q[0] < nw && q[1] < nh, join(prefix_, p.key) + " inside the grid");
   }
+  void keyframes(const ParamInfo& p, Keyframes& keys) override {
+    expect(!keys.empty(), join(prefix_, p.key) + " not empty");
+    for (size_t k = 0; k < keys.size(); ++k) {
+      expect(std::isfinite(keys[k].time) && keys[k].time >= 0 && finite3(keys[k].value),
+             join(prefix_, p.key) + " finite times >= 0 and finite values");
+      expect(k == 0 || keys[k].time > keys[k - 1].time, join(prefix_, p.key) + " in ascending time order");
+    }
+  }
   void object(const ParamInfo& p, ObjectRef& o) override {
     InRange sub(join(prefix_, p.key));
     if (o.present()) o.visit(sub);
@@ -96,6 +104,11 @@ class Flatten final : public ParamVisitor {
   void grid_indices(const ParamInfo& p, GridIndices& pins, int, int) override {
     std::string s;
     for (const auto& q : pins) s += fmt::format("[{}, {}]", q[0], q[1]);
+    add(p, s);
+  }
+  void keyframes(const ParamInfo& p, Keyframes& keys) override {
+    std::string s;
+    for (const auto& k : keys) s += fmt::format("[{:a}, {:a} {:a} {:a}]", k.time, k.value.x, k.value.y, k.value.z);
     add(p, s);
   }
   void object(const ParamInfo& p, ObjectRef& o) override {
@@ -159,6 +172,7 @@ void check_round_trip(const Scene& a) {
   expect(a.spheres == b.spheres, "round trip: spheres");
   expect(a.planes == b.planes, "round trip: planes");
   expect(a.simulation == b.simulation, "round trip: simulation");
+  expect(a.wind == b.wind, "round trip: wind");
 }
 
 }  // namespace

@@ -34,4 +34,6 @@ void main() {
   pos[3] = spheres[1].keep;
   pos[4] = planes[1].point;
   pos[5] = planes[1].normal;
+  pos[6] = spheres[1].motion;
+  pos[7] = planes[1].motion;
 }

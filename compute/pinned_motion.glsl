@@ -1,0 +1,24 @@
+// Pinned masses that follow cloth.pinned_motion: at the end of every substep a pinned mass is
+// at its start position plus the offset of the substep's end, and its displacement is that
+// move, exactly as integrate in host/core/reference.cpp. Held particles (the viewer's grab,
+// also w = 0) have anchor w 0 and stay where they are held.
+#ifndef CLOTHSIM_PINNED_MOTION_GLSL
+#define CLOTHSIM_PINNED_MOTION_GLSL
+
+layout(std430, binding = BINDING_ANCHORS) readonly buffer Anchors { vec4 anchor[]; };
+
+// p: the pinned particle's position (w 0); returns false if it does not move.
+bool move_pinned(int i, vec4 p, out vec4 next, out vec3 d) {
+  next = p;
+  d = vec3(0.0);
+  if (params.pins_moving == 0u) return false;
+  vec4 a = anchor[i];
+  if (a.w == 0.0) return false;
+  precise vec3 x = a.xyz + params.pin_offset;
+  precise vec3 moved = x - p.xyz;
+  next = vec4(x, p.w);
+  d = moved;
+  return true;
+}
+
+#endif
