@@ -1,4 +1,4 @@
 // Diffuse: Lambertian reflection of one point light.
 #include "lighting.glsl"
 
-void main() { out_color = gamma_encode(lambert(facing_normal(v_normal), u_color.rgb)); }
+void main() { out_color = encode_display(lambert(facing_normal(v_normal), u_color.rgb)); }

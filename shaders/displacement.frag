@@ -4,5 +4,5 @@
 
 void main() {
   vec3 n = bumped_normal(facing_normal(v_normal));
-  out_color = gamma_encode(blinn_phong(n, u_color.rgb, 0.4, 32.0));
+  out_color = encode_display(blinn_phong(n, u_color.rgb, 0.4, 32.0));
 }

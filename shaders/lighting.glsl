@@ -64,6 +64,22 @@ vec3 bumped_normal(vec3 n) {
   return normalize(mat3(t, b, n) * local);
 }
 
-vec4 gamma_encode(vec3 c) { return vec4(pow(clamp(c, 0.0, 1.0), vec3(1.0 / 2.2)), u_color.a); }
+// The display transform of every lit shader: exposure, a filmic shoulder, gamma 2.2 (the
+// inverse of the decoding of sRGB texels in texture.frag and mirror.frag).
+uniform float u_exposure;  // Appearance::exposure, render --exposure
+
+// Identity up to the knee, so mid-tones look as they would untouched; above it an exponential
+// shoulder with slope 1 at the knee that approaches 1 without reaching it. A clamp would turn
+// cloth facing the light (irradiance above 1) flat white and hide Bump's weave; this keeps
+// its shading, compressed. Per channel: the brightest highlights desaturate towards white.
+vec3 tone_map(vec3 c) {
+  const float knee = 0.6;
+  vec3 over = max(c - knee, 0.0);
+  return min(c, knee) + (1.0 - knee) * (1.0 - exp(-over / (1.0 - knee)));
+}
+
+vec4 encode_display(vec3 linear) {
+  return vec4(pow(tone_map(max(linear * u_exposure, 0.0)), vec3(1.0 / 2.2)), u_color.a);
+}
 
 #endif

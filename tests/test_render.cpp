@@ -17,19 +17,13 @@
 #include <stb/stb_image.h>
 #include <stb/stb_image_write.h>
 
-#include "camera.hpp"
-#include "gl_test_support.hpp"
-#include "gpu_simulator.hpp"
-#include "renderer.hpp"
-#include "texture.hpp"
+#include "render_stage.hpp"
 
 using namespace clothsim;
+using namespace clothsim::test;
 
 namespace {
 
-constexpr int kWidth = 160, kHeight = 120;
-// Renderer::draw's clear colour (0.16, 0.17, 0.2) in 8 bits.
-constexpr int kBackground[3] = {41, 43, 51};
 // Largest RMS difference per channel (of 255) from a golden image. On llvmpipe, which made
 // them and simulates bit for bit like the reference, the run is exact: 1.5 leaves room for
 // another Mesa's rounding and still catches a light 19% dimmer (1.9 to 9.1 in the lit
@@ -39,26 +33,6 @@ constexpr double kGoldenRmsLlvmpipe = 1.5, kGoldenRmsOther = 8.0;
 // Normal shader: largest difference per channel (of 255) between a pixel and its particle's normal.
 constexpr int kNormalTolerance = 10;
 
-struct Image {
-  int w = 0, h = 0;
-  std::vector<uint8_t> rgba;  // top row first
-  const uint8_t* at(int x, int y) const { return &rgba[(size_t(y) * w + size_t(x)) * 4]; }
-  bool inside(int x, int y) const { return x >= 0 && y >= 0 && x < w && y < h; }
-};
-
-bool is_background(const uint8_t* p) {
-  for (int c = 0; c < 3; ++c)
-    if (std::abs(int(p[c]) - kBackground[c]) > 3) return false;
-  return true;
-}
-
-int count_foreground(const Image& im) {
-  int n = 0;
-  for (int y = 0; y < im.h; ++y)
-    for (int x = 0; x < im.w; ++x) n += !is_background(im.at(x, y));
-  return n;
-}
-
 // Pixels whose colour differs between two images of one size.
 std::vector<glm::ivec2> changed_pixels(const Image& a, const Image& b) {
   std::vector<glm::ivec2> out;
@@ -67,43 +41,6 @@ std::vector<glm::ivec2> changed_pixels(const Image& a, const Image& b) {
       if (!std::equal(a.at(x, y), a.at(x, y) + 3, b.at(x, y))) out.push_back({x, y});
   return out;
 }
-
-// A scene from scenes/, simulated by the GPU simulator and drawn offscreen from its buffers.
-struct Stage {
-  Scene scene;
-  ClothModel model;
-  GpuSimulator gpu;
-  Renderer renderer;
-  gl::RenderTarget target;
-  OrbitCamera camera;
-
-  explicit Stage(const std::string& name, int w = kWidth, int h = kHeight, const std::vector<std::string>& sets = {})
-      : scene(load_scene(test::source_path("scenes/" + name + ".json"), sets)), model(build_cloth(scene.cloth)),
-        gpu(scene, model, test::source_path("compute")), renderer(CLOTHSIM_SOURCE_DIR, scene, model),
-        target(w, h), camera(default_camera(scene, model, float(w) / float(h))) {}
-
-  void run(int frames) {
-    for (int f = 0; f < frames; ++f) gpu.step_frame();
-  }
-  Image draw(ShaderKind shader) {
-    Appearance look;
-    look.shader = shader;
-    target.bind();
-    renderer.draw(gpu.positions(), gpu.normals(), camera, look);
-    return {target.width(), target.height(), target.read_rgba()};
-  }
-  // Where a world point lands in the image (x right, y down, in pixels; pixel (i, j) spans [i, i+1)).
-  glm::vec2 pixel_of(const glm::vec3& p) const {
-    const glm::vec4 clip = camera.view_projection() * glm::vec4(p, 1.f);
-    return {(clip.x / clip.w * 0.5f + 0.5f) * float(target.width()),
-            (0.5f - clip.y / clip.w * 0.5f) * float(target.height())};
-  }
-  glm::vec3 position(int particle) {
-    State<float> s;
-    gpu.download(s);
-    return glm::vec3(s.pos[size_t(particle)]);
-  }
-};
 
 // Root-mean-square difference of channel c (0..2) over the whole image.
 double rms(const Image& a, const Image& b, int c) {
@@ -214,8 +151,8 @@ TEST_CASE("the Normal shader colours a pixel with the normal the simulation comp
 TEST_CASE("the Wireframe shader leaves the background showing between the springs", "[gpu][render]") {
   REQUIRE_GL_CONTEXT();
   // A coarse 10x10 pinned2 seen from above, so its springs are far apart on screen.
-  Stage stage("pinned2", 320, 240, {"cloth.num_width_points=10", "cloth.num_height_points=10",
-                                    "cloth.pinned=[[0, 0], [9, 0]]"});
+  Stage stage("pinned2", 320, 240,
+              {.sets = {"cloth.num_width_points=10", "cloth.num_height_points=10", "cloth.pinned=[[0, 0], [9, 0]]"}});
   stage.run(5);
   stage.camera.look_from({0.5f, 2.2f, 0.9f}, {0.5f, 0.85f, 0.5f});
   const int wire = count_foreground(stage.draw(ShaderKind::Wireframe));

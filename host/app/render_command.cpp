@@ -1,5 +1,6 @@
-// `clothsim render SCENE --frames N --out DIR|FILE.png|FILE.mp4 [--shader NAME] [--size WxH]`:
-// simulates and draws headless (EGL, an offscreen framebuffer), frame by frame.
+// `clothsim render SCENE --frames N --out DIR|FILE.png|FILE.mp4|FILE.gif [--shader NAME] [--size WxH]
+// [--samples N] [--exposure E] [--every K] [--fps F]`: simulates and draws headless (EGL, an
+// offscreen multisampled framebuffer), frame by frame.
 #include <cstdio>
 #include <optional>
 #include <regex>
@@ -21,6 +22,10 @@ struct Opts {
   std::string out, shader = "Phong", size = "800x600", backend = "gpu", root;
   std::vector<float> camera;  // eye xyz, target xyz
   int lat = 40, lon = 40;
+  int samples = 4;       // per pixel; 1 = no multisampling
+  float exposure = 1.f;
+  int every = 1;         // keep frames every, 2 * every, ...
+  double fps = 0;        // of the video; 0 = the scene's rate / every
 };
 
 // The cloth buffers to draw: the GPU simulator's own, or CPU results uploaded per frame
@@ -56,14 +61,24 @@ int run_render(const Opts& o) {
   if (!shader)
     throw ExitError(kExitBadInput, fmt::format("--shader {}: expected one of Wireframe, Normal, Diffuse, Phong, "
                                                "Texture, Bump, Displacement, Mirror", o.shader));
+  if (o.every > o.frames)
+    throw ExitError(kExitBadInput, fmt::format("--every {}: more than --frames {}, so no frame would be kept", o.every, o.frames));
   if (o.camera.size() != 0 && o.camera.size() != 6)
     throw ExitError(kExitBadInput, "--camera: expected six numbers: eye x,y,z then target x,y,z");
 
   const Scene scene = o.scene.load();
+  const double fps = o.fps > 0 ? o.fps : scene.simulation.frames_per_sec / o.every;
+  FrameSink::check(o.out, w, h, fps);
   const ClothModel model = build_cloth(scene.cloth);
   const BackendKind kind = parse_backend(o.backend);
   auto context = require_headless_context();
   const auto root = find_project_root(o.root);
+  std::optional<gl::RenderTarget> target;
+  try {
+    target.emplace(w, h, o.samples);
+  } catch (const std::runtime_error& e) {
+    throw ExitError(kExitBadInput, fmt::format("--samples {}: {}", o.samples, e.what()));
+  }
 
   FrameSource source;
   if (kind == BackendKind::Gpu) source.gpu.emplace(scene, model, root / "compute");
@@ -74,11 +89,11 @@ int run_render(const Opts& o) {
     camera.look_from({o.camera[0], o.camera[1], o.camera[2]}, {o.camera[3], o.camera[4], o.camera[5]});
   Appearance look;
   look.shader = *shader;
-  gl::RenderTarget target(w, h);
-  FrameSink sink(o.out, w, h, scene.simulation.frames_per_sec);
+  look.exposure = o.exposure;
+  FrameSink sink(o.out, w, h, fps);
 
-  fmt::print("{}: {}x{} cloth, {} shader, {}x{}, backend {}\n", scene.source, model.nw, model.nh,
-             kShaderNames[size_t(*shader)], w, h, o.backend);
+  fmt::print("{}: {}x{} cloth, {} shader, {}x{}, {} samples/pixel, backend {}\n", scene.source, model.nw, model.nh,
+             kShaderNames[size_t(*shader)], w, h, o.samples, o.backend);
   Progress progress("render frame", o.frames);
   for (int f = 1; f <= o.frames; ++f) {
     source.step_frame();
@@ -91,9 +106,12 @@ int run_render(const Opts& o) {
       if (f > 1) fmt::print("{}\n", sink.finish());
       throw ExitError(kExitCheckFailed, *message);
     }
-    target.bind();
-    renderer.draw(source.positions(), source.normals(), camera, look);
-    sink.add(target.read_rgba());
+    // Frames that are not kept are simulated but never drawn.
+    if (f % o.every == 0 || (f == o.frames && sink.last_frame_only())) {
+      target->bind();
+      renderer.draw(source.positions(), source.normals(), camera, look);
+      sink.add(target->read_rgba());
+    }
     progress.update(f);
   }
   progress.finish();
@@ -105,13 +123,25 @@ int run_render(const Opts& o) {
 
 void add_render_command(CLI::App& app, std::function<int()>& run) {
   auto o = std::make_shared<Opts>();
-  CLI::App* cmd = app.add_subcommand("render", "simulate and render headless to PNGs or an MP4");
+  CLI::App* cmd = app.add_subcommand("render", "simulate and render headless to PNGs, an MP4 or a GIF");
   o->scene.add_to(*cmd, true);
   cmd->add_option("--frames", o->frames, "frames to simulate and render")->check(CLI::PositiveNumber)->capture_default_str();
-  cmd->add_option("--out", o->out, "DIR (frame_0000.png ...), FILE.png (the last frame) or FILE.mp4")->required();
+  cmd->add_option("--out", o->out, "DIR (frame_0000.png ...), FILE.png (the last frame), FILE.mp4 or FILE.gif")
+      ->required();
   cmd->add_option("--shader", o->shader, "Wireframe, Normal, Diffuse, Phong, Texture, Bump, Displacement or Mirror")
       ->capture_default_str();
   cmd->add_option("--size", o->size, "image size WIDTHxHEIGHT")->capture_default_str();
+  cmd->add_option("--samples", o->samples, "multisample anti-aliasing: samples per pixel, 1 = off")
+      ->check(CLI::Range(1, 64))
+      ->capture_default_str();
+  cmd->add_option("--exposure", o->exposure, "light scale before the tone map (2 = one stop brighter)")
+      ->check(CLI::Range(0.01f, 100.f))
+      ->capture_default_str();
+  cmd->add_option("--every", o->every, "keep every K-th frame (frames K, 2K, ...), e.g. 2 for a GIF")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cmd->add_option("--fps", o->fps, "frame rate of the MP4 or GIF (default: the scene's, divided by --every)")
+      ->check(CLI::Range(0.01, 1000.0));
   cmd->add_option("--backend", o->backend, "gpu, or cpu (reference positions uploaded per frame)")
       ->check(CLI::IsMember({"gpu", "cpu"}))
       ->capture_default_str();

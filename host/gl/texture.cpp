@@ -1,6 +1,7 @@
 #include "texture.hpp"
 
 #include <algorithm>
+#include <cstring>
 #include <stdexcept>
 
 #include <fmt/format.h>
@@ -62,6 +63,7 @@ GLuint gen(void (*f)(GLsizei, GLuint*)) {
   return id;
 }
 
+// samples 0 is a plain (single-sample) renderbuffer.
 GLuint new_renderbuffer(GLenum format, int w, int h, int samples) {
   GLuint id = gen(glGenRenderbuffers);
   glBindRenderbuffer(GL_RENDERBUFFER, id);
@@ -69,7 +71,54 @@ GLuint new_renderbuffer(GLenum format, int w, int h, int samples) {
   return id;
 }
 
+// The loader is generated for GL 4.3 core, which predates anisotropic filtering; the EXT, the
+// ARB extension and GL 4.6 core share these two enums.
+constexpr GLenum kTextureMaxAnisotropy = 0x84FE, kMaxTextureMaxAnisotropy = 0x84FF;
+
+bool has_extension(const char* name) {
+  GLint count = 0;
+  glGetIntegerv(GL_NUM_EXTENSIONS, &count);
+  for (GLint i = 0; i < count; ++i)
+    if (const auto* e = reinterpret_cast<const char*>(glGetStringi(GL_EXTENSIONS, GLuint(i))); e && !std::strcmp(e, name))
+      return true;
+  return false;
+}
+
+// Mipmaps and anisotropy for the bound texture of `target`, whose level 0 is uploaded.
+void set_minification(GLenum target, const TextureFiltering& filtering) {
+  if (filtering.mipmaps) glGenerateMipmap(target);
+  glTexParameteri(target, GL_TEXTURE_MIN_FILTER, filtering.mipmaps ? GL_LINEAR_MIPMAP_LINEAR : GL_LINEAR);
+  glTexParameteri(target, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  // Cloth seen at a grazing angle is minified far more along one axis than the other: a
+  // trilinear lookup blurs it to the coarser one, anisotropic filtering keeps the weave.
+  const float anisotropy = std::min(filtering.max_anisotropy, max_texture_anisotropy());
+  if (anisotropy > 1.f) glTexParameterf(target, kTextureMaxAnisotropy, anisotropy);
+}
+
+// Checked before any storage is made, so the message says what to change rather than that a
+// framebuffer is incomplete.
+int checked_samples(int samples) {
+  GLint max = 0;
+  glGetIntegerv(GL_MAX_SAMPLES, &max);
+  if (samples > max)
+    throw std::runtime_error(fmt::format("{} samples per pixel: this OpenGL driver allows at most {} (GL_MAX_SAMPLES)",
+                                         samples, max));
+  return std::max(samples, 1);
+}
+
 }  // namespace
+
+float max_texture_anisotropy() {
+  GLint major = 0, minor = 0;
+  glGetIntegerv(GL_MAJOR_VERSION, &major);
+  glGetIntegerv(GL_MINOR_VERSION, &minor);
+  const bool core = major > 4 || (major == 4 && minor >= 6);
+  if (!core && !has_extension("GL_EXT_texture_filter_anisotropic") && !has_extension("GL_ARB_texture_filter_anisotropic"))
+    return 1.f;
+  GLfloat max = 1.f;
+  glGetFloatv(kMaxTextureMaxAnisotropy, &max);
+  return std::max(max, 1.f);
+}
 
 Texture::Texture(GLenum target) : name_(gen(glGenTextures)), target_(target) {}
 
@@ -78,7 +127,7 @@ void Texture::bind(GLuint unit) const {
   glBindTexture(target_, name_.get());
 }
 
-Texture Texture::load_2d(const std::filesystem::path& png) {
+Texture Texture::load_2d(const std::filesystem::path& png, const TextureFiltering& filtering) {
   Image im = read_png(png);
   Texture t(GL_TEXTURE_2D);
   t.width_ = im.w;
@@ -86,15 +135,13 @@ Texture Texture::load_2d(const std::filesystem::path& png) {
   glBindTexture(GL_TEXTURE_2D, t.name_.get());
   glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
   glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, im.w, im.h, 0, GL_RGBA, GL_UNSIGNED_BYTE, im.rgba.data());
-  glGenerateMipmap(GL_TEXTURE_2D);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  set_minification(GL_TEXTURE_2D, filtering);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
   return t;
 }
 
-Texture Texture::load_cube(const std::array<std::filesystem::path, 6>& faces) {
+Texture Texture::load_cube(const std::array<std::filesystem::path, 6>& faces, const TextureFiltering& filtering) {
   Texture t(GL_TEXTURE_CUBE_MAP);
   glBindTexture(GL_TEXTURE_CUBE_MAP, t.name_.get());
   glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
@@ -105,8 +152,9 @@ Texture Texture::load_cube(const std::array<std::filesystem::path, 6>& faces) {
     glTexImage2D(GL_TEXTURE_CUBE_MAP_POSITIVE_X + f, 0, GL_RGBA8, im.w, im.h, 0, GL_RGBA, GL_UNSIGNED_BYTE,
                  im.rgba.data());
   }
-  glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-  glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  // Mirror minifies the sky a lot on a folded cloth: without mipmaps the ground grid in the
+  // cube map aliases into sparkles.
+  set_minification(GL_TEXTURE_CUBE_MAP, filtering);
   for (GLenum w : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R})
     glTexParameteri(GL_TEXTURE_CUBE_MAP, w, GL_CLAMP_TO_EDGE);
   glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
@@ -114,15 +162,16 @@ Texture Texture::load_cube(const std::array<std::filesystem::path, 6>& faces) {
 }
 
 RenderTarget::RenderTarget(int w, int h, int samples)
-    : width_(w), height_(h), msaa_fbo_(gen(glGenFramebuffers)), resolve_fbo_(gen(glGenFramebuffers)),
-      msaa_color_(new_renderbuffer(GL_RGBA8, w, h, samples)),
-      msaa_depth_(new_renderbuffer(GL_DEPTH_COMPONENT24, w, h, samples)),
+    : width_(w), height_(h), samples_(checked_samples(samples)), msaa_fbo_(gen(glGenFramebuffers)),
+      resolve_fbo_(gen(glGenFramebuffers)),
+      msaa_color_(new_renderbuffer(GL_RGBA8, w, h, samples_ > 1 ? samples_ : 0)),
+      msaa_depth_(new_renderbuffer(GL_DEPTH_COMPONENT24, w, h, samples_ > 1 ? samples_ : 0)),
       resolve_color_(new_renderbuffer(GL_RGBA8, w, h, 0)) {
   glBindFramebuffer(GL_FRAMEBUFFER, msaa_fbo_.get());
   glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, msaa_color_.get());
   glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, msaa_depth_.get());
   if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-    throw std::runtime_error(fmt::format("offscreen framebuffer {}x{} ({} samples) is incomplete", w, h, samples));
+    throw std::runtime_error(fmt::format("offscreen framebuffer {}x{} ({} samples) is incomplete", w, h, samples_));
   glBindFramebuffer(GL_FRAMEBUFFER, resolve_fbo_.get());
   glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, resolve_color_.get());
   glBindFramebuffer(GL_FRAMEBUFFER, 0);

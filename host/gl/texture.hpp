@@ -19,12 +19,24 @@ void delete_framebuffer(GLuint id);
 void delete_renderbuffer(GLuint id);
 }  // namespace detail
 
+// How a texture is sampled when it is minified. The defaults are what every picture wants; the
+// aliasing test turns them off to show what they prevent.
+struct TextureFiltering {
+  bool mipmaps = true;          // trilinear (GL_LINEAR_MIPMAP_LINEAR) rather than GL_LINEAR
+  float max_anisotropy = 16.f;  // capped by the driver; 1 = isotropic
+};
+
+// The anisotropy the driver allows (GL 4.6 core or GL_EXT/ARB_texture_filter_anisotropic),
+// or 1 when it has neither.
+float max_texture_anisotropy();
+
 class Texture {
  public:
-  // A 2D RGBA8 texture from a PNG (mipmapped, repeating); throws std::runtime_error naming the file.
-  static Texture load_2d(const std::filesystem::path& png);
-  // A cube map from six PNGs in GL face order +x, -x, +y, -y, +z, -z.
-  static Texture load_cube(const std::array<std::filesystem::path, 6>& faces);
+  // A 2D RGBA8 texture from a PNG (repeating); throws std::runtime_error naming the file.
+  static Texture load_2d(const std::filesystem::path& png, const TextureFiltering& filtering = {});
+  // A cube map from six PNGs in GL face order +x, -x, +y, -y, +z, -z (mipmapped).
+  static Texture load_cube(const std::array<std::filesystem::path, 6>& faces,
+                           const TextureFiltering& filtering = {});
   void bind(GLuint unit) const;
   int width() const { return width_; }
   int height() const { return height_; }
@@ -53,19 +65,21 @@ class BufferTexture {
   detail::Name<detail::delete_texture> name_;
 };
 
-// An offscreen colour + depth target (multisampled, resolved on read-back), for headless
-// rendering and screenshots.
+// An offscreen colour + depth target for headless rendering and screenshots: multisampled
+// (resolved on read-back) when samples > 1, plain when samples is 1.
 class RenderTarget {
  public:
+  // Throws std::runtime_error when the driver cannot make it (e.g. more than GL_MAX_SAMPLES).
   RenderTarget(int width, int height, int samples = 4);
   void bind() const;  // as the draw framebuffer, with the viewport set
   // Resolves and reads RGBA8, top row first (ready for an image file).
   std::vector<uint8_t> read_rgba() const;
   int width() const { return width_; }
   int height() const { return height_; }
+  int samples() const { return samples_; }
 
  private:
-  int width_, height_;
+  int width_, height_, samples_;
   detail::Name<detail::delete_framebuffer> msaa_fbo_, resolve_fbo_;
   detail::Name<detail::delete_renderbuffer> msaa_color_, msaa_depth_, resolve_color_;
 };

@@ -20,11 +20,11 @@ struct Renderer::Mesh {
 
 namespace {
 
-gl::Texture load_cube(const std::filesystem::path& dir) {
+gl::Texture load_cube(const std::filesystem::path& dir, const gl::TextureFiltering& filtering) {
   std::array<std::filesystem::path, 6> faces;
   const char* names[6] = {"posx", "negx", "posy", "negy", "posz", "negz"};
   for (int f = 0; f < 6; ++f) faces[f] = dir / ("sky_" + std::string(names[f]) + ".png");
-  return gl::Texture::load_cube(faces);
+  return gl::Texture::load_cube(faces, filtering);
 }
 
 }  // namespace
@@ -64,10 +64,10 @@ std::unique_ptr<Renderer::Mesh> make_mesh(const MeshData& d) {
 Renderer::Renderer(const std::filesystem::path& root, const Scene& scene, const ClothModel& model,
                    const RendererOptions& options)
     : model_(model), root_(root), programs_(kShaderNames.size()),
-      fabric_(gl::Texture::load_2d(root / "textures" / "fabric.png")),
-      weave_height_(gl::Texture::load_2d(root / "textures" / "height_weave.png")),
-      bumps_height_(gl::Texture::load_2d(root / "textures" / "height_bumps.png")),
-      sky_(load_cube(root / "textures")),
+      fabric_(gl::Texture::load_2d(root / "textures" / "fabric.png", options.filtering)),
+      weave_height_(gl::Texture::load_2d(root / "textures" / "height_weave.png", options.filtering)),
+      bumps_height_(gl::Texture::load_2d(root / "textures" / "height_bumps.png", options.filtering)),
+      sky_(load_cube(root / "textures", options.filtering)),
       scene_size_(float(std::max(scene.cloth.width, scene.cloth.height))) {
   cloth_ = make_indexed(cloth_triangle_indices(model));
   for (int t = 0; t < 3; ++t) springs_[t] = make_indexed(cloth_spring_indices(model, SpringType(t)));
@@ -83,11 +83,6 @@ Renderer::Renderer(const std::filesystem::path& root, const Scene& scene, const 
     planes_.push_back(make_mesh(plane_mesh(glm::vec3(foot), glm::vec3(pl.normal), 3.f * scene_size_)));
   }
   no_extras_.allocate(sizeof(layout::MeshVertex));
-  // Mirror minifies the sky a lot on a folded cloth: without mipmaps the ground grid in the
-  // cube map aliases into sparkles.
-  sky_.bind(2);
-  glGenerateMipmap(GL_TEXTURE_CUBE_MAP);
-  glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
 }
 
 Renderer::~Renderer() = default;
@@ -118,8 +113,8 @@ void Renderer::draw(const gl::Buffer& positions, const gl::Buffer& normals, cons
   glEnable(GL_DEPTH_TEST);
   glEnable(GL_MULTISAMPLE);
   gl::Program& prog = program(look.shader);
-  // A light above, behind and to the side of the camera: irradiance 0.8 at the target, so white
-  // cloth facing it (and nearer to it) is not blown out to pure white.
+  // A light above, behind and to the side of the camera: irradiance 0.8 at the target. Cloth
+  // nearer to it gets more, which the tone map rolls off instead of clipping.
   const glm::vec3 eye = camera.eye();
   const glm::vec3 light = camera.target + glm::vec3(0.6f, 1.4f, 0.9f) * std::max(camera.distance, scene_size_);
   const float d2 = glm::dot(light - camera.target, light - camera.target);
@@ -130,6 +125,7 @@ void Renderer::draw(const gl::Buffer& positions, const gl::Buffer& normals, cons
   prog.set("u_light_intensity", glm::vec3(d2 * 0.8f));
   prog.set("u_normal_scaling", look.normal_scaling);
   prog.set("u_height_scaling", look.height_scaling);
+  prog.set("u_exposure", look.exposure);
   // Bump shows the fabric weave; Displacement moves vertices, so it uses the smooth bumps a
   // 50x50 mesh can follow without jaggies.
   const gl::Texture& height = look.shader == ShaderKind::Displacement ? bumps_height_ : weave_height_;

@@ -28,6 +28,8 @@ struct Appearance {
   glm::vec4 color{0.9f, 0.88f, 0.85f, 1.f};
   float normal_scaling = 2.f;
   float height_scaling = 0.02f;  // metres at height 1
+  // Scales the light before the tone map (shaders/lighting.glsl): 2 is one stop brighter.
+  float exposure = 1.f;
   bool show_spheres = true;
   bool show_planes = true;
   std::array<bool, 3> wire_springs{true, true, false};  // structural, shearing, bending
@@ -38,6 +40,7 @@ struct RendererOptions {
   // Spheres are drawn at 0.92 r, as the classic app did, so the cloth resting on the
   // collision surface is never hidden inside the drawn sphere.
   float sphere_shrink = 0.92f;
+  gl::TextureFiltering filtering{};  // of every texture
 };
 
 class Renderer {

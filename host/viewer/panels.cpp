@@ -104,6 +104,8 @@ void appearance_panel(ViewerState& st) {
   ImGui::ColorEdit3("colour", &st.look.color.x);
   ImGui::SliderFloat("normal scaling", &st.look.normal_scaling, 0.f, 20.f);
   ImGui::SliderFloat("height scaling", &st.look.height_scaling, 0.f, 0.1f, "%.3f");
+  // Logarithmic: each stop (a doubling) takes the same slider travel.
+  ImGui::SliderFloat("exposure", &st.look.exposure, 0.125f, 8.f, "%.2f", ImGuiSliderFlags_Logarithmic);
   ImGui::Checkbox("spheres", &st.look.show_spheres);
   ImGui::SameLine();
   ImGui::Checkbox("planes", &st.look.show_planes);
