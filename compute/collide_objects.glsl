@@ -42,10 +42,13 @@ vec3 moving_sphere_push(vec3 e, float dist, float r, vec3 d, vec3 m) {
   return out_along_e;
 }
 
-void collide_with_objects(inout vec3 x, inout vec3 d) {
+// With `friction` false every contact keeps all of its tangential motion (keep = 1): the pure
+// push-out that xpbd's constraint pass applies after each correction (docs/model.md); applying
+// it twice changes nothing.
+void collide_with_objects_friction(inout vec3 x, inout vec3 d, bool friction) {
   for (int s = 0; s < int(params.sphere_count); ++s) {
     vec4 origin_radius = texelFetch(spheres_view, SPHERE_TEXELS * s);
-    float keep = texelFetch(spheres_view, SPHERE_TEXELS * s + 1).x;
+    float keep = friction ? texelFetch(spheres_view, SPHERE_TEXELS * s + 1).x : 1.0;
     vec3 m = texelFetch(spheres_view, SPHERE_TEXELS * s + 2).xyz;
     float r = origin_radius.w;
     vec3 e = x - origin_radius.xyz;
@@ -69,6 +72,7 @@ void collide_with_objects(inout vec3 x, inout vec3 d) {
     vec4 normal_keep = texelFetch(planes_view, PLANE_TEXELS * k + 1);
     vec3 m = texelFetch(planes_view, PLANE_TEXELS * k + 2).xyz;
     vec3 n = normal_keep.xyz;
+    if (!friction) normal_keep.w = 1.0;
     if (any(notEqual(m, vec3(0.0)))) {
       // The side test in the plane's frame, x_prev - p_prev = (x - p) - (d - m): it sees a
       // plane that swept over a mass at any speed.
@@ -93,5 +97,7 @@ void collide_with_objects(inout vec3 x, inout vec3 d) {
     blend_to(t_minus_x, normal_keep.w, x, d);
   }
 }
+
+void collide_with_objects(inout vec3 x, inout vec3 d) { collide_with_objects_friction(x, d, true); }
 
 #endif

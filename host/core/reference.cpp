@@ -211,18 +211,21 @@ template <class R> void accumulate_forces(const ClothModel& m, const Constants<R
     }
 }
 
+// A pinned mass keeps its position, or with pinned_motion goes to its anchor + the offset at
+// the substep's end, and its displacement is that move (its velocity, for the springs'
+// constraints, friction and the wind). The GLSL twin is move_pinned in pinned_motion.glsl.
+template <class R> void move_pinned(const Constants<R>& c, size_t i, State<R>& s) {
+  if (!c.moving_pins() || c.anchors[i].w == R(0)) return;
+  const Vec3<R> next = Vec3<R>(c.anchors[i]) + c.pin_offset;
+  s.disp[i] = Vec4<R>(next - Vec3<R>(s.pos[i]), R(0));
+  s.pos[i] = Vec4<R>(next, s.pos[i].w);
+}
+
 template <class R> void integrate(const Constants<R>& c, State<R>& s) {
   for (size_t i = 0; i < s.pos.size(); ++i) {
     const R w = s.pos[i].w;
     if (w == R(0)) {
-      // Pinned: keeps its position, or with pinned_motion goes to its anchor + the offset at
-      // the substep's end, and its displacement is that move (its velocity, for the springs'
-      // constraints, friction and the wind).
-      if (c.moving_pins() && c.anchors[i].w != R(0)) {
-        const Vec3<R> next = Vec3<R>(c.anchors[i]) + c.pin_offset;
-        s.disp[i] = Vec4<R>(next - Vec3<R>(s.pos[i]), R(0));
-        s.pos[i] = Vec4<R>(next, w);
-      }
+      move_pinned(c, i, s);
       continue;
     }
     const Vec3<R> a = Vec3<R>(s.force[i]) * w;
@@ -291,41 +294,49 @@ template <class R> Vec3<R> moving_sphere_push(const Vec3<R>& e, R dist, R r, con
   return dist > R(0) ? e * ((r - dist) * (R(1) / dist)) : Vec3<R>(0, r, 0);
 }
 
+// One particle against every sphere, then every plane. With `friction` false every contact
+// keeps all of its tangential motion (keep = 1): the pure push-out of xpbd's constraint pass.
+template <class R> void collide_particle(const Constants<R>& c, Vec3<R>& x, Vec3<R>& d, bool friction) {
+  for (const SphereC<R>& sp : c.spheres) {
+    const Vec3<R> e = x - sp.origin;
+    const R dist = length3(e);
+    if (dist > sp.radius) continue;
+    const R keep = friction ? sp.keep : R(1);
+    if (sp.motion != Vec3<R>(0)) {
+      blend_to_moving(moving_sphere_push(e, dist, sp.radius, d, sp.motion), keep, sp.motion, x, d);
+      continue;
+    }
+    // t - x = e (r / |e| - 1): the push out to the surface. A mass exactly at the centre
+    // has no outward direction: it goes up.
+    const Vec3<R> t_minus_x = dist > R(0) ? e * ((sp.radius - dist) * (R(1) / dist)) : Vec3<R>(0, sp.radius, 0);
+    blend_to(t_minus_x, keep, x, d);
+  }
+  for (const PlaneC<R>& pl : c.planes) {
+    const R keep = friction ? pl.keep : R(1);
+    if (pl.motion != Vec3<R>(0)) {
+      // The side test in the plane's frame: x_prev - p_prev = (x - p) - (d - m). It sees a
+      // plane that swept over a mass at any speed.
+      const R dist = dot3(x - pl.point, pl.normal);
+      const R dist_prev = dist - dot3(d - pl.motion, pl.normal);
+      if (dist * dist_prev > R(0)) continue;
+      const R side = dist_prev > R(0) ? R(1) : (dist_prev < R(0) ? R(-1) : R(0));
+      blend_to_moving(pl.normal * (R(1e-4) * side - dist), keep, pl.motion, x, d);
+      continue;
+    }
+    const R dist = dot3(x - pl.point, pl.normal);
+    const R dist_prev = dist - dot3(d, pl.normal);  // (x_prev - p) . n
+    if (dist * dist_prev > R(0)) continue;
+    const R side = dist_prev > R(0) ? R(1) : (dist_prev < R(0) ? R(-1) : R(0));
+    // t = x - dist n + SURFACE_OFFSET side n, so t - x is along n.
+    blend_to(pl.normal * (R(1e-4) * side - dist), keep, x, d);
+  }
+}
+
 template <class R> void collide_objects(const Constants<R>& c, State<R>& s) {
   for (size_t i = 0; i < s.pos.size(); ++i) {
     if (s.pos[i].w == R(0)) continue;
     Vec3<R> x(s.pos[i]), d(s.disp[i]);
-    for (const SphereC<R>& sp : c.spheres) {
-      const Vec3<R> e = x - sp.origin;
-      const R dist = length3(e);
-      if (dist > sp.radius) continue;
-      if (sp.motion != Vec3<R>(0)) {
-        blend_to_moving(moving_sphere_push(e, dist, sp.radius, d, sp.motion), sp.keep, sp.motion, x, d);
-        continue;
-      }
-      // t - x = e (r / |e| - 1): the push out to the surface. A mass exactly at the centre
-      // has no outward direction: it goes up.
-      const Vec3<R> t_minus_x = dist > R(0) ? e * ((sp.radius - dist) * (R(1) / dist)) : Vec3<R>(0, sp.radius, 0);
-      blend_to(t_minus_x, sp.keep, x, d);
-    }
-    for (const PlaneC<R>& pl : c.planes) {
-      if (pl.motion != Vec3<R>(0)) {
-        // The side test in the plane's frame: x_prev - p_prev = (x - p) - (d - m). It sees a
-        // plane that swept over a mass at any speed.
-        const R dist = dot3(x - pl.point, pl.normal);
-        const R dist_prev = dist - dot3(d - pl.motion, pl.normal);
-        if (dist * dist_prev > R(0)) continue;
-        const R side = dist_prev > R(0) ? R(1) : (dist_prev < R(0) ? R(-1) : R(0));
-        blend_to_moving(pl.normal * (R(1e-4) * side - dist), pl.keep, pl.motion, x, d);
-        continue;
-      }
-      const R dist = dot3(x - pl.point, pl.normal);
-      const R dist_prev = dist - dot3(d, pl.normal);  // (x_prev - p) . n
-      if (dist * dist_prev > R(0)) continue;
-      const R side = dist_prev > R(0) ? R(1) : (dist_prev < R(0) ? R(-1) : R(0));
-      // t = x - dist n + SURFACE_OFFSET side n, so t - x is along n.
-      blend_to(pl.normal * (R(1e-4) * side - dist), pl.keep, x, d);
-    }
+    collide_particle(c, x, d, true);
     s.pos[i] = Vec4<R>(x, s.pos[i].w);
     s.disp[i] = Vec4<R>(d, R(0));
   }
@@ -373,12 +384,7 @@ template <class R> void predict(const ClothModel& m, const Constants<R>& c, Stat
   for (size_t i = 0; i < s.pos.size(); ++i) {
     const R w = s.pos[i].w;
     if (w == R(0)) {
-      // Pinned: keeps its position, or follows pinned_motion as in integrate.
-      if (c.moving_pins() && c.anchors[i].w != R(0)) {
-        const Vec3<R> next = Vec3<R>(c.anchors[i]) + c.pin_offset;
-        s.disp[i] = Vec4<R>(next - Vec3<R>(s.pos[i]), R(0));
-        s.pos[i] = Vec4<R>(next, w);
-      }
+      move_pinned(c, i, s);
       continue;
     }
     Vec3<R> acc = c.gravity;
@@ -438,6 +444,12 @@ void solve_distance_constraint_colour(const ClothModel& m, const Constants<R>& c
         xj = xj - cj;
         di = di + ci;
         dj = dj - cj;
+      }
+      // A correction must not push a mass into a collider or through a plane, where the
+      // collision test of the next substep could no longer see it (docs/model.md).
+      if (c.has_colliders()) {
+        if (wi != R(0)) collide_particle(c, xi, di, false);
+        if (wj != R(0)) collide_particle(c, xj, dj, false);
       }
       s.pos[i] = Vec4<R>(xi, wi);
       s.pos[j] = Vec4<R>(xj, wj);

@@ -1,0 +1,95 @@
+// The xpbd solver on the GPU (docs/model.md): the resolution-independence cloth at 33² and 65²,
+// stability over ks 10..1e9 at fabric density, and no more dispatches per substep than the
+// classic solver. On llvmpipe each run also equals the float reference bit for bit.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+#include "gl_test_support.hpp"
+#include "gpu_simulator.hpp"
+#include "pass_check.hpp"
+#include "xpbd_scenes.hpp"
+
+using namespace clothsim;
+
+namespace {
+
+
+// `frames` frames on the GPU and, on llvmpipe, on the float reference too (bit for bit).
+State<float> run_both(const Scene& s, const ClothModel& m, int frames, bool* diverged) {
+  GpuSimulator gpu(s, m, test::source_path("compute"));
+  CpuBackend<float> cpu(s, m);
+  const bool exact = gl::gl_renderer_is_llvmpipe();
+  *diverged = false;
+  for (int f = 0; f < frames; ++f) {
+    gpu.step_frame();
+    if (exact) cpu.step_frame();
+    for (const FrameCheck& check : gpu.divergence().take(f + 1 == frames))
+      *diverged = *diverged || divergence_message(s, m, check).has_value();
+  }
+  State<float> g;
+  gpu.download(g);
+  if (exact) {
+    const Deviation d = deviation(g.pos, cpu.state().pos);
+    INFO("GPU - CPU (float) " << d.max << " m");
+    CHECK(d.bitwise);
+  }
+  return g;
+}
+
+}  // namespace
+
+TEST_CASE("xpbd on the GPU: a hanging cloth's bottom centre is within 2 cm at 33² and 65²", "[gpu][xpbd]") {
+  REQUIRE_GL_CONTEXT();
+  double y[2];
+  int k = 0;
+  for (int n : {33, 65}) {
+    const Scene s = test::hanging_cloth(n);
+    const ClothModel m = build_cloth(s.cloth);
+    bool diverged = false;
+    const State<float> g = run_both(s, m, 180, &diverged);
+    CHECK(!diverged);
+    y[k++] = g.pos[size_t(m.index((n - 1) / 2, 0))].y;
+  }
+  INFO("bottom centre y: " << y[0] << " m at 33², " << y[1] << " m at 65²");
+  CHECK(std::abs(y[0] - y[1]) <= 0.02);
+  CHECK_NO_GL_ERRORS();
+}
+
+TEST_CASE("xpbd on the GPU: no NaN and no divergence for ks from 10 to 1e9 at fabric density", "[gpu][xpbd]") {
+  REQUIRE_GL_CONTEXT();
+  for (double ks : test::kXpbdStiffnesses) {
+    const Scene s = test::hanging_cloth(17, ks);
+    const ClothModel m = build_cloth(s.cloth);
+    bool diverged = false;
+    const State<float> g = run_both(s, m, 60, &diverged);
+    bool finite = true;
+    for (const auto& p : g.pos) finite = finite && std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
+    INFO("ks " << ks);
+    CHECK(!diverged);
+    CHECK(finite);
+  }
+  CHECK_NO_GL_ERRORS();
+}
+
+TEST_CASE("an xpbd substep takes no more dispatches than a classic one", "[gpu][xpbd]") {
+  REQUIRE_GL_CONTEXT();
+  for (bool self_collision : {false, true}) {
+    int per_substep[2];
+    for (int solver = 0; solver < 2; ++solver) {
+      Scene s = test::hanging_cloth(33);
+      s.simulation.solver = Solver(solver);
+      s.simulation.self_collision = self_collision;
+      const ClothModel m = build_cloth(s.cloth);
+      GpuSimulator gpu(s, m, test::source_path("compute"));
+      const GpuCounters before = gpu.counters();
+      gpu.step();
+      per_substep[solver] = int(gpu.counters().dispatches - before.dispatches);
+      CHECK(per_substep[solver] == gpu.dispatches_per_substep());
+    }
+    INFO("self-collision " << self_collision << ": classic " << per_substep[0] << ", xpbd " << per_substep[1]);
+    CHECK(per_substep[1] <= per_substep[0]);
+    if (!self_collision) CHECK(per_substep[0] == 13);
+  }
+  CHECK_NO_GL_ERRORS();
+}
