@@ -18,7 +18,7 @@ TEST_CASE("a keyframed sphere is drawn where the simulation has it at a later fr
   // the sphere, which crosses 0.6 m along -x in its first 0.1 s (9 frames) and then stays.
   StageOptions o;
   o.sets = {"simulation.gravity=[0,0,0]",
-            R"(sphere[0].motion={"keyframes": [[0, [0.5, 0.2, 0.5]], [0.1, [-0.1, 0.2, 0.5]]]})"};
+            R"(sphere.motion={"keyframes": [[0, [0.5, 0.2, 0.5]], [0.1, [-0.1, 0.2, 0.5]]]})"};
   Stage stage("sphere", kWidth, kHeight, o);
   stage.camera.look_from({0.2f, 0.2f, 2.5f}, {0.2f, 0.2f, 0.5f});
 

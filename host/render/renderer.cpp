@@ -183,9 +183,16 @@ void Renderer::draw(const gl::Buffer& positions, const gl::Buffer& normals, cons
   if (look.show_spheres)
     for (size_t k = 0; k < spheres_.size(); ++k)
       draw_collider(*spheres_[k], sphere_now_[k] - sphere_built_[k], wire ? glm::vec4(0.45f, 0.6f, 0.9f, 1.f) : glm::vec4(0.35f, 0.5f, 0.8f, 1.f));
-  if (look.show_planes)
+  if (look.show_planes) {
+    // Cloth resting on a plane lies 0.1 mm above it (the contact's offset), which the depth
+    // buffer cannot tell apart at a few metres: push the plane's depth back a little so the
+    // cloth wins instead of both speckling through each other.
+    glEnable(GL_POLYGON_OFFSET_FILL);
+    glPolygonOffset(1.f, 4.f);
     for (size_t k = 0; k < planes_.size(); ++k)
       draw_collider(*planes_[k], plane_now_[k] - plane_built_[k], wire ? glm::vec4(0.4f, 0.4f, 0.4f, 1.f) : glm::vec4(0.3f, 0.31f, 0.33f, 1.f));
+    glDisable(GL_POLYGON_OFFSET_FILL);
+  }
 }
 
 }  // namespace clothsim
