@@ -46,6 +46,8 @@ struct FrameSource {
   // This frame's divergence check. Waiting for it costs nothing here: reading the image back
   // waits for the frame anyway.
   std::vector<FrameCheck> take_checks() { return gpu ? gpu->divergence().take(true) : cpu->take_checks(true); }
+  // Keyframed colliders move with the simulated time: draw them where this frame left them.
+  void place_colliders(Renderer& r) const { gpu ? r.place_colliders(gpu->constants()) : r.place_colliders(cpu->constants()); }
   const gl::Buffer& positions() const { return gpu ? gpu->positions() : cpu_positions; }
   const gl::Buffer& normals() const { return gpu ? gpu->normals() : cpu_normals; }
 };
@@ -109,6 +111,7 @@ int run_render(const Opts& o) {
     // Frames that are not kept are simulated but never drawn.
     if (f % o.every == 0 || (f == o.frames && sink.last_frame_only())) {
       target->bind();
+      source.place_colliders(renderer);
       renderer.draw(source.positions(), source.normals(), camera, look);
       sink.add(target->read_rgba());
     }

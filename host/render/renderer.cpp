@@ -3,7 +3,10 @@
 #include <algorithm>
 #include <cctype>
 
+#include <stdexcept>
+
 #include <glm/geometric.hpp>
+#include <glm/gtc/matrix_transform.hpp>
 
 #include "meshes.hpp"
 
@@ -71,18 +74,30 @@ Renderer::Renderer(const std::filesystem::path& root, const Scene& scene, const 
       scene_size_(float(std::max(scene.cloth.width, scene.cloth.height))) {
   cloth_ = make_indexed(cloth_triangle_indices(model));
   for (int t = 0; t < 3; ++t) springs_[t] = make_indexed(cloth_spring_indices(model, SpringType(t)));
-  for (auto& s : scene.spheres)
+  for (auto& s : scene.spheres) {
+    sphere_built_.emplace_back(s.origin);
     spheres_.push_back(make_mesh(sphere_mesh(glm::vec3(s.origin), float(s.radius) * options.sphere_shrink,
                                              options.sphere_lat, options.sphere_lon)));
+  }
   glm::dvec3 centre(0);
   for (auto& p : model.initial) centre += p;
   centre /= double(model.count());
   for (auto& pl : scene.planes) {
     // A square around the cloth's shadow on the plane, big enough to look endless.
     const glm::dvec3 foot = centre - pl.normal * glm::dot(centre - pl.point, pl.normal);
+    plane_built_.emplace_back(pl.point);
     planes_.push_back(make_mesh(plane_mesh(glm::vec3(foot), glm::vec3(pl.normal), 3.f * scene_size_)));
   }
   no_extras_.allocate(sizeof(layout::MeshVertex));
+  sphere_now_ = sphere_built_;
+  plane_now_ = plane_built_;
+}
+
+void Renderer::place_colliders(const std::vector<glm::vec3>& sphere_origins, const std::vector<glm::vec3>& plane_points) {
+  if (sphere_origins.size() != sphere_built_.size() || plane_points.size() != plane_built_.size())
+    throw std::logic_error("Renderer::place_colliders: not the scene's number of spheres and planes");
+  sphere_now_ = sphere_origins;
+  plane_now_ = plane_points;
 }
 
 Renderer::~Renderer() = default;
@@ -154,7 +169,9 @@ void Renderer::draw(const gl::Buffer& positions, const gl::Buffer& normals, cons
 
   // Colliders: their own buffers at the same bindings, shaded with the same program.
   prog.set("u_is_cloth", 0);
-  auto draw_collider = [&](const Mesh& m, glm::vec4 colour) {
+  auto draw_collider = [&](const Mesh& m, glm::vec3 moved, glm::vec4 colour) {
+    // Only a translation, so the normals (mat3(u_model)) are unchanged.
+    prog.set("u_model", glm::translate(glm::mat4(1.f), moved));
     m.positions->bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_DRAW_POSITIONS);
     m.normals->bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_DRAW_NORMALS);
     m.extras->bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_DRAW_EXTRAS);
@@ -164,9 +181,18 @@ void Renderer::draw(const gl::Buffer& positions, const gl::Buffer& normals, cons
     if (wire) glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
   };
   if (look.show_spheres)
-    for (auto& s : spheres_) draw_collider(*s, wire ? glm::vec4(0.45f, 0.6f, 0.9f, 1.f) : glm::vec4(0.35f, 0.5f, 0.8f, 1.f));
-  if (look.show_planes)
-    for (auto& p : planes_) draw_collider(*p, wire ? glm::vec4(0.4f, 0.4f, 0.4f, 1.f) : glm::vec4(0.3f, 0.31f, 0.33f, 1.f));
+    for (size_t k = 0; k < spheres_.size(); ++k)
+      draw_collider(*spheres_[k], sphere_now_[k] - sphere_built_[k], wire ? glm::vec4(0.45f, 0.6f, 0.9f, 1.f) : glm::vec4(0.35f, 0.5f, 0.8f, 1.f));
+  if (look.show_planes) {
+    // Cloth resting on a plane lies 0.1 mm above it (the contact's offset), which the depth
+    // buffer cannot tell apart at a few metres: push the plane's depth back a little so the
+    // cloth wins instead of both speckling through each other.
+    glEnable(GL_POLYGON_OFFSET_FILL);
+    glPolygonOffset(1.f, 4.f);
+    for (size_t k = 0; k < planes_.size(); ++k)
+      draw_collider(*planes_[k], plane_now_[k] - plane_built_[k], wire ? glm::vec4(0.4f, 0.4f, 0.4f, 1.f) : glm::vec4(0.3f, 0.31f, 0.33f, 1.f));
+    glDisable(GL_POLYGON_OFFSET_FILL);
+  }
 }
 
 }  // namespace clothsim

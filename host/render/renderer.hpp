@@ -12,6 +12,7 @@
 #include "camera.hpp"
 #include "objects.hpp"
 #include "program.hpp"
+#include "reference.hpp"
 #include "texture.hpp"
 
 namespace clothsim {
@@ -49,6 +50,18 @@ class Renderer {
            const RendererOptions& options = {});
   ~Renderer();
 
+  // Where the colliders are now: a sphere's origin, a point on each plane (their normals never
+  // change), in file order. Keyframed colliders move in the simulation, so callers pass the
+  // simulator's current constants before every draw; the meshes stay as built and are
+  // translated (u_model) from where the scene file put them. Until called, they are drawn there.
+  void place_colliders(const std::vector<glm::vec3>& sphere_origins, const std::vector<glm::vec3>& plane_points);
+  template <class R> void place_colliders(const Constants<R>& c) {
+    std::vector<glm::vec3> spheres, planes;
+    for (const auto& s : c.spheres) spheres.emplace_back(s.origin);
+    for (const auto& p : c.planes) planes.emplace_back(p.point);
+    place_colliders(spheres, planes);
+  }
+
   // Draws into the bound framebuffer (clears it first).
   void draw(const gl::Buffer& positions, const gl::Buffer& normals, const OrbitCamera& camera,
             const Appearance& look);
@@ -65,6 +78,8 @@ class Renderer {
   std::unique_ptr<Mesh> cloth_;
   std::array<std::unique_ptr<Mesh>, 3> springs_;
   std::vector<std::unique_ptr<Mesh>> spheres_, planes_;
+  // Where each collider's mesh was built (the scene's origin / point) and where it is now.
+  std::vector<glm::vec3> sphere_built_, plane_built_, sphere_now_, plane_now_;
   gl::Texture fabric_, weave_height_, bumps_height_, sky_;
   gl::Buffer no_extras_{"no mesh extras"};
   float scene_size_;

@@ -107,6 +107,8 @@ class Viewer {
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glViewport(0, 0, w, h);
     render_timer_.begin();
+    // Keyframed (or alt-dragged) colliders are drawn where the simulation has them now.
+    session_.renderer->place_colliders(session_.sim->constants());
     session_.renderer->draw(session_.sim->positions(), session_.sim->normals(), st_.camera, st_.look);
     st_.stats.render_ms = render_timer_.end();
     st_.stats.gpu_timers = sim_timer_.uses_queries();

@@ -13,13 +13,14 @@ namespace clothsim {
 namespace {
 Viewer* self(GLFWwindow* w) { return static_cast<Viewer*>(glfwGetWindowUserPointer(w)); }
 
-// The sphere whose surface the ray meets first, and where.
-std::optional<std::pair<int, glm::vec3>> pick_sphere(const Ray& ray, const std::vector<SphereParams>& spheres) {
+// The sphere whose surface the ray meets first, and where. Taken from the simulation's
+// constants, where a keyframed sphere is now (the scene's origin is only its static value).
+std::optional<std::pair<int, glm::vec3>> pick_sphere(const Ray& ray, const std::vector<SphereC<float>>& spheres) {
   std::optional<std::pair<int, glm::vec3>> best;
   float best_t = INFINITY;
   for (size_t k = 0; k < spheres.size(); ++k) {
-    const glm::vec3 oc = ray.origin - glm::vec3(spheres[k].origin);
-    const float b = glm::dot(oc, ray.direction), c = glm::dot(oc, oc) - float(spheres[k].radius * spheres[k].radius);
+    const glm::vec3 oc = ray.origin - spheres[k].origin;
+    const float b = glm::dot(oc, ray.direction), c = glm::dot(oc, oc) - spheres[k].radius * spheres[k].radius;
     const float disc = b * b - c;
     if (disc < 0.f) continue;
     const float t = -b - std::sqrt(disc);
@@ -63,9 +64,6 @@ void Viewer::on_mouse_button(int button, int action, int mods) {
   if (action == GLFW_RELEASE) {
     if (grab_.active()) session_.sim->release_particle(grab_.particle);
     grab_ = {};
-    if (sphere_drag_.sphere >= 0)  // the collider meshes are built with the renderer: rebuild it there
-      session_.renderer = std::make_unique<Renderer>(opts_.root, st_.scene, *session_.model,
-                                                     RendererOptions{opts_.sphere_lat, opts_.sphere_lon});
     sphere_drag_ = {};
     drag_button_ = -1;
     return;
@@ -88,7 +86,7 @@ void Viewer::on_mouse_button(int button, int action, int mods) {
   if (button == GLFW_MOUSE_BUTTON_LEFT && (mods & GLFW_MOD_ALT)) {
     int w = 0, h = 0;
     glfwGetWindowSize(window_->handle(), &w, &h);
-    if (auto hit = pick_sphere(pick_ray(st_.camera, glm::vec2(cursor_), glm::vec2(w, h)), st_.scene.spheres))
+    if (auto hit = pick_sphere(pick_ray(st_.camera, glm::vec2(cursor_), glm::vec2(w, h)), session_.sim->constants().spheres))
       sphere_drag_ = {hit->first, begin_grab(0, hit->second, st_.camera), hit->second, glm::dvec3(0.0)};
     return;
   }

@@ -1,0 +1,55 @@
+// Moving colliders as drawn: the renderer builds each collider's mesh once, where the scene
+// file puts it, and translates it to where the simulation has it now (Renderer::place_colliders,
+// from the simulator's constants before every draw), so a keyframed sphere is drawn moving.
+#include <glad/gl.h>
+
+#include <cmath>
+
+#include <glm/vec2.hpp>
+
+#include "render_stage.hpp"
+
+using namespace clothsim;
+using namespace clothsim::test;
+
+TEST_CASE("a keyframed sphere is drawn where the simulation has it at a later frame", "[gpu][render]") {
+  REQUIRE_GL_CONTEXT();
+  // Weightless, the flat cloth stays at y = 1, nearly edge-on from this camera and well above
+  // the sphere, which crosses 0.6 m along -x in its first 0.1 s (9 frames) and then stays.
+  StageOptions o;
+  o.sets = {"simulation.gravity=[0,0,0]",
+            R"(sphere.motion={"keyframes": [[0, [0.5, 0.2, 0.5]], [0.1, [-0.1, 0.2, 0.5]]]})"};
+  Stage stage("sphere", kWidth, kHeight, o);
+  stage.camera.look_from({0.2f, 0.2f, 2.5f}, {0.2f, 0.2f, 0.5f});
+
+  stage.run(1);
+  const glm::vec3 start = stage.gpu.constants().spheres[0].origin;
+  const Image before = stage.draw(ShaderKind::Diffuse);
+  stage.run(17);  // frame 18, 0.2 s: past the last key
+  const glm::vec3 now = stage.gpu.constants().spheres[0].origin;
+  REQUIRE(now.x == Approx(-0.1f));
+  REQUIRE(start.x > 0.4f);  // 1/90 s in, it has moved 0.067 m of its 0.6 m
+  const Image after = stage.draw(ShaderKind::Diffuse);
+
+  const glm::ivec2 from(stage.pixel_of(start)), to(stage.pixel_of(now));
+  INFO("sphere centre from pixel (" << from.x << ", " << from.y << ") to (" << to.x << ", " << to.y << ")");
+  REQUIRE(before.inside(from.x, from.y));
+  REQUIRE(after.inside(to.x, to.y));
+  // Where it was: sphere, then background; where it went: background, then sphere. A renderer
+  // drawing the scene's static origin would fail the second and fourth checks.
+  CHECK_FALSE(is_background(before.at(from.x, from.y)));
+  CHECK(is_background(after.at(from.x, from.y)));
+  CHECK(is_background(before.at(to.x, to.y)));
+  CHECK_FALSE(is_background(after.at(to.x, to.y)));
+  // And the whole sphere moved: about as many sphere pixels as before, now around `to`.
+  int near_to = 0, near_from = 0;
+  const int r = int(std::abs(float(to.x - from.x)) / 3.f);
+  for (int y = 0; y < after.h; ++y)
+    for (int x = 0; x < after.w; ++x) {
+      if (is_background(after.at(x, y))) continue;
+      near_to += (x - to.x) * (x - to.x) + (y - to.y) * (y - to.y) < r * r;
+      near_from += (x - from.x) * (x - from.x) + (y - from.y) * (y - from.y) < r * r;
+    }
+  CHECK(near_to > 0);
+  CHECK(near_from == 0);
+}
