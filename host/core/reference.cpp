@@ -163,25 +163,31 @@ Vec3<R> triangle_wind_share(const WindC<R>& w, const Vec3<R>& pa, const Vec3<R>&
   return drag + across * (w.lift * len * normal_speed);
 }
 
+// Calls visit(t) for each of the up to six triangles (DESIGN.md §1) that have (x, y) as a
+// corner, in a fixed order: the cells (x-1..x, y-1..y), each split into (A, C, B) and (B, C, D).
+// compute_normals and compute_wind_forces gather over them, as their shaders do.
+template <class Visit> void for_each_triangle_around(const ClothModel& m, int x, int y, Visit&& visit) {
+  const int self = m.index(x, y);
+  for (int cy = y - 1; cy <= y; ++cy)
+    for (int cx = x - 1; cx <= x; ++cx) {
+      if (cx < 0 || cy < 0 || cx + 1 >= m.nw || cy + 1 >= m.nh) continue;
+      const int a = m.index(cx, cy), b = m.index(cx + 1, cy), cc = m.index(cx, cy + 1), dd = m.index(cx + 1, cy + 1);
+      const int tris[2][3] = {{a, cc, b}, {b, cc, dd}};
+      for (auto& t : tris)
+        if (t[0] == self || t[1] == self || t[2] == self) visit(t);
+    }
+}
+
 template <class R> void compute_wind_forces(const ClothModel& m, const Constants<R>& c, State<R>& s) {
   s.wind.resize(s.pos.size());
   for (int y = 0; y < m.nh; ++y)
     for (int x = 0; x < m.nw; ++x) {
       const int self = m.index(x, y);
       Vec3<R> f(0);
-      // The up to six triangles around (x, y), in compute_normals' order: cells (x-1..x, y-1..y),
-      // each split into (A, C, B) and (B, C, D).
-      for (int cy = y - 1; cy <= y; ++cy)
-        for (int cx = x - 1; cx <= x; ++cx) {
-          if (cx < 0 || cy < 0 || cx + 1 >= m.nw || cy + 1 >= m.nh) continue;
-          const int a = m.index(cx, cy), b = m.index(cx + 1, cy), cc = m.index(cx, cy + 1), dd = m.index(cx + 1, cy + 1);
-          const int tris[2][3] = {{a, cc, b}, {b, cc, dd}};
-          for (auto& t : tris) {
-            if (t[0] != self && t[1] != self && t[2] != self) continue;
-            f += triangle_wind_share(c.wind, Vec3<R>(s.pos[t[0]]), Vec3<R>(s.pos[t[1]]), Vec3<R>(s.pos[t[2]]),
-                                     Vec3<R>(s.disp[t[0]]), Vec3<R>(s.disp[t[1]]), Vec3<R>(s.disp[t[2]]));
-          }
-        }
+      for_each_triangle_around(m, x, y, [&](const int (&t)[3]) {
+        f += triangle_wind_share(c.wind, Vec3<R>(s.pos[t[0]]), Vec3<R>(s.pos[t[1]]), Vec3<R>(s.pos[t[2]]),
+                                 Vec3<R>(s.disp[t[0]]), Vec3<R>(s.disp[t[1]]), Vec3<R>(s.disp[t[2]]));
+      });
       s.wind[self] = Vec4<R>(f, R(0));
     }
 }
@@ -466,21 +472,12 @@ template <class R> void compute_normals(const ClothModel& m, State<R>& s) {
   for (int y = 0; y < m.nh; ++y)
     for (int x = 0; x < m.nw; ++x) {
       Vec3<R> sum(0);
-      // The up to four cells around (x, y), each split into (A, C, B) and (B, C, D).
-      for (int cy = y - 1; cy <= y; ++cy)
-        for (int cx = x - 1; cx <= x; ++cx) {
-          if (cx < 0 || cy < 0 || cx + 1 >= m.nw || cy + 1 >= m.nh) continue;
-          const int a = m.index(cx, cy), b = m.index(cx + 1, cy), cc = m.index(cx, cy + 1), dd = m.index(cx + 1, cy + 1);
-          const int tris[2][3] = {{a, cc, b}, {b, cc, dd}};
-          const int self = m.index(x, y);
-          for (auto& t : tris) {
-            if (t[0] != self && t[1] != self && t[2] != self) continue;
-            const Vec3<R> p0(s.pos[t[0]]), p1(s.pos[t[1]]), p2(s.pos[t[2]]);
-            const Vec3<R> u = p1 - p0, v = p2 - p0;
-            // Unnormalised cross product: its length is twice the area, so this is area-weighted.
-            sum += Vec3<R>(u.y * v.z - u.z * v.y, u.z * v.x - u.x * v.z, u.x * v.y - u.y * v.x);
-          }
-        }
+      for_each_triangle_around(m, x, y, [&](const int (&t)[3]) {
+        const Vec3<R> p0(s.pos[t[0]]), p1(s.pos[t[1]]), p2(s.pos[t[2]]);
+        const Vec3<R> u = p1 - p0, v = p2 - p0;
+        // Unnormalised cross product: its length is twice the area, so this is area-weighted.
+        sum += Vec3<R>(u.y * v.z - u.z * v.y, u.z * v.x - u.x * v.z, u.x * v.y - u.y * v.x);
+      });
       const R len = length3(sum);
       s.normal[m.index(x, y)] = len > R(0) ? Vec4<R>(sum * (R(1) / len), R(0)) : Vec4<R>(0, 1, 0, 0);
     }
