@@ -1,0 +1,186 @@
+// The reference's force, integration and normal passes (DESIGN.md §1 steps 1-2, the wind, xpbd's
+// predict): one function per pass, each the twin of the compute shader of the same name.
+#include "reference.hpp"
+
+namespace clothsim {
+
+// Rest length of spring `ref` seen from (x, y), or 0 when it leaves the grid.
+inline double rest_of(const ClothModel& m, int x, int y, const SpringRef& ref, int* j) {
+  const Direction& d = kDirections[ref.direction];
+  int x2 = x + ref.sign * d.dx, y2 = y + ref.sign * d.dy;
+  if (!in_grid(x2, y2, m.nw, m.nh)) return 0;
+  *j = m.index(x2, y2);
+  return ref.sign > 0 ? m.rest[m.index(x, y)][ref.direction] : m.rest[*j][ref.direction];
+}
+
+// The parabolic stand-in for sin(2 pi phase) of the gusts: + - * and floor only, which both
+// backends round alike (a shader's sin does not match std::sin); within 0.056 of the sine.
+template <class R> R gust_wave(R phase) {
+  const R w = phase - std::floor(phase);
+  const R h = w < R(0.5) ? w : w - R(0.5);
+  const R bump = R(16) * h * (R(0.5) - h);
+  return w < R(0.5) ? bump : -bump;
+}
+
+// The share of one corner in the aerodynamic force on triangle (a, b, c), from its corners'
+// positions and displacements (docs/model.md, "Wind"; wind.glsl is the twin).
+template <class R>
+Vec3<R> triangle_wind_share(const WindC<R>& w, const Vec3<R>& pa, const Vec3<R>& pb, const Vec3<R>& pc,
+                            const Vec3<R>& da, const Vec3<R>& db, const Vec3<R>& dc) {
+  const Vec3<R> u = pb - pa, v = pc - pa;
+  const Vec3<R> twice_area_n(u.y * v.z - u.z * v.y, u.z * v.x - u.x * v.z, u.x * v.y - u.y * v.x);
+  const R len = length3(twice_area_n);
+  if (!(len > R(0))) return Vec3<R>(0);  // a degenerate triangle catches no air
+  const Vec3<R> n = twice_area_n * (R(1) / len);
+  Vec3<R> air = w.velocity;
+  if (w.gusts) {
+    const R phase = w.gust_phase - dot3((pa + pb) + pc, w.direction) * w.gust_inv_length3;
+    air = w.velocity + w.gust_velocity * gust_wave(phase);
+  }
+  const Vec3<R> rel = ((da + db) + dc) * w.inv_3dt - air;  // the triangle's velocity relative to the air
+  const R speed = length3(rel);
+  if (!(speed > R(0))) return Vec3<R>(0);
+  const R normal_speed = dot3(rel, n);
+  // Drag -1/2 rho C_d A |v| (v.n) n; lift -1/2 rho C_l A (v.n) (|v| n - (v.n)/|v| v), where
+  // |v| n - (v.n)/|v| v is |v| times the part of n across v.
+  const Vec3<R> drag = n * (w.drag * len * speed * normal_speed);
+  const Vec3<R> across = n * speed - rel * (normal_speed * (R(1) / speed));
+  return drag + across * (w.lift * len * normal_speed);
+}
+
+// Calls visit(t) for each of the up to six triangles (DESIGN.md §1) that have (x, y) as a
+// corner, in a fixed order: the cells (x-1..x, y-1..y), each split into (A, C, B) and (B, C, D).
+// compute_normals and compute_wind_forces gather over them, as their shaders do.
+template <class Visit> void for_each_triangle_around(const ClothModel& m, int x, int y, Visit&& visit) {
+  const int self = m.index(x, y);
+  for (int cy = y - 1; cy <= y; ++cy)
+    for (int cx = x - 1; cx <= x; ++cx) {
+      if (cx < 0 || cy < 0 || cx + 1 >= m.nw || cy + 1 >= m.nh) continue;
+      const int a = m.index(cx, cy), b = m.index(cx + 1, cy), cc = m.index(cx, cy + 1), dd = m.index(cx + 1, cy + 1);
+      const int tris[2][3] = {{a, cc, b}, {b, cc, dd}};
+      for (auto& t : tris)
+        if (t[0] == self || t[1] == self || t[2] == self) visit(t);
+    }
+}
+
+template <class R> void compute_wind_forces(const ClothModel& m, const Constants<R>& c, State<R>& s) {
+  s.wind.resize(s.pos.size());
+  for (int y = 0; y < m.nh; ++y)
+    for (int x = 0; x < m.nw; ++x) {
+      const int self = m.index(x, y);
+      Vec3<R> f(0);
+      for_each_triangle_around(m, x, y, [&](const int (&t)[3]) {
+        f += triangle_wind_share(c.wind, Vec3<R>(s.pos[t[0]]), Vec3<R>(s.pos[t[1]]), Vec3<R>(s.pos[t[2]]),
+                                 Vec3<R>(s.disp[t[0]]), Vec3<R>(s.disp[t[1]]), Vec3<R>(s.disp[t[2]]));
+      });
+      s.wind[self] = Vec4<R>(f, R(0));
+    }
+}
+
+template <class R> void accumulate_forces(const ClothModel& m, const Constants<R>& c, State<R>& s) {
+  for (int y = 0; y < m.nh; ++y)
+    for (int x = 0; x < m.nw; ++x) {
+      const int i = m.index(x, y);
+      const Vec3<R> xi(s.pos[i]);
+      Vec3<R> f = c.gravity * c.mass;
+      for (const SpringRef& ref : kGatherOrder) {
+        const Direction& d = kDirections[ref.direction];
+        int j = -1;
+        const R rest = R(rest_of(m, x, y, ref, &j));
+        if (j < 0 || !c.enabled[int(d.type)]) continue;
+        const R k = d.type == SpringType::Bending ? c.ks_bending : c.ks;
+        const Vec3<R> e = Vec3<R>(s.pos[j]) - xi;
+        const R len = length3(e);
+        if (len > R(0)) {
+          // Divisions are written as x * (1 / y): the GLSL compiler lowers a / b that way.
+          const R inv = R(1) / len;
+          f += e * (k * (len - rest) * inv);
+        }
+      }
+      if (c.wind.enabled) f += Vec3<R>(s.wind[i]);  // after the springs, as advance.comp adds it
+      s.force[i] = Vec4<R>(f, R(0));
+    }
+}
+
+// A pinned mass keeps its position, or with pinned_motion goes to its anchor + the offset at
+// the substep's end, and its displacement is that move (its velocity, for the springs'
+// constraints, friction and the wind). The GLSL twin is move_pinned in pinned_motion.glsl.
+template <class R> void move_pinned(const Constants<R>& c, size_t i, State<R>& s) {
+  if (!c.moving_pins() || c.anchors[i].w == R(0)) return;
+  const Vec3<R> next = Vec3<R>(c.anchors[i]) + c.pin_offset;
+  s.disp[i] = Vec4<R>(next - Vec3<R>(s.pos[i]), R(0));
+  s.pos[i] = Vec4<R>(next, s.pos[i].w);
+}
+
+template <class R> void integrate(const Constants<R>& c, State<R>& s) {
+  for (size_t i = 0; i < s.pos.size(); ++i) {
+    const R w = s.pos[i].w;
+    if (w == R(0)) {
+      move_pinned(c, i, s);
+      continue;
+    }
+    const Vec3<R> a = Vec3<R>(s.force[i]) * w;
+    // x' = x + (1 - damping) (x - x_prev) + a dt^2, with d = x - x_prev kept as its own vector.
+    const Vec3<R> d = Vec3<R>(s.disp[i]) * c.keep_velocity + a * c.dt2;
+    s.disp[i] = Vec4<R>(d, R(0));
+    s.pos[i] = Vec4<R>(Vec3<R>(s.pos[i]) + d, w);
+  }
+}
+
+template <class R> void predict(const ClothModel& m, const Constants<R>& c, State<R>& s) {
+  // Where pin k is at the end of this substep; a moving one from its anchor (as on the GPU,
+  // where predict writes the pins while it reads them for the tethers).
+  auto pin_position = [&](int k) {
+    if (c.moving_pins() && c.anchors[k].w != R(0)) return Vec3<R>(Vec3<R>(c.anchors[k]) + c.pin_offset);
+    return Vec3<R>(s.pos[k]);
+  };
+  for (size_t i = 0; i < s.pos.size(); ++i) {
+    const R w = s.pos[i].w;
+    if (w == R(0)) {
+      move_pinned(c, i, s);
+      continue;
+    }
+    Vec3<R> acc = c.gravity;
+    if (c.wind.enabled) acc = acc + Vec3<R>(s.wind[i]) * w;  // compute_wind_forces ran before
+    Vec3<R> d = Vec3<R>(s.disp[i]) * c.keep_velocity + acc * c.dt2;
+    Vec3<R> x = Vec3<R>(s.pos[i]) + d;
+    if (const int pin = m.tether_pin[i]; pin >= 0) {
+      const Vec3<R> e = x - pin_position(pin);
+      const R len = length3(e);
+      const R limit = c.tether_limit * R(m.tether_rest[i]);
+      if (len > limit) {
+        const Vec3<R> corr = e * ((limit - len) * (R(1) / len));
+        x = x + corr;
+        d = d + corr;
+      }
+    }
+    s.disp[i] = Vec4<R>(d, R(0));
+    s.pos[i] = Vec4<R>(x, w);
+  }
+}
+
+template <class R> void compute_normals(const ClothModel& m, State<R>& s) {
+  for (int y = 0; y < m.nh; ++y)
+    for (int x = 0; x < m.nw; ++x) {
+      Vec3<R> sum(0);
+      for_each_triangle_around(m, x, y, [&](const int (&t)[3]) {
+        const Vec3<R> p0(s.pos[t[0]]), p1(s.pos[t[1]]), p2(s.pos[t[2]]);
+        const Vec3<R> u = p1 - p0, v = p2 - p0;
+        // Unnormalised cross product: its length is twice the area, so this is area-weighted.
+        sum += Vec3<R>(u.y * v.z - u.z * v.y, u.z * v.x - u.x * v.z, u.x * v.y - u.y * v.x);
+      });
+      const R len = length3(sum);
+      s.normal[m.index(x, y)] = len > R(0) ? Vec4<R>(sum * (R(1) / len), R(0)) : Vec4<R>(0, 1, 0, 0);
+    }
+}
+
+#define CLOTHSIM_INSTANTIATE(R) \
+  template void compute_wind_forces<R>(const ClothModel&, const Constants<R>&, State<R>&); \
+  template void accumulate_forces<R>(const ClothModel&, const Constants<R>&, State<R>&); \
+  template void integrate<R>(const Constants<R>&, State<R>&); \
+  template void predict<R>(const ClothModel&, const Constants<R>&, State<R>&); \
+  template void compute_normals<R>(const ClothModel&, State<R>&);
+CLOTHSIM_INSTANTIATE(float)
+CLOTHSIM_INSTANTIATE(double)
+
+}  // namespace clothsim
