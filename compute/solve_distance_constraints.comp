@@ -6,28 +6,17 @@
 // hard limit in the same visit. The CPU twin is solve_distance_constraint_colour.
 #include "layout.glsl"
 #include "common.glsl"
-#include "spring_grid.glsl"
 #include "particle_views.glsl"
 #include "collide_objects.glsl"
+#include "constraint_colour.glsl"
 
 layout(local_size_x = GRID_WORKGROUP_X, local_size_y = GRID_WORKGROUP_Y) in;
 layout(std430, binding = BINDING_POSITIONS) writeonly buffer Positions { vec4 pos[]; };
 layout(std430, binding = BINDING_DISPLACEMENT) writeonly buffer Displacements { vec4 disp[]; };
 
-uniform int u_colour;
-// The span of every colour, set once for the grid: u_spans[2 c] along x, u_spans[2 c + 1] along y.
-uniform ivec4 u_spans[2 * NUM_COLOURS];
-
-int span_coord(ivec4 s, int k) { return s.x + s.y * (k >> s.z) + (k & ((1 << s.z) - 1)); }
-
 void main() {
-  ivec2 k = ivec2(gl_GlobalInvocationID.xy);
-  ivec4 span_x = u_spans[2 * u_colour], span_y = u_spans[2 * u_colour + 1];
-  if (k.x >= span_x.w || k.y >= span_y.w) return;
-  int direction = u_colour >> 1;
-  ivec2 c = ivec2(span_coord(span_x, k.x), span_coord(span_y, k.y));
-  int i = grid_index(c);
-  int j = grid_index(c + direction_offset(direction));
+  int i, j, direction;
+  if (!colour_spring(ivec2(gl_GlobalInvocationID.xy), i, j, direction)) return;
   vec4 pi = position_of(i), pj = position_of(j);
   precise float wsum = pi.w + pj.w;
   if (wsum == 0.0) return;  // both ends pinned
@@ -47,31 +36,14 @@ void main() {
     xj = xj - cj;
     di = di + ci;
     dj = dj - cj;
-    e = xj - xi;
-    len = length3(e);
   }
-  precise float limit = params.stretch_limit * rest;
-  if (len > limit) {
-    precise float excess = (len - limit) * (1.0 / len);
-    precise vec3 corr = e * excess;
-    precise float inv_wsum = 1.0 / wsum;
-    precise vec3 ci = corr * (pi.w * inv_wsum);
-    precise vec3 cj = corr * (pj.w * inv_wsum);
-    xi = xi + ci;
-    xj = xj - cj;
-    di = di + ci;
-    dj = dj - cj;
-  }
+  // max_stretch stays a hard limit, in the same visit.
+  limit_stretch(xi, xj, di, dj, pi.w, pj.w, wsum, params.stretch_limit * rest);
   // A correction must not push a mass into a collider or through a plane, where the collision
   // test of the next substep could no longer see it (docs/model.md).
   if (params.sphere_count + params.plane_count > 0u) {
-    vec3 a = xi, b = xj, da = di, db = dj;
-    if (pi.w != 0.0) collide_with_objects_friction(a, da, false);
-    if (pj.w != 0.0) collide_with_objects_friction(b, db, false);
-    xi = a;
-    xj = b;
-    di = da;
-    dj = db;
+    if (pi.w != 0.0) collide_with_objects_friction(xi, di, false);
+    if (pj.w != 0.0) collide_with_objects_friction(xj, dj, false);
   }
   pos[i].xyz = xi;
   pos[j].xyz = xj;

@@ -5,31 +5,55 @@
 
 namespace clothsim {
 
-template <class R>
-void solve_length_constraint_colour(const ClothModel& m, const Constants<R>& c, int colour, State<R>& s) {
+namespace {
+
+// Calls visit(i, j, direction) for every spring of `colour` (from particle i to j) whose type is
+// enabled, in grid order: the springs of a colour share no particle, so the order does not
+// change the result (the GPU dispatches them at once, constraint_colour.glsl).
+template <class R, class Visit>
+void for_each_spring_of_colour(const ClothModel& m, const Constants<R>& c, int colour, Visit&& visit) {
   const int dir = colour / 2;
   const Direction& d = kDirections[dir];
   if (!c.enabled[int(d.type)]) return;
   for (int y = 0; y < m.nh; ++y)
-    for (int x = 0; x < m.nw; ++x) {
-      if (spring_colour(dir, x, y) != colour || !in_grid(x + d.dx, y + d.dy, m.nw, m.nh)) continue;
-      const int i = m.index(x, y), j = m.index(x + d.dx, y + d.dy);
-      const R wi = s.pos[i].w, wj = s.pos[j].w, wsum = wi + wj;
-      if (wsum == R(0)) continue;
-      const Vec3<R> xi(s.pos[i]), xj(s.pos[j]);
-      const Vec3<R> e = xj - xi;
-      const R len = length3(e);
-      const R limit = c.stretch_limit * R(m.rest[i][dir]);
-      if (!(len > limit)) continue;
-      const Vec3<R> corr = e * ((len - limit) * (R(1) / len));
-      const R inv_wsum = R(1) / wsum;
-      const Vec3<R> ci = corr * (wi * inv_wsum), cj = corr * (wj * inv_wsum);
-      s.pos[i] = Vec4<R>(xi + ci, wi);
-      s.pos[j] = Vec4<R>(xj - cj, wj);
-      // A pinned end (w = 0) gets a zero correction: its displacement stays as it is.
-      s.disp[i] = Vec4<R>(Vec3<R>(s.disp[i]) + ci, R(0));
-      s.disp[j] = Vec4<R>(Vec3<R>(s.disp[j]) - cj, R(0));
-    }
+    for (int x = 0; x < m.nw; ++x)
+      if (spring_colour(dir, x, y) == colour && in_grid(x + d.dx, y + d.dy, m.nw, m.nh))
+        visit(m.index(x, y), m.index(x + d.dx, y + d.dy), dir);
+}
+
+// Provot's projection: a spring from xi to xj longer than `limit` is shortened to it, both ends
+// moving by their share of the inverse mass (wsum = wi + wj > 0), the displacements with them
+// (the ends' x_prev stay; a pinned end, w = 0, gets a zero correction). False, and nothing
+// moves, if it is not longer. The GLSL twin is limit_stretch in constraint_colour.glsl.
+template <class R>
+bool limit_stretch(Vec3<R>& xi, Vec3<R>& xj, Vec3<R>& di, Vec3<R>& dj, R wi, R wj, R wsum, R limit) {
+  const Vec3<R> e = xj - xi;
+  const R len = length3(e);
+  if (!(len > limit)) return false;
+  const Vec3<R> corr = e * ((len - limit) * (R(1) / len));
+  const R inv_wsum = R(1) / wsum;
+  const Vec3<R> ci = corr * (wi * inv_wsum), cj = corr * (wj * inv_wsum);
+  xi = xi + ci;
+  xj = xj - cj;
+  di = di + ci;
+  dj = dj - cj;
+  return true;
+}
+
+}  // namespace
+
+template <class R>
+void solve_length_constraint_colour(const ClothModel& m, const Constants<R>& c, int colour, State<R>& s) {
+  for_each_spring_of_colour(m, c, colour, [&](int i, int j, int dir) {
+    const R wi = s.pos[i].w, wj = s.pos[j].w, wsum = wi + wj;
+    if (wsum == R(0)) return;
+    Vec3<R> xi(s.pos[i]), xj(s.pos[j]), di(s.disp[i]), dj(s.disp[j]);
+    if (!limit_stretch(xi, xj, di, dj, wi, wj, wsum, c.stretch_limit * R(m.rest[i][dir]))) return;
+    s.pos[i] = Vec4<R>(xi, wi);
+    s.pos[j] = Vec4<R>(xj, wj);
+    s.disp[i] = Vec4<R>(di, R(0));
+    s.disp[j] = Vec4<R>(dj, R(0));
+  });
 }
 
 template <class R> void solve_length_constraints(const ClothModel& m, const Constants<R>& c, State<R>& s) {
@@ -39,54 +63,37 @@ template <class R> void solve_length_constraints(const ClothModel& m, const Cons
 
 template <class R>
 void solve_distance_constraint_colour(const ClothModel& m, const Constants<R>& c, int colour, State<R>& s) {
-  const int dir = colour / 2;
-  const Direction& d = kDirections[dir];
-  if (!c.enabled[int(d.type)]) return;
-  const R alpha = d.type == SpringType::Bending ? c.alpha_bending : c.alpha;
-  for (int y = 0; y < m.nh; ++y)
-    for (int x = 0; x < m.nw; ++x) {
-      if (spring_colour(dir, x, y) != colour || !in_grid(x + d.dx, y + d.dy, m.nw, m.nh)) continue;
-      const int i = m.index(x, y), j = m.index(x + d.dx, y + d.dy);
-      const R wi = s.pos[i].w, wj = s.pos[j].w, wsum = wi + wj;
-      if (wsum == R(0)) continue;
-      const R rest = R(m.rest[i][dir]);
-      Vec3<R> xi(s.pos[i]), xj(s.pos[j]), di(s.disp[i]), dj(s.disp[j]);
-      Vec3<R> e = xj - xi;
-      R len = length3(e);
-      if (len > R(0)) {
-        // XPBD with the multiplier starting at 0 (one solve per substep): dlambda = -C / (w + alpha~),
-        // C = len - rest, moving i by -wi grad_i C dlambda and j by -wj grad_j C dlambda.
-        const Vec3<R> corr = e * ((len - rest) * (R(1) / len) * (R(1) / (wsum + alpha)));
-        const Vec3<R> ci = corr * wi, cj = corr * wj;
-        xi = xi + ci;
-        xj = xj - cj;
-        di = di + ci;
-        dj = dj - cj;
-        e = xj - xi;
-        len = length3(e);
-      }
-      // max_stretch stays a hard limit: Provot's projection, as in solve_length_constraints.
-      const R limit = c.stretch_limit * rest;
-      if (len > limit) {
-        const Vec3<R> corr = e * ((len - limit) * (R(1) / len));
-        const R inv_wsum = R(1) / wsum;
-        const Vec3<R> ci = corr * (wi * inv_wsum), cj = corr * (wj * inv_wsum);
-        xi = xi + ci;
-        xj = xj - cj;
-        di = di + ci;
-        dj = dj - cj;
-      }
-      // A correction must not push a mass into a collider or through a plane, where the
-      // collision test of the next substep could no longer see it (docs/model.md).
-      if (c.has_colliders()) {
-        if (wi != R(0)) collide_particle(c, xi, di, false);
-        if (wj != R(0)) collide_particle(c, xj, dj, false);
-      }
-      s.pos[i] = Vec4<R>(xi, wi);
-      s.pos[j] = Vec4<R>(xj, wj);
-      s.disp[i] = Vec4<R>(di, R(0));
-      s.disp[j] = Vec4<R>(dj, R(0));
+  const R alpha = kDirections[colour / 2].type == SpringType::Bending ? c.alpha_bending : c.alpha;
+  for_each_spring_of_colour(m, c, colour, [&](int i, int j, int dir) {
+    const R wi = s.pos[i].w, wj = s.pos[j].w, wsum = wi + wj;
+    if (wsum == R(0)) return;
+    const R rest = R(m.rest[i][dir]);
+    Vec3<R> xi(s.pos[i]), xj(s.pos[j]), di(s.disp[i]), dj(s.disp[j]);
+    const Vec3<R> e = xj - xi;
+    const R len = length3(e);
+    if (len > R(0)) {
+      // XPBD with the multiplier starting at 0 (one solve per substep): dlambda = -C / (w + alpha~),
+      // C = len - rest, moving i by -wi grad_i C dlambda and j by -wj grad_j C dlambda.
+      const Vec3<R> corr = e * ((len - rest) * (R(1) / len) * (R(1) / (wsum + alpha)));
+      const Vec3<R> ci = corr * wi, cj = corr * wj;
+      xi = xi + ci;
+      xj = xj - cj;
+      di = di + ci;
+      dj = dj - cj;
     }
+    // max_stretch stays a hard limit, in the same visit.
+    limit_stretch(xi, xj, di, dj, wi, wj, wsum, c.stretch_limit * rest);
+    // A correction must not push a mass into a collider or through a plane, where the
+    // collision test of the next substep could no longer see it (docs/model.md).
+    if (c.has_colliders()) {
+      if (wi != R(0)) collide_particle(c, xi, di, false);
+      if (wj != R(0)) collide_particle(c, xj, dj, false);
+    }
+    s.pos[i] = Vec4<R>(xi, wi);
+    s.pos[j] = Vec4<R>(xj, wj);
+    s.disp[i] = Vec4<R>(di, R(0));
+    s.disp[j] = Vec4<R>(dj, R(0));
+  });
 }
 
 template <class R> void solve_distance_constraints(const ClothModel& m, const Constants<R>& c, State<R>& s) {
