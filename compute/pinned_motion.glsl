@@ -7,14 +7,23 @@
 
 layout(std430, binding = BINDING_ANCHORS) readonly buffer Anchors { vec4 anchor[]; };
 
+// Where pinned mass k is at the end of this substep, if it follows pinned_motion.
+bool moving_pin_position(int k, out vec3 x) {
+  x = vec3(0.0);
+  if (params.pins_moving == 0u) return false;
+  vec4 a = anchor[k];
+  if (a.w == 0.0) return false;
+  precise vec3 moved_to = a.xyz + params.pin_offset;
+  x = moved_to;
+  return true;
+}
+
 // p: the pinned particle's position (w 0); returns false if it does not move.
 bool move_pinned(int i, vec4 p, out vec4 next, out vec3 d) {
   next = p;
   d = vec3(0.0);
-  if (params.pins_moving == 0u) return false;
-  vec4 a = anchor[i];
-  if (a.w == 0.0) return false;
-  precise vec3 x = a.xyz + params.pin_offset;
+  vec3 x;
+  if (!moving_pin_position(i, x)) return false;
   precise vec3 moved = x - p.xyz;
   next = vec4(x, p.w);
   d = moved;

@@ -19,14 +19,8 @@ uniform bool u_collide_objects;
 // Where pin k is at the end of this substep. A moving pin is read from its anchor, not from
 // the positions this pass is writing, so the tethers race with nothing.
 vec3 pin_position(int k) {
-  if (params.pins_moving != 0u) {
-    vec4 a = anchor[k];
-    if (a.w != 0.0) {
-      precise vec3 x = a.xyz + params.pin_offset;
-      return x;
-    }
-  }
-  return position_of(k).xyz;
+  vec3 x;
+  return moving_pin_position(k, x) ? x : position_of(k).xyz;
 }
 
 void main() {

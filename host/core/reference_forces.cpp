@@ -105,9 +105,17 @@ template <class R> void accumulate_forces(const ClothModel& m, const Constants<R
 // A pinned mass keeps its position, or with pinned_motion goes to its anchor + the offset at
 // the substep's end, and its displacement is that move (its velocity, for the springs'
 // constraints, friction and the wind). The GLSL twin is move_pinned in pinned_motion.glsl.
+// Where pinned mass k is at the end of this substep, if it follows pinned_motion (the GLSL
+// twin is moving_pin_position in pinned_motion.glsl).
+template <class R> bool moving_pin_position(const Constants<R>& c, size_t k, Vec3<R>& x) {
+  if (!c.moving_pins() || c.anchors[k].w == R(0)) return false;
+  x = Vec3<R>(c.anchors[k]) + c.pin_offset;
+  return true;
+}
+
 template <class R> void move_pinned(const Constants<R>& c, size_t i, State<R>& s) {
-  if (!c.moving_pins() || c.anchors[i].w == R(0)) return;
-  const Vec3<R> next = Vec3<R>(c.anchors[i]) + c.pin_offset;
+  Vec3<R> next;
+  if (!moving_pin_position(c, i, next)) return;
   s.disp[i] = Vec4<R>(next - Vec3<R>(s.pos[i]), R(0));
   s.pos[i] = Vec4<R>(next, s.pos[i].w);
 }
@@ -131,8 +139,8 @@ template <class R> void predict(const ClothModel& m, const Constants<R>& c, Stat
   // Where pin k is at the end of this substep; a moving one from its anchor (as on the GPU,
   // where predict writes the pins while it reads them for the tethers).
   auto pin_position = [&](int k) {
-    if (c.moving_pins() && c.anchors[k].w != R(0)) return Vec3<R>(Vec3<R>(c.anchors[k]) + c.pin_offset);
-    return Vec3<R>(s.pos[k]);
+    Vec3<R> x;
+    return moving_pin_position(c, size_t(k), x) ? x : Vec3<R>(s.pos[k]);
   };
   for (size_t i = 0; i < s.pos.size(); ++i) {
     const R w = s.pos[i].w;

@@ -42,8 +42,8 @@ refused() {
 size=$(wc -c <"$dir/A.state")
 head -c $((size / 2)) "$dir/A.state" >"$dir/truncated.state"
 refused "$dir/truncated.state" "truncated"
-head -c 40 "$dir/A.state" >"$dir/stub.state"
-refused "$dir/stub.state" "truncated"
+head -c 40 "$dir/A.state" >"$dir/header_only.state"
+refused "$dir/header_only.state" "truncated"
 head -c 10 "$dir/A.state" >"$dir/ten.state"
 refused "$dir/ten.state" "not a clothsim state file"
 cp "$scene" "$dir/foreign.state"
