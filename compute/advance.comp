@@ -3,14 +3,14 @@
 // CPU twin is advance() in host/core/reference.hpp. Reads positions (its own and its
 // neighbours') and displacements through the views; writes the new position to the output
 // buffer (neighbours still read the old one: ping-pong, the host swaps) and the new
-// displacement in place. One invocation per grid point; pinned points (w = 0) stay.
+// displacement in place. One invocation per particle; pinned particles (w = 0) stay.
 #include "layout.glsl"
 #include "common.glsl"
 #include "forces.glsl"
 #include "collide_objects.glsl"
 #include "pinned_motion.glsl"
 
-layout(local_size_x = GRID_WORKGROUP_X, local_size_y = GRID_WORKGROUP_Y) in;
+layout(local_size_x = WORKGROUP_SIZE) in;
 layout(std430, binding = BINDING_DISPLACEMENT) writeonly buffer Displacements { vec4 disp[]; };
 layout(std430, binding = BINDING_POSITIONS_OUT) writeonly buffer Output { vec4 pos_out[]; };
 layout(std430, binding = BINDING_WIND_FORCES) readonly buffer WindForces { vec4 wind_force[]; };
@@ -18,9 +18,8 @@ layout(std430, binding = BINDING_WIND_FORCES) readonly buffer WindForces { vec4 
 uniform bool u_collide_objects;
 
 void main() {
-  ivec2 c = ivec2(gl_GlobalInvocationID.xy);
-  if (!in_grid(c)) return;
-  int i = grid_index(c);
+  int i = int(gl_GlobalInvocationID.x);
+  if (i >= int(particle_count())) return;
   vec4 p = position_of(i);
   if (p.w == 0.0) {
     vec4 next;
@@ -30,10 +29,11 @@ void main() {
     return;
   }
   vec3 x = p.xyz;
-  precise vec3 f = spring_force(c, i, x);
+  Material mat = material_of(i);
+  precise vec3 f = spring_force(i, x, mat);
   if (params.wind_enabled != 0u) f = f + wind_force[i].xyz;  // compute_wind_forces ran before
   precise vec3 a = f * p.w;
-  precise vec3 d = displacement_of(i).xyz * params.keep_velocity + a * params.dt2;
+  precise vec3 d = displacement_of(i).xyz * mat.keep.x + a * params.dt2;
   precise vec3 next = x + d;
   if (u_collide_objects) collide_with_objects(next, d);
   disp[i] = vec4(d, 0.0);

@@ -17,9 +17,5 @@ float dot3(vec3 a, vec3 b) {
 }
 
 uint particle_count() { return params.count; }
-ivec2 grid_size() { return ivec2(params.width, params.height); }
-ivec2 grid_coord(uint i) { return ivec2(int(i) % int(params.width), int(i) / int(params.width)); }
-int grid_index(ivec2 c) { return c.y * int(params.width) + c.x; }
-bool in_grid(ivec2 c) { return all(greaterThanEqual(c, ivec2(0))) && all(lessThan(c, grid_size())); }
 
 #endif

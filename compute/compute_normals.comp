@@ -1,7 +1,9 @@
 // Reads positions; writes normals. One invocation per particle: the area-weighted sum of
-// the normals of the triangles around it, normalised (once per rendered frame).
+// the normals of the triangles around it (the model's corner lists), normalised (once per
+// rendered frame).
 #include "layout.glsl"
 #include "common.glsl"
+#include "particle_views.glsl"
 
 layout(local_size_x = WORKGROUP_SIZE) in;
 layout(std430, binding = BINDING_POSITIONS) readonly buffer Positions { vec4 pos[]; };
@@ -16,21 +18,14 @@ vec3 triangle_normal(int a, int b, int c) {
 }
 
 void main() {
-  uint i = gl_GlobalInvocationID.x;
-  if (i >= particle_count()) return;
-  ivec2 p = grid_coord(i);
-  ivec2 size = grid_size();
+  int i = int(gl_GlobalInvocationID.x);
+  if (i >= int(particle_count())) return;
   precise vec3 sum = vec3(0.0);
-  // The up to four cells around p, each split into (A, C, B) and (B, C, D), in reference order.
-  for (int cy = p.y - 1; cy <= p.y; ++cy) {
-    for (int cx = p.x - 1; cx <= p.x; ++cx) {
-      if (cx < 0 || cy < 0 || cx + 1 >= size.x || cy + 1 >= size.y) continue;
-      int a = grid_index(ivec2(cx, cy)), b = grid_index(ivec2(cx + 1, cy));
-      int c = grid_index(ivec2(cx, cy + 1)), d = grid_index(ivec2(cx + 1, cy + 1));
-      int self = int(i);
-      if (a == self || c == self || b == self) sum = sum + triangle_normal(a, c, b);
-      if (b == self || c == self || d == self) sum = sum + triangle_normal(b, c, d);
-    }
+  // The triangles around i, ascending (on a grid: the cells (x-1..x, y-1..y), each split into
+  // (A, C, B) and (B, C, D)), in reference order.
+  for (uint k = corners_first(i); k < corners_first(i + 1); ++k) {
+    ivec3 t = corner_triangle(k);
+    sum = sum + triangle_normal(t.x, t.y, t.z);
   }
   float len = length3(sum);
   precise float inv = 1.0 / len;

@@ -1,29 +1,31 @@
 // What the two constraint passes (solve_length_constraints, solve_distance_constraints) share:
-// the spring of this invocation within one colour's span, and Provot's stretch limit. The CPU
+// the spring of this invocation within one colour, and Provot's stretch limit. The CPU
 // twins are for_each_spring_of_colour and limit_stretch in host/core/reference_constraints.cpp.
 #ifndef CLOTHSIM_CONSTRAINT_COLOUR_GLSL
 #define CLOTHSIM_CONSTRAINT_COLOUR_GLSL
 
-#include "spring_grid.glsl"
+#include "particle_views.glsl"
 
-uniform int u_colour;
-// The span of every colour (colour_span in host/core/spring_grid.hpp), set once for the grid:
-// u_spans[2 c] along x, u_spans[2 c + 1] along y, each an AxisSpan (first, period, shift, count).
-uniform ivec4 u_spans[2 * NUM_COLOURS];
+// The colour being solved: springs [u_first, u_first + u_count) of the sorted list
+// (ClothModel::colour_start), set by the host before each dispatch.
+uniform uint u_first;
+uniform uint u_count;
 
-int span_coord(ivec4 s, int k) { return s.x + s.y * (k >> s.z) + (k & ((1 << s.z) - 1)); }
-
-// The spring of invocation k of colour u_colour: it runs from particle i to j along `direction`.
-// False for an invocation past the span's end.
-bool colour_spring(ivec2 k, out int i, out int j, out int direction) {
-  ivec4 span_x = u_spans[2 * u_colour], span_y = u_spans[2 * u_colour + 1];
-  direction = u_colour >> 1;
+// The spring of invocation k of this colour: from particle i to j, its rest length, type and
+// material. False for an invocation past the colour's end.
+bool colour_spring(uint k, out int i, out int j, out float rest, out uint type, out int material_index) {
   i = 0;
   j = 0;
-  if (k.x >= span_x.w || k.y >= span_y.w) return false;
-  ivec2 c = ivec2(span_coord(span_x, k.x), span_coord(span_y, k.y));
-  i = grid_index(c);
-  j = grid_index(c + direction_offset(direction));
+  rest = 0.0;
+  type = 0u;
+  material_index = 0;
+  if (k >= u_count) return false;
+  uvec4 s = texelFetch(springs_view, int(u_first + k));
+  i = int(s.x);
+  j = int(s.y);
+  rest = uintBitsToFloat(s.z);
+  type = s.w & 3u;
+  material_index = int(s.w >> 2);
   return true;
 }
 

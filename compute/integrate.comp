@@ -3,6 +3,7 @@
 // The step runs advance, which fuses this with the forces; this pass stays for the pass checks.
 #include "layout.glsl"
 #include "common.glsl"
+#include "particle_views.glsl"
 #include "pinned_motion.glsl"
 
 layout(local_size_x = WORKGROUP_SIZE) in;
@@ -25,7 +26,7 @@ void main() {
   }
   precise vec3 a = force[i].xyz * p.w;
   // d' = (1 - damping) d + a dt^2, x' = x + d' (DESIGN.md §1 step 2 with d = x - x_prev).
-  precise vec3 d = disp[i].xyz * params.keep_velocity + a * params.dt2;
+  precise vec3 d = disp[i].xyz * material_of(int(i)).keep.x + a * params.dt2;
   precise vec3 next = p.xyz + d;
   disp[i] = vec4(d, 0.0);
   pos[i] = vec4(next, p.w);

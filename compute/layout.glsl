@@ -4,18 +4,21 @@
 // would have a 16-byte stride in GLSL and 12 in C++); the parameter block is named scalars.
 // tests/test_gpu_layout.cpp asks GL for the real offsets and strides and compares them with
 // sizeof/offsetof here. Constants and functions that both languages need beyond the layout
-// (spring directions and colours, the hash) live in spring_grid.glsl and spatial_hash.glsl.
+// (the hash) live in spatial_hash.glsl. The cloth model's lists (host/core/cloth.hpp) are read
+// through texel views of the layouts below.
 #ifndef CLOTHSIM_LAYOUT_GLSL
 #define CLOTHSIM_LAYOUT_GLSL
 
 #ifdef __cplusplus
 #include <cstdint>
 #include <glm/vec3.hpp>
+#include <glm/vec2.hpp>
 #include <glm/vec4.hpp>
 namespace layout {
 using vec3 = glm::vec3;
 using vec4 = glm::vec4;
 using uvec4 = glm::uvec4;
+using uvec2 = glm::uvec2;
 using uint = uint32_t;
 #define STRUCT_ALIGN16 struct alignas(16)
 #else
@@ -29,7 +32,8 @@ using uint = uint32_t;
 #define BINDING_DISPLACEMENT 1    // vec4: xyz position one substep ago
 #define BINDING_FORCES 2      // vec4: xyz force of this substep
 #define BINDING_NORMALS 3     // vec4: xyz unit vertex normal
-#define BINDING_REST 4        // RestLengths per particle
+#define BINDING_SPRINGS 4     // SpringTexel per spring, sorted by colour (ClothModel::springs)
+#define BINDING_MATERIALS 24  // MaterialTexels per cloth (the passes read them through TEXTURE_MATERIALS)
 #define BINDING_SPHERES 5     // SphereCollider[]
 #define BINDING_PLANES 6      // PlaneCollider[]
 #define BINDING_POSITIONS_OUT 7  // vec4: Jacobi output of self-collision
@@ -57,15 +61,23 @@ using uint = uint32_t;
 // the renderer uses (0-2: fabric, height map, sky), so drawing a frame leaves them bound.
 #define TEXTURE_POSITIONS 8          // RGBA32F, one texel per particle
 #define TEXTURE_DISPLACEMENT 9           // RGBA32F, one texel per particle
-#define TEXTURE_REST 10              // RGBA32F, REST_TEXELS per particle (RestLengths)
+#define TEXTURE_SPRINGS 10           // RGBA32UI, one SpringTexel per spring, sorted by colour
 #define TEXTURE_SPHERES 11           // RGBA32F, SPHERE_TEXELS per SphereCollider
 #define TEXTURE_PLANES 12            // RGBA32F, PLANE_TEXELS per PlaneCollider
 #define TEXTURE_CELL_START 13        // R32UI, one texel per hash bucket (+1 sentinel)
 #define TEXTURE_SORTED_POSITIONS 14  // RGBA32F, one texel per hash entry
 #define TEXTURE_TETHERS 15           // RGBA32F, one texel per particle: x its nearest pin (-1: none), y the rest distance
+// The rest of the cloth model (ClothModel in host/core/cloth.hpp), static over a run.
+#define TEXTURE_GATHER_START 16      // R32UI, per particle + 1: its first entry in the gather list
+#define TEXTURE_GATHER 17            // RG32UI, per gather entry: x the other end | type << 30, y the rest length's bits
+#define TEXTURE_PARTICLES 18         // RGBA32F, per particle: x mass (kg), y its cloth's material index
+#define TEXTURE_MATERIALS 19         // RGBA32F, MATERIAL_TEXELS per cloth (MaterialTexels)
+#define TEXTURE_CORNER_START 20      // R32UI, per particle + 1: its first entry in the corner list
+#define TEXTURE_CORNER_TRIANGLES 21  // R32UI, per corner entry: a triangle around the particle (ascending)
+#define TEXTURE_TRIANGLES 22         // RGBA32UI, per triangle: xyz its corners
 // RGBA32F texels per struct in the views above: member m of element k is texel
 // k * STRUCT_TEXELS + m (tests/test_gpu_layout.cpp checks these against the std430 strides).
-#define REST_TEXELS 2
+#define MATERIAL_TEXELS 2
 #define SPHERE_TEXELS 3
 #define PLANE_TEXELS 3
 // Uniform block binding.
@@ -77,31 +89,16 @@ using uint = uint32_t;
 #endif
 // Elements one invocation of scan_cells sums serially (the block of the multi-level scan).
 #define SCAN_CHUNK 32
-// Workgroup shape of the passes dispatched over the grid (x along a row): 2-D, so no
-// invocation divides its index by the width, and neighbours share a workgroup.
-#ifndef GRID_WORKGROUP_X
-#define GRID_WORKGROUP_X 32
-#endif
-#ifndef GRID_WORKGROUP_Y
-#define GRID_WORKGROUP_Y 4
-#endif
+// One spring of the model: x, y its ends, z the rest length's float bits, w type | material << 2
+// (type as SpringType: 0 structural, 1 shearing, 2 bending).
+struct SpringTexel {
+  uvec4 ends_rest_code;
+};
 
-// Spring directions stored at their "first" particle: the rest length of the spring from
-// (x, y) to (x + dx, y + dy) lives at particle (x, y). The other six directions of a
-// particle's twelve springs are these seen from the far end.
-#define DIR_RIGHT 0       // structural (+1, 0)
-#define DIR_DOWN 1        // structural (0, +1)
-#define DIR_DIAG_DOWN_RIGHT 2  // shearing (+1, +1)
-#define DIR_DIAG_DOWN_LEFT 3   // shearing (-1, +1)
-#define DIR_RIGHT2 4      // bending (+2, 0)
-#define DIR_DOWN2 5       // bending (0, +2)
-#define NUM_DIRECTIONS 6
-// Two colours per direction: no two springs of one colour share a particle.
-#define NUM_COLOURS 12
-
-struct RestLengths {
-  vec4 near;  // rest length of DIR_RIGHT, DIR_DOWN, DIR_DIAG_DOWN_RIGHT, DIR_DIAG_DOWN_LEFT (0 if absent)
-  vec4 far;   // rest length of DIR_RIGHT2, DIR_DOWN2, unused, unused
+// One cloth's material (MaterialC in host/core/reference.hpp).
+struct MaterialTexels {
+  vec4 stiffness;  // ks, ks_bending (N/m), alpha, alpha_bending (xpbd compliance / dt^2)
+  vec4 keep;       // x 1 - damping / 100; y, z, w 1 where structural, shearing, bending springs are enabled
 };
 
 // `motion`: the collider's displacement over this substep (keyframed motion, set by the host
@@ -132,7 +129,7 @@ struct MeshVertex {
 // value, a field added later included.
 #define STEP_PARAMS_FIELDS(F)                                                               \
   F(vec3, gravity)             /* m/s^2 */                                                 \
-  F(float, mass)               /* kg, of one particle */                                   \
+  F(float, dt2)                /* s^2, the substep squared */                              \
   F(vec3, wind_velocity)       /* m/s, of the air (WindC in host/core/reference.hpp) */    \
   F(float, wind_drag)          /* -rho C_d / 12 */                                         \
   F(vec3, gust_velocity)       /* m/s, strength * wind_velocity */                         \
@@ -141,24 +138,13 @@ struct MeshVertex {
   F(float, gust_phase)         /* fract(t / period) at the substep's start */              \
   F(vec3, pin_offset)          /* m, pinned_motion at the substep's end */                 \
   F(float, wind_inv_3dt)       /* 1/s, 1 / (3 dt) */                                       \
-  F(float, ks)                 /* N/m, structural and shearing springs */                  \
-  F(float, ks_bending)         /* N/m, 0.2 ks */                                           \
-  F(float, keep_velocity)      /* 1 - damping / 100 */                                     \
-  F(float, dt2)                /* s^2, the substep squared */                              \
   F(float, stretch_limit)      /* 1 + max_stretch */                                       \
   F(float, contact_distance)   /* m, 2 thickness: self-collision keeps masses this far */  \
   F(float, inv_cell)           /* 1/m, 1 / the hash cell edge (edge = contact_distance) */ \
   F(float, steps)              /* simulation_steps, as a float */                          \
-  F(float, alpha)              /* xpbd: 1 / (ks dt^2), structural and shearing springs */  \
-  F(float, alpha_bending)      /* xpbd: 1 / (0.2 ks dt^2) */                               \
   F(float, tether_limit)       /* xpbd: 1 + tether_stretch */                              \
-  F(uint, width)               /* grid points along a row */                               \
-  F(uint, height)              /* rows */                                                  \
-  F(uint, count)               /* particles, width * height */                             \
+  F(uint, count)               /* particles */                                             \
   F(uint, table_size)          /* hash buckets, a power of two */                          \
-  F(uint, structural_enabled)  /* 1 = the structural springs exert force, are constrained */ \
-  F(uint, shearing_enabled)    /* 1 = the shearing springs do */                           \
-  F(uint, bending_enabled)     /* 1 = the bending springs do */                            \
   F(uint, sphere_count)        /* SphereCollider entries in use */                         \
   F(uint, plane_count)         /* PlaneCollider entries in use */                          \
   F(float, gust_inv_length3)   /* 1/m, 1 / (3 gust length) */                              \
@@ -183,7 +169,7 @@ struct LastGoodHeader {
 };
 
 #ifdef __cplusplus
-static_assert(sizeof(RestLengths) == REST_TEXELS * sizeof(vec4), "RestLengths texels");
+static_assert(sizeof(MaterialTexels) == MATERIAL_TEXELS * sizeof(vec4), "MaterialTexels texels");
 static_assert(sizeof(SphereCollider) == SPHERE_TEXELS * sizeof(vec4), "SphereCollider texels");
 static_assert(sizeof(PlaneCollider) == PLANE_TEXELS * sizeof(vec4), "PlaneCollider texels");
 }  // namespace layout

@@ -1,27 +1,52 @@
-// Read-only texel views of the particle and collider buffers (host: gl::BufferTexture). The
-// hot passes read through these and write through the storage-buffer bindings of the same
-// buffers: a texel fetch is a plain read-only load on a GPU, and on llvmpipe it is a
-// vectorised gather, where a storage-buffer read is a bounds-checked loop over the lanes,
-// about three times the instructions. Writes made by a previous pass are visible after
-// glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT); a pass never reads a texel another of its
+// Read-only texel views of the particle, collider and cloth-model buffers (host:
+// gl::BufferTexture). The hot passes read through these and write through the storage-buffer
+// bindings of the same buffers: a texel fetch is a plain read-only load on a GPU, and on
+// llvmpipe it is a vectorised gather, where a storage-buffer read is a bounds-checked loop over
+// the lanes, about three times the instructions. Writes made by a previous pass are visible
+// after glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT); a pass never reads a texel another of its
 // own invocations writes.
 #ifndef CLOTHSIM_PARTICLE_VIEWS_GLSL
 #define CLOTHSIM_PARTICLE_VIEWS_GLSL
 
 layout(binding = TEXTURE_POSITIONS) uniform samplerBuffer positions_view;
 layout(binding = TEXTURE_DISPLACEMENT) uniform samplerBuffer displacement_view;
-layout(binding = TEXTURE_REST) uniform samplerBuffer rest_view;
+layout(binding = TEXTURE_SPRINGS) uniform usamplerBuffer springs_view;
 layout(binding = TEXTURE_SPHERES) uniform samplerBuffer spheres_view;
 layout(binding = TEXTURE_PLANES) uniform samplerBuffer planes_view;
 layout(binding = TEXTURE_CELL_START) uniform usamplerBuffer cell_start_view;
 layout(binding = TEXTURE_SORTED_POSITIONS) uniform samplerBuffer sorted_positions_view;
 layout(binding = TEXTURE_TETHERS) uniform samplerBuffer tethers_view;
+layout(binding = TEXTURE_GATHER_START) uniform usamplerBuffer gather_start_view;
+layout(binding = TEXTURE_GATHER) uniform usamplerBuffer gather_view;
+layout(binding = TEXTURE_PARTICLES) uniform samplerBuffer particles_view;
+layout(binding = TEXTURE_MATERIALS) uniform samplerBuffer materials_view;
+layout(binding = TEXTURE_CORNER_START) uniform usamplerBuffer corner_start_view;
+layout(binding = TEXTURE_CORNER_TRIANGLES) uniform usamplerBuffer corner_triangles_view;
+layout(binding = TEXTURE_TRIANGLES) uniform usamplerBuffer triangles_view;
 
 vec4 position_of(int i) { return texelFetch(positions_view, i); }
 vec4 displacement_of(int i) { return texelFetch(displacement_view, i); }
-// RestLengths is two vec4s: near (directions 0-3), far (directions 4-5).
-float rest_length(int i, int direction) {
-  return texelFetch(rest_view, REST_TEXELS * i + (direction >> 2))[direction & 3];
+float mass_of(int i) { return texelFetch(particles_view, i).x; }
+int material_index_of(int i) { return int(texelFetch(particles_view, i).y); }
+
+// One cloth's material (MaterialTexels in layout.glsl, MaterialC in host/core/reference.hpp).
+struct Material {
+  vec4 stiffness;  // ks, ks_bending, alpha, alpha_bending
+  vec4 keep;       // keep_velocity, then 1 per enabled spring type
+};
+Material material(int m) {
+  return Material(texelFetch(materials_view, MATERIAL_TEXELS * m), texelFetch(materials_view, MATERIAL_TEXELS * m + 1));
+}
+Material material_of(int i) { return material(material_index_of(i)); }
+bool type_enabled(Material m, uint type) { return m.keep[1 + int(type)] != 0.0; }
+float stiffness(Material m, uint type) { return type == 2u ? m.stiffness.y : m.stiffness.x; }
+float compliance(Material m, uint type) { return type == 2u ? m.stiffness.w : m.stiffness.z; }
+
+// The triangles around particle i are corner entries [corners_first(i), corners_first(i + 1)),
+// ascending: the order compute_normals and compute_wind_forces gather in on both backends.
+uint corners_first(int i) { return texelFetch(corner_start_view, i).x; }
+ivec3 corner_triangle(uint k) {
+  return ivec3(texelFetch(triangles_view, int(texelFetch(corner_triangles_view, int(k)).x)).xyz);
 }
 
 #endif

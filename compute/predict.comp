@@ -38,7 +38,7 @@ void main() {
   }
   precise vec3 acc = params.gravity;
   if (params.wind_enabled != 0u) acc = acc + wind_force[i].xyz * p.w;  // compute_wind_forces ran before
-  precise vec3 d = displacement_of(i).xyz * params.keep_velocity + acc * params.dt2;
+  precise vec3 d = displacement_of(i).xyz * material_of(i).keep.x + acc * params.dt2;
   precise vec3 next = p.xyz + d;
   // The tether to the nearest pin (long-range attachments, host/core/tethers.cpp).
   vec4 tether = texelFetch(tethers_view, i);

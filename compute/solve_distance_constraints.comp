@@ -1,6 +1,6 @@
 // Reads (through the views) and writes positions and displacements in place. The xpbd
-// solver's constraint pass (docs/model.md): dispatched once per colour over that colour's span
-// (colour_span in host/core/spring_grid.hpp), one invocation per spring; no two springs of a
+// solver's constraint pass (docs/model.md): dispatched once per colour over that colour's
+// springs (ClothModel::colour_start), one invocation per spring; no two springs of a
 // colour share a particle, so the writes never race. Each spring's XPBD distance constraint is
 // solved once (its multiplier starts at zero every substep), then max_stretch is enforced as a
 // hard limit in the same visit. The CPU twin is solve_distance_constraint_colour.
@@ -10,18 +10,21 @@
 #include "collide_objects.glsl"
 #include "constraint_colour.glsl"
 
-layout(local_size_x = GRID_WORKGROUP_X, local_size_y = GRID_WORKGROUP_Y) in;
+layout(local_size_x = WORKGROUP_SIZE) in;
 layout(std430, binding = BINDING_POSITIONS) writeonly buffer Positions { vec4 pos[]; };
 layout(std430, binding = BINDING_DISPLACEMENT) writeonly buffer Displacements { vec4 disp[]; };
 
 void main() {
-  int i, j, direction;
-  if (!colour_spring(ivec2(gl_GlobalInvocationID.xy), i, j, direction)) return;
+  int i, j, material_index;
+  float rest;
+  uint type;
+  if (!colour_spring(gl_GlobalInvocationID.x, i, j, rest, type, material_index)) return;
+  Material mat = material(material_index);
+  if (!type_enabled(mat, type)) return;  // a cloth with this type off
   vec4 pi = position_of(i), pj = position_of(j);
   precise float wsum = pi.w + pj.w;
   if (wsum == 0.0) return;  // both ends pinned
-  float rest = rest_length(i, direction);
-  float alpha = direction_type(direction) == 2 ? params.alpha_bending : params.alpha;
+  float alpha = compliance(mat, type);
   precise vec3 xi = pi.xyz, xj = pj.xyz;
   precise vec3 di = displacement_of(i).xyz, dj = displacement_of(j).xyz;
   precise vec3 e = xj - xi;

@@ -1,25 +1,28 @@
 // Reads (through the views) and writes positions and displacements in place. Dispatched once
-// per colour over that colour's span (colour_span in host/core/spring_grid.hpp): one invocation
-// per spring of the colour, and no two springs of a colour share a particle, so the writes never
+// per colour over that colour's springs (ClothModel::colour_start): one invocation per spring
+// of the colour, and no two springs of a colour share a particle, so the writes never
 // race (Provot 1995). The CPU twin is solve_length_constraint_colour.
 #include "layout.glsl"
 #include "common.glsl"
 #include "particle_views.glsl"
 #include "constraint_colour.glsl"
 
-layout(local_size_x = GRID_WORKGROUP_X, local_size_y = GRID_WORKGROUP_Y) in;
+layout(local_size_x = WORKGROUP_SIZE) in;
 layout(std430, binding = BINDING_POSITIONS) writeonly buffer Positions { vec4 pos[]; };
 layout(std430, binding = BINDING_DISPLACEMENT) writeonly buffer Displacements { vec4 disp[]; };
 
 void main() {
-  int i, j, direction;
-  if (!colour_spring(ivec2(gl_GlobalInvocationID.xy), i, j, direction)) return;
+  int i, j, material_index;
+  float rest;
+  uint type;
+  if (!colour_spring(gl_GlobalInvocationID.x, i, j, rest, type, material_index)) return;
+  if (!type_enabled(material(material_index), type)) return;  // a cloth with this type off
   vec4 pi = position_of(i), pj = position_of(j);
   precise float wsum = pi.w + pj.w;
   if (wsum == 0.0) return;  // both ends pinned
   vec3 xi = pi.xyz, xj = pj.xyz;
   vec3 di = displacement_of(i).xyz, dj = displacement_of(j).xyz;
-  precise float limit = params.stretch_limit * rest_length(i, direction);
+  precise float limit = params.stretch_limit * rest;
   if (!limit_stretch(xi, xj, di, dj, pi.w, pj.w, wsum, limit)) return;
   pos[i].xyz = xi;
   pos[j].xyz = xj;

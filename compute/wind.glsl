@@ -48,19 +48,13 @@ vec3 triangle_wind_share(int a, int b, int c) {
   return f;
 }
 
-// The wind force on particle c: its shares of the triangles around it, in compute_normals'
-// order (cells (x-1..x, y-1..y), each split into (A, C, B) and (B, C, D)).
-vec3 gather_wind_force(ivec2 c) {
-  int self = grid_index(c);
+// The wind force on particle i: its shares of the triangles around it, in compute_normals'
+// order (the model's corner lists, ascending).
+vec3 gather_wind_force(int i) {
   precise vec3 f = vec3(0.0);
-  for (int cy = c.y - 1; cy <= c.y; ++cy) {
-    for (int cx = c.x - 1; cx <= c.x; ++cx) {
-      if (cx < 0 || cy < 0 || cx + 1 >= int(params.width) || cy + 1 >= int(params.height)) continue;
-      int a = grid_index(ivec2(cx, cy)), b = grid_index(ivec2(cx + 1, cy));
-      int cc = grid_index(ivec2(cx, cy + 1)), d = grid_index(ivec2(cx + 1, cy + 1));
-      if (a == self || cc == self || b == self) f = f + triangle_wind_share(a, cc, b);
-      if (b == self || cc == self || d == self) f = f + triangle_wind_share(b, cc, d);
-    }
+  for (uint k = corners_first(i); k < corners_first(i + 1); ++k) {
+    ivec3 t = corner_triangle(k);
+    f = f + triangle_wind_share(t.x, t.y, t.z);
   }
   return f;
 }

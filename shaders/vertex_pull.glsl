@@ -10,8 +10,7 @@ layout(std430, binding = BINDING_DRAW_EXTRAS) readonly buffer Extras { MeshVerte
 
 uniform mat4 u_model;
 uniform mat4 u_view_projection;
-uniform int u_is_cloth;   // 1: uv and tangent from the cloth grid; 0: from the extras buffer
-uniform ivec2 u_grid;     // cloth grid size (num_width_points, num_height_points)
+uniform int u_is_cloth;   // 1: the cloth (tangent from its positions); 0: a collider mesh
 
 struct PulledVertex {
   vec3 position, normal, tangent;
@@ -23,10 +22,10 @@ PulledVertex pull_vertex(int i) {
   v.position = pos[i].xyz;
   v.normal = normal[i].xyz;
   if (u_is_cloth == 1) {
-    ivec2 c = ivec2(i % u_grid.x, i / u_grid.x);
-    v.uv = vec2(c) / vec2(u_grid - 1);
-    // Tangent along +x of the grid (+u): a central difference, one-sided at the edges.
-    int left = c.x > 0 ? i - 1 : i, right = c.x + 1 < u_grid.x ? i + 1 : i;
+    v.uv = extra[i].uv.xy;
+    // Tangent along +u: the difference of the particles before and after this one along u
+    // (on a grid x - 1 and x + 1, one-sided at the edges), which the cloth carries as it moves.
+    int left = int(extra[i].uv.z), right = int(extra[i].uv.w);
     vec3 t = pos[right].xyz - pos[left].xyz;
     t -= v.normal * dot(t, v.normal);
     v.tangent = length(t) > 1e-12 ? normalize(t) : vec3(1.0, 0.0, 0.0);

@@ -68,7 +68,7 @@ inline void check_same(const char* what, const Vec4s& gpu, const Vec4s& cpu, dou
 // Runs pass_check (what `validate` runs) after `warmup_frames` CPU frames and checks each
 // pass of a substep without self-collision (unfused and fused), and the normals.
 inline void check_each_pass(const Scene& scene, int warmup_frames) {
-  const ClothModel model = build_cloth(scene.cloth);
+  const ClothModel model = build_cloth(scene);
   GpuSimulator gpu(scene, model, compute_dir());
   const std::vector<PassError> errors = check_passes(scene, model, gpu, warmup_frames);
   std::vector<std::string> names;
@@ -118,7 +118,7 @@ inline Exercised exercised(const Scene& scene, const ClothModel& model, int fram
   const Constants<float>& c = cpu.constants();
   State<float> s = cpu.state();
   accumulate_forces(model, c, s);
-  integrate(c, s);
+  integrate(model, c, s);
   // collide_objects with all colliders is each collider alone, one after the other.
   auto apply = [&](Constants<float> one) {
     const Vec4s before = s.pos;
@@ -161,7 +161,7 @@ inline void check_exercised(const Scene& scene, const ClothModel& model, int fra
 
 inline void check_passes_on_grid(int nw, int nh) {
   const Scene scene = pressed_cloth(nw, nh);
-  const ClothModel model = build_cloth(scene.cloth);
+  const ClothModel model = build_cloth(scene);
   INFO(nw << "x" << nh << " cloth");
   check_exercised(scene, model, kWarmupFrames, true);
   check_each_pass(scene, kWarmupFrames);
@@ -170,7 +170,7 @@ inline void check_passes_on_grid(int nw, int nh) {
 // The CPU reference (float) after `frames` frames of a scene: where a run is compared from.
 struct CpuCloth {
   Scene scene;
-  ClothModel model = build_cloth(scene.cloth);
+  ClothModel model = build_cloth(scene);
   Constants<float> c = make_constants<float>(scene, model);
   State<float> s = initial_state<float>(model);
   int frames = 0;

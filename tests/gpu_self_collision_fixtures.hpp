@@ -50,7 +50,7 @@ inline uint32_t bucket_of(const Cell& k, uint32_t table) { return hash_cell(k[0]
 // A scene whose particles a test places by hand; collide() runs self-collision on both sides.
 struct Placed {
   Scene scene;
-  ClothModel model = build_cloth(scene.cloth);
+  ClothModel model = build_cloth(scene);
   Constants<float> c = make_constants<float>(scene, model);
   State<float> s = initial_state<float>(model);
   explicit Placed(Scene sc) : scene(std::move(sc)) {}

@@ -56,7 +56,7 @@ struct Stage {
   OrbitCamera camera;
 
   explicit Stage(const std::string& name, int w = kWidth, int h = kHeight, const StageOptions& o = {})
-      : scene(load_scene(source_path("scenes/" + name + ".json"), o.sets)), model(build_cloth(scene.cloth)),
+      : scene(load_scene(source_path("scenes/" + name + ".json"), o.sets)), model(build_cloth(scene)),
         gpu(scene, model, source_path("compute")), renderer(CLOTHSIM_SOURCE_DIR, scene, model, o.renderer),
         target(w, h, o.samples), camera(default_camera(scene, model, float(w) / float(h))) {}
 

@@ -39,7 +39,7 @@ TEMPLATE_TEST_CASE("check_divergence boxes the finite positions and flags a NaN 
 
 TEST_CASE("a frame passes while the cloth stays within 1000 cloth sizes of where it started", "[divergence]") {
   const Scene s = test::make_scene(7, 5, 0);
-  const ClothModel m = build_cloth(s.cloth);
+  const ClothModel m = build_cloth(s);
   const DivergenceLimits l = divergence_limits(s, m);
   CHECK(l.centre == glm::vec3(0.5f, 1.f, 0.5f));
   CHECK(l.limit == 1000.f);
@@ -60,7 +60,7 @@ TEST_CASE("a frame passes while the cloth stays within 1000 cloth sizes of where
 TEST_CASE("the divergence message names the frame, what happened, the likely cause and what to change",
           "[divergence]") {
   Scene s = test::make_scene(7, 5, 0, {"cloth.ks=1e9"});
-  const ClothModel m = build_cloth(s.cloth);
+  const ClothModel m = build_cloth(s);
   CHECK_FALSE(divergence_message(s, m, {3, {true, glm::vec3(0), glm::vec3(1)}}).has_value());
 
   const auto nan = divergence_message(s, m, {12, {false, glm::vec3(0), glm::vec3(1)}});
@@ -87,7 +87,7 @@ TEST_CASE("the divergence message names the frame, what happened, the likely cau
 
 TEST_CASE("keep_last_good keeps the newest passing frame, and none after a failure", "[divergence]") {
   const Scene s = test::make_scene(7, 5, 0);
-  const ClothModel m = build_cloth(s.cloth);
+  const ClothModel m = build_cloth(s);
   const DivergenceLimits l = divergence_limits(s, m);
   KeptFrame<float> kept;
   const auto good = positions<float>({{0, 1, 0, 1}, {1, 1, 1, 1}});
@@ -105,7 +105,7 @@ TEST_CASE("keep_last_good keeps the newest passing frame, and none after a failu
 TEMPLATE_TEST_CASE("the CPU backend checks every frame once and keeps the last good one", "[divergence]", float,
                    double) {
   const Scene s = test::make_scene(7, 5, 1, {"cloth.pinned=[[0,0],[6,0]]", "simulation.self_collision=false"});
-  const ClothModel m = build_cloth(s.cloth);
+  const ClothModel m = build_cloth(s);
   CpuBackend<TestType> cpu(s, m);
   int frame = -1;
   CHECK(test::max_abs_diff(cpu.last_good(&frame).pos, cpu.snapshot().pos) == 0);
@@ -128,7 +128,7 @@ namespace {
 template <class R> void run_cpu_stress(const std::string& name) {
   const test::StressCase c = test::stress_case(name);
   const Scene s = test::stress_scene(c);
-  const ClothModel m = build_cloth(s.cloth);
+  const ClothModel m = build_cloth(s);
   CpuBackend<R> cpu(s, m);
   const test::StressOutcome out = test::run_stress(cpu, s, m, c);
   test::check_stress_outcome(c, out);
@@ -161,7 +161,7 @@ CPU_STRESS_TEST("a plane through the cloth")
 TEST_CASE("10,000 substeps on the reference: everything pinned leaves every particle where it was", "[divergence][stress]") {
   const test::StressCase c = test::stress_case("everything pinned");
   const Scene s = test::stress_scene(c);
-  const ClothModel m = build_cloth(s.cloth);
+  const ClothModel m = build_cloth(s);
   CpuBackend<float> cpu(s, m);
   const test::StressOutcome out = test::run_stress(cpu, s, m, c);
   test::check_stress_outcome(c, out);

@@ -140,7 +140,7 @@ namespace {
 
 template <class R> void check_checkpoint_continues_bitwise() {
   const Scene s = test::make_scene(7, 5, 0, {"cloth.pinned=[[0,0],[6,0]]"});
-  const ClothModel m = build_cloth(s.cloth);
+  const ClothModel m = build_cloth(s);
   const int n = 8;
   CpuBackend<R> whole(s, m);
   for (int f = 0; f < 2 * n; ++f) whole.step_frame();
@@ -178,7 +178,7 @@ TEST_CASE("2N frames equal N frames, saved, loaded and N more, bitwise (cpu floa
 
 TEST_CASE("a truncated, foreign or mismatched state file is refused with a message naming it", "[checkpoint]") {
   const Scene s = test::make_scene(7, 5, 0);
-  const ClothModel m = build_cloth(s.cloth);
+  const ClothModel m = build_cloth(s);
   CpuBackend<double> cpu(s, m);
   cpu.step_frame();
   TempDir dir("bad_state");
@@ -209,15 +209,15 @@ TEST_CASE("a truncated, foreign or mismatched state file is refused with a messa
 
   const Checkpoint c = read_checkpoint(good);
   const Scene other = test::make_scene(9, 5, 0);
-  const ClothModel om = build_cloth(other.cloth);
+  const ClothModel om = build_cloth(other);
   CHECK_THROWS_WITH(check_fits(c, good, other, om, 8, "cpu (double)"),
                     Catch::Contains("different cloth") && Catch::Contains("7x5") && Catch::Contains("9x5") &&
                         Catch::Contains(fmt::format("{:016x}", cloth_hash(m))) &&
                         Catch::Contains(fmt::format("{:016x}", cloth_hash(om))));
   const Scene pinned = test::make_scene(7, 5, 0, {"cloth.pinned=[[0,0]]"});
-  CHECK_THROWS_WITH(check_fits(c, good, pinned, build_cloth(pinned.cloth), 8, "x"), Catch::Contains("different cloth"));
+  CHECK_THROWS_WITH(check_fits(c, good, pinned, build_cloth(pinned), 8, "x"), Catch::Contains("different cloth"));
   CHECK_THROWS_WITH(check_fits(c, good, s, m, 4, "gpu"), Catch::Contains("8-byte (double)") && Catch::Contains("gpu"));
   // What does not change the cloth still loads.
   const Scene stiffer = test::make_scene(7, 5, 0, {"cloth.ks=800", "cloth.damping=1", "cloth.density=200"});
-  CHECK_NOTHROW(check_fits(c, good, stiffer, build_cloth(stiffer.cloth), 8, "cpu (double)"));
+  CHECK_NOTHROW(check_fits(c, good, stiffer, build_cloth(stiffer), 8, "cpu (double)"));
 }

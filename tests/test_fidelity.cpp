@@ -23,7 +23,7 @@ double max_distance(const std::vector<glm::dvec4>& a, const std::vector<glm::dve
 double float_drift(const char* scene_name, int frames) {
   const Scene s = load_scene(std::filesystem::path(CLOTHSIM_SOURCE_DIR) / "scenes" / fmt::format("{}.json", scene_name),
                              {"simulation.self_collision=false"});
-  const ClothModel m = build_cloth(s.cloth);
+  const ClothModel m = build_cloth(s);
   CpuBackend<float> f32(s, m);
   CpuBackend<double> f64(s, m);
   for (int f = 0; f < frames; ++f) {
@@ -60,7 +60,7 @@ TEST_CASE("a falling mass keeps its speed when the substep length changes mid-ru
   Scene s = test::make_scene(3, 3, 0, {"cloth.enable_structural=false", "cloth.enable_shearing=false",
                                        "cloth.enable_bending=false", "simulation.self_collision=false",
                                        "cloth.damping=0"});
-  const ClothModel m = build_cloth(s.cloth);
+  const ClothModel m = build_cloth(s);
   State<double> st = initial_state<double>(m);
   Constants<double> c = make_constants<double>(s, m);
   double t = 0;

@@ -17,7 +17,7 @@ TEST_CASE("GPU: 2N frames equal N frames, saved, loaded and N more, bitwise", "[
   // A sphere and self-collision, so every pass of the step runs from the loaded state.
   const Scene s = test::make_scene(7, 5, 0, {"cloth.pinned=[[0,0],[6,0]]"},
                                    R"(, "sphere": {"origin": [0.5, 0.6, 0.5], "radius": 0.2, "friction": 0.3})");
-  const ClothModel m = build_cloth(s.cloth);
+  const ClothModel m = build_cloth(s);
   const std::filesystem::path compute = test::source_path("compute");
   const std::string file =
       (std::filesystem::temp_directory_path() / fmt::format("clothsim_test_gpu_checkpoint_{}.state", getpid())).string();

@@ -82,7 +82,7 @@ TEST_CASE("GPU check_divergence matches its CPU twin on 7x5, 33x17 and 45x29 clo
   const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
   for (auto [nw, nh] : {std::pair{7, 5}, {33, 17}, {45, 29}}) {
     const Scene s = test::make_scene(nw, nh, 0);
-    const ClothModel m = build_cloth(s.cloth);
+    const ClothModel m = build_cloth(s);
     GpuDivergenceGuard guard(s, m, compute_dir());
     gl::Buffer buffer("test positions");
     const int n = m.count();
@@ -112,7 +112,7 @@ TEST_CASE("the GPU keeps the frame before the first failure, and nothing after i
           "[gpu][divergence]") {
   REQUIRE_GL_CONTEXT();
   const Scene s = test::make_scene(7, 5, 1, {"cloth.pinned=[[0,0],[6,0]]", "simulation.self_collision=false"});
-  const ClothModel m = build_cloth(s.cloth);
+  const ClothModel m = build_cloth(s);
   GpuSimulator sim(s, m, compute_dir());
   CpuBackend<float> cpu(s, m);
   for (int f = 1; f <= 3; ++f) {
@@ -150,7 +150,7 @@ TEST_CASE("the GPU keeps the frame before the first failure, and nothing after i
 TEST_CASE("each GPU frame's check is handed over once, in order, at most one frame late", "[gpu][divergence]") {
   REQUIRE_GL_CONTEXT();
   const Scene s = test::make_scene(33, 17, 0, {"cloth.pinned=[[0,0],[32,0]]", "simulation.simulation_steps=3"});
-  const ClothModel m = build_cloth(s.cloth);
+  const ClothModel m = build_cloth(s);
   GpuSimulator sim(s, m, compute_dir());
   int taken = 0;
   for (int f = 1; f <= 20; ++f) {
@@ -189,7 +189,7 @@ TEST_CASE("a GL_OUT_OF_MEMORY during a run stops it at the next per-frame check"
   REQUIRE_GL_CONTEXT();
   SKIP_UNDER_ADDRESS_SANITIZER();
   const Scene s = test::make_scene(7, 5, 0, {"simulation.self_collision=false"});
-  const ClothModel m = build_cloth(s.cloth);
+  const ClothModel m = build_cloth(s);
   GpuSimulator sim(s, m, compute_dir());
   sim.step_frame();
   CHECK_NOTHROW(sim.divergence().take(false));
@@ -212,7 +212,7 @@ TEST_CASE("a GL_OUT_OF_MEMORY during a run stops it at the next per-frame check"
 TEST_CASE("a cloth larger than the free memory the driver reports is refused before allocating", "[divergence]") {
   // Pure arithmetic: the drivers that report free memory (NVIDIA, AMD) are not llvmpipe.
   const Scene s = test::make_scene(512, 512, 0);
-  const ClothModel m = build_cloth(s.cloth);
+  const ClothModel m = build_cloth(s);
   const uint64_t needed = simulator_bytes(m);
   CHECK(needed > uint64_t(m.count()) * 100);
   CHECK_FALSE(memory_shortfall(s, m, needed, std::nullopt).has_value());
@@ -231,7 +231,7 @@ namespace {
 void run_gpu_stress(const std::string& name) {
   const test::StressCase c = test::stress_case(name);
   const Scene s = test::stress_scene(c);
-  const ClothModel m = build_cloth(s.cloth);
+  const ClothModel m = build_cloth(s);
   GpuBackend gpu(nullptr, s, m, compute_dir());  // runs in the tests' shared context
   const test::StressOutcome out = test::run_stress(gpu, s, m, c);
   test::check_stress_outcome(c, out);

@@ -11,7 +11,7 @@ using namespace clothsim;
 TEST_CASE("a held particle stays where the mouse puts it and falls again once released", "[gpu][viewer]") {
   REQUIRE_GL_CONTEXT();
   Scene s = test::make_scene(7, 5, 0, {"simulation.self_collision=false", "simulation.simulation_steps=5"});
-  ClothModel m = build_cloth(s.cloth);
+  ClothModel m = build_cloth(s);
   GpuSimulator sim(s, m, test::source_path("compute"));
   const int k = m.index(3, 2);
   const glm::vec3 target = glm::vec3(m.initial[k]) + glm::vec3(0.f, 0.05f, 0.f);  // a gentle lift
@@ -27,7 +27,7 @@ TEST_CASE("a held particle stays where the mouse puts it and falls again once re
   CHECK(st.pos[m.index(3, 1)].y > st.pos[m.index(0, 0)].y);
   sim.release_particle(k);
   sim.download(st);
-  CHECK(st.pos[k].w == Approx(1.0 / m.mass));
+  CHECK(st.pos[k].w == Approx(1.0 / m.mass[k]));
   for (int f = 0; f < 30; ++f) sim.step_frame();
   sim.download(st);
   CHECK(st.pos[k].y < target.y - 0.01f);  // free again: it falls
@@ -37,7 +37,7 @@ TEST_CASE("a held particle stays where the mouse puts it and falls again once re
 TEST_CASE("reset puts the GPU cloth back to its initial state", "[gpu][viewer]") {
   REQUIRE_GL_CONTEXT();
   Scene s = test::make_scene(7, 5, 0, {"simulation.self_collision=false"});
-  ClothModel m = build_cloth(s.cloth);
+  ClothModel m = build_cloth(s);
   GpuSimulator sim(s, m, test::source_path("compute"));
   for (int f = 0; f < 5; ++f) sim.step_frame();
   sim.reset();
@@ -52,22 +52,22 @@ TEST_CASE("reset puts the GPU cloth back to its initial state", "[gpu][viewer]")
 TEST_CASE("a live density change rescales the inverse masses in place", "[gpu][viewer]") {
   REQUIRE_GL_CONTEXT();
   Scene s = test::make_scene(7, 5, 0, {"cloth.pinned=[[0,0]]", "simulation.self_collision=false"});
-  ClothModel m = build_cloth(s.cloth);
+  ClothModel m = build_cloth(s);
   GpuSimulator sim(s, m, test::source_path("compute"));
   s.cloth.density *= 2;
   sim.set_parameters(s);
   State<float> st;
   sim.download(st);
   CHECK(st.pos[0].w == 0.f);  // pinned stays pinned
-  CHECK(st.pos[1].w == float(1.0 / (2 * m.mass)));
-  CHECK(sim.constants().mass == float(2 * m.mass));
+  CHECK(st.pos[1].w == float(1.0 / (2 * m.mass[1])));
+  CHECK(sim.constants().mass[1] == float(2 * m.mass[1]));
   CHECK_NO_GL_ERRORS();
 }
 
 TEST_CASE("a live change of the substep length keeps the GPU cloth's velocity, as on the reference", "[gpu][viewer]") {
   REQUIRE_GL_CONTEXT();
   Scene s = test::make_scene(7, 5, 0, {"simulation.self_collision=false", "cloth.pinned=[[0,0],[6,0]]"});
-  ClothModel m = build_cloth(s.cloth);
+  ClothModel m = build_cloth(s);
   GpuSimulator sim(s, m, test::source_path("compute"));
   CpuBackend<float> cpu(s, m);
   for (int f = 0; f < 10; ++f) {

@@ -19,7 +19,7 @@ using namespace clothsim;
 
 namespace {
 
-static_assert(std::is_standard_layout_v<layout::RestLengths> && std::is_standard_layout_v<layout::SphereCollider> &&
+static_assert(std::is_standard_layout_v<layout::MaterialTexels> && std::is_standard_layout_v<layout::SphereCollider> &&
                   std::is_standard_layout_v<layout::PlaneCollider> && std::is_standard_layout_v<layout::StepParams>,
               "offsetof needs standard-layout structs");
 
@@ -41,7 +41,7 @@ template <class T> GLenum gl_type_of() {
 
 // One struct member as C++ lays it out, under the name GL gives it.
 struct Member {
-  std::string name;  // e.g. "rest[0].far" or "params.grid"
+  std::string name;  // e.g. "materials[0].keep" or "params.grid"
   GLint offset;      // offsetof in C++
   GLenum type;       // the GL type its C++ type stands for
 };
@@ -77,11 +77,11 @@ template <class T> std::vector<T> two_of(const T& first, const T& second) { retu
 
 }  // namespace
 
-TEST_CASE("rest lengths and colliders have the C++ offsets and strides in std430 storage buffers", "[gpu]") {
+TEST_CASE("materials and colliders have the C++ offsets and strides in std430 storage buffers", "[gpu]") {
   REQUIRE_GL_CONTEXT();
   const gl::Program program = probe_program();
-  check_storage_array(program, "Rest", BINDING_REST, sizeof(layout::RestLengths),
-                      {MEMBER(RestLengths, "rest[0].", near), MEMBER(RestLengths, "rest[0].", far)});
+  check_storage_array(program, "Materials", BINDING_MATERIALS, sizeof(layout::MaterialTexels),
+                      {MEMBER(MaterialTexels, "materials[0].", stiffness), MEMBER(MaterialTexels, "materials[0].", keep)});
   check_storage_array(program, "Spheres", BINDING_SPHERES, sizeof(layout::SphereCollider),
                       {MEMBER(SphereCollider, "spheres[0].", origin_radius), MEMBER(SphereCollider, "spheres[0].", keep),
                        MEMBER(SphereCollider, "spheres[0].", motion)});
@@ -117,8 +117,8 @@ TEST_CASE("the texel views step through each struct by its std430 stride", "[gpu
   const gl::Program program = probe_program();
   // A view reads member m of element k as RGBA32F texel k * STRUCT_TEXELS + m (particle_views.glsl,
   // collide_objects.glsl): right only if the storage buffer's stride is STRUCT_TEXELS vec4s.
-  CHECK(resource_property(program, GL_BUFFER_VARIABLE, "rest[0].near", GL_TOP_LEVEL_ARRAY_STRIDE) == REST_TEXELS * 16);
-  CHECK(resource_property(program, GL_BUFFER_VARIABLE, "rest[0].far", GL_OFFSET) == 16);
+  CHECK(resource_property(program, GL_BUFFER_VARIABLE, "materials[0].stiffness", GL_TOP_LEVEL_ARRAY_STRIDE) == MATERIAL_TEXELS * 16);
+  CHECK(resource_property(program, GL_BUFFER_VARIABLE, "materials[0].keep", GL_OFFSET) == 16);
   CHECK(resource_property(program, GL_BUFFER_VARIABLE, "spheres[0].origin_radius", GL_TOP_LEVEL_ARRAY_STRIDE) ==
         SPHERE_TEXELS * 16);
   CHECK(resource_property(program, GL_BUFFER_VARIABLE, "spheres[0].keep", GL_OFFSET) == 16);
@@ -135,7 +135,7 @@ TEST_CASE("a positions buffer is an array of vec4 with a 16-byte stride", "[gpu]
   const gl::Program program = probe_program();
   static_assert(sizeof(glm::vec4) == 16);
   // GL_ARRAY_STRIDE, not GL_TOP_LEVEL_ARRAY_STRIDE: the latter is only defined (non-zero) for
-  // top-level arrays of structures or of arrays, like rest[] above.
+  // top-level arrays of structures or of arrays, like materials[] above.
   CHECK(resource_property(program, GL_BUFFER_VARIABLE, "pos[0]", GL_OFFSET) == 0);
   CHECK(resource_property(program, GL_BUFFER_VARIABLE, "pos[0]", GL_ARRAY_STRIDE) == 16);
   CHECK(resource_property(program, GL_BUFFER_VARIABLE, "pos[0]", GL_TYPE) == GL_FLOAT_VEC4);
@@ -163,7 +163,7 @@ TEST_CASE("values written through the C++ layout structs are the values the shad
 #define STEP_PARAMS_FILL(type, name) fill(params.name);
   STEP_PARAMS_FIELDS(STEP_PARAMS_FILL)
 #undef STEP_PARAMS_FILL
-  const auto rest = two_of<layout::RestLengths>({{-1, -2, -3, -4}, {-5, -6, -7, -8}}, {{1, 2, 3, 4}, {5, 6, 7, 8}});
+  const auto materials = two_of<layout::MaterialTexels>({{-1, -2, -3, -4}, {-5, -6, -7, -8}}, {{1, 2, 3, 4}, {5, 6, 7, 8}});
   const auto spheres =
       two_of<layout::SphereCollider>({{-1, -1, -1, -1}, {-1, -1, -1, -1}, {-1, -1, -1, -1}},
                                      {{11, 12, 13, 14}, {15, 16, 17, 18}, {19, 20, 21, 22}});
@@ -171,16 +171,16 @@ TEST_CASE("values written through the C++ layout structs are the values the shad
       two_of<layout::PlaneCollider>({{-1, -1, -1, -1}, {-1, -1, -1, -1}, {-1, -1, -1, -1}},
                                     {{21, 22, 23, 24}, {25, 26, 27, 28}, {29, 30, 31, 32}});
 
-  gl::Buffer params_buffer("probe params"), rest_buffer("probe rest"), spheres_buffer("probe spheres"),
+  gl::Buffer params_buffer("probe params"), materials_buffer("probe materials"), spheres_buffer("probe spheres"),
       planes_buffer("probe planes"), floats("probe floats"), uints("probe uints");
   params_buffer.allocate(sizeof(params), &params, GL_STATIC_DRAW);
-  gl::upload_vector(rest_buffer, rest);
+  gl::upload_vector(materials_buffer, materials);
   gl::upload_vector(spheres_buffer, spheres);
   gl::upload_vector(planes_buffer, planes);
   floats.allocate(8 * sizeof(glm::vec4));
   uints.allocate(want_uints.size() * sizeof(uint32_t));
   params_buffer.bind_base(GL_UNIFORM_BUFFER, BINDING_STEP_PARAMS);
-  rest_buffer.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_REST);
+  materials_buffer.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_MATERIALS);
   spheres_buffer.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_SPHERES);
   planes_buffer.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_PLANES);
   floats.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_POSITIONS);
@@ -189,7 +189,7 @@ TEST_CASE("values written through the C++ layout structs are the values the shad
   // The read-backs below come next.
   glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
 
-  const std::vector<glm::vec4> want_floats = {rest[1].near,    rest[1].far,     spheres[1].origin_radius,
+  const std::vector<glm::vec4> want_floats = {materials[1].stiffness,    materials[1].keep,     spheres[1].origin_radius,
                                               spheres[1].keep, planes[1].point, planes[1].normal,
                                               spheres[1].motion, planes[1].motion};
   const auto got_floats = gl::download_vector<glm::vec4>(floats);

@@ -64,7 +64,7 @@ State<float> after_one_second(const Scene& scene, const ClothModel& model, bool 
 void check_wind_moves_the_cloth(bool gpu) {
   const Scene still = side_pinned(""), across = side_pinned(R"({"velocity": [0, 0, 5]})"),
               along = side_pinned(R"({"velocity": [5, 0, 0]})");
-  const ClothModel model = build_cloth(still.cloth);
+  const ClothModel model = build_cloth(still);
   const State<float> start = initial_state<float>(model);
   const State<float> s_across = after_one_second(across, model, gpu);
   const State<float> s_along = after_one_second(along, model, gpu);
@@ -96,7 +96,7 @@ TEST_CASE("the wind force has the formulas' magnitudes on a single flat triangle
   // the whole cloth is 1/2 rho C_d A |v|^2, along the wind; lift is 0 (v along n).
   const Scene scene = test::make_scene(2, 2, 0, {"simulation.gravity=[0,0,0]", "simulation.self_collision=false"},
                                        R"(, "wind": {"velocity": [0, 5, 0], "lift_coefficient": 0.7})");
-  const ClothModel model = build_cloth(scene.cloth);
+  const ClothModel model = build_cloth(scene);
   const Constants<double> c = make_constants<double>(scene, model);
   State<double> s = initial_state<double>(model);
   compute_wind_forces(model, c, s);
@@ -114,7 +114,7 @@ TEST_CASE("gusts repeat every gust length along the wind and swing the other way
   const char* wind = R"(, "wind": {"velocity": [0, 4, 0], "gust": {"strength": 0.5, "period": 1, "length": 2}})";
   auto force_at = [&](double y_offset_tenths) {
     Scene scene = test::make_scene(2, 2, 0, {"simulation.gravity=[0,0,0]"}, wind);
-    const ClothModel model = build_cloth(scene.cloth);
+    const ClothModel model = build_cloth(scene);
     Constants<double> c = make_constants<double>(scene, model);
     set_substep_time(c, 0.25);  // a quarter period in: the wave is not at a zero
     State<double> s = initial_state<double>(model);
@@ -149,7 +149,7 @@ Scene sphere_through(bool moving) {
 
 void check_sphere_pushes(bool gpu) {
   const Scene moving = sphere_through(true), fixed = sphere_through(false);
-  const ClothModel model = build_cloth(moving.cloth);
+  const ClothModel model = build_cloth(moving);
   const State<float> a = after_one_second(moving, model, gpu), b = after_one_second(fixed, model, gpu);
   double deepest = 0;
   const glm::dvec3 o(0.5, 0.5, 0.5);
@@ -181,7 +181,7 @@ void check_pins_follow(bool gpu) {
       "");
   Scene moving = scene;
   moving.cloth.pinned_motion = MotionParams{{{0.0, {0, 0, 0}}, {0.2, {0.1, 0.3, 0}}, {0.4, {-0.2, 0.1, 0.25}}}};
-  const ClothModel model = build_cloth(moving.cloth);
+  const ClothModel model = build_cloth(moving);
   const std::vector<int> pins = {model.index(0, 0), model.index(32, 0), model.index(16, 8)};
   double worst = 0;
   int free_moved = 0;
@@ -214,7 +214,7 @@ TEST_CASE("a mass resting on a plane that slides sideways is carried along by fr
         3, 3, 0, {"simulation.self_collision=false", "cloth.ks=0"},
         fmt::format(R"(, "plane": {{"point": [0, 0.9999, 0], "normal": [0, 1, 0], "friction": {},
                          "motion": {{"keyframes": [[0, [0, 0.9999, 0]], [1, [1, 0.9999, 0]]]}}}})", friction));
-    const ClothModel model = build_cloth(scene.cloth);
+    const ClothModel model = build_cloth(scene);
     CpuBackend<double> cpu(scene, model);
     for (int f = 0; f < 45; ++f) cpu.step_frame();
     return cpu.state().pos[4].x - model.initial[4].x;

@@ -24,7 +24,7 @@ TEST_CASE("pinned masses are bitwise unchanged after a GPU run, inside a sphere 
       33, 17, 0, {"cloth.pinned=[[0,0],[32,0],[16,8]]", "simulation.self_collision=false"},
       R"(, "sphere": {"origin": [0.51, 1.0, 0.5], "radius": 0.05, "friction": 0.3},
            "plane": {"point": [1.0, 0.0, 0.0], "normal": [1.0, 0.0, 0.0], "friction": 0.5})");
-  const ClothModel model = build_cloth(scene.cloth);
+  const ClothModel model = build_cloth(scene);
   const State<float> initial = initial_state<float>(model);
   GpuSimulator gpu(scene, model, compute_dir());
   for (int f = 0; f < 2; ++f) gpu.step_frame();
@@ -44,7 +44,7 @@ TEST_CASE("pinned masses are bitwise unchanged after a GPU run, inside a sphere 
 TEST_CASE("two GPU runs from the same scene give bitwise identical buffers", "[gpu]") {
   REQUIRE_GL_CONTEXT();
   const Scene scene = pressed_cloth(33, 17);
-  const ClothModel model = build_cloth(scene.cloth);
+  const ClothModel model = build_cloth(scene);
   State<float> runs[2];
   for (State<float>& run : runs) {
     GpuSimulator gpu(scene, model, compute_dir());
@@ -62,7 +62,7 @@ TEST_CASE("two GPU runs from the same scene give bitwise identical buffers", "[g
 TEST_CASE("a second sphere and a second plane act on the GPU as on the CPU", "[gpu]") {
   REQUIRE_GL_CONTEXT();
   const Scene scene = pressed_cloth(33, 17, {}, kTwoSpheresTwoPlanes);
-  check_exercised(scene, build_cloth(scene.cloth), kWarmupFrames, false);
+  check_exercised(scene, build_cloth(scene), kWarmupFrames, false);
   check_each_pass(scene, kWarmupFrames);
   const int warmup = kWarmupFrames - 1, substeps = 50;
   check_run(scene, warmup, substeps);

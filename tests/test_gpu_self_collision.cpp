@@ -38,7 +38,7 @@ TEST_CASE("two GPU runs with self-collision are bitwise identical, and equal the
   // The selfCollision scene on a 17x17 grid: thickness scaled with the spacing (0.0095 * 49/16).
   const Scene scene = test::make_scene(17, 17, 1, {"cloth.thickness=0.0291"},
                                        R"(, "plane": {"point": [0, 0, 0], "normal": [0, 1, 0], "friction": 0.5})");
-  const ClothModel model = build_cloth(scene.cloth);
+  const ClothModel model = build_cloth(scene);
   const int substeps = 300;
   auto run_gpu = [&] {
     GpuSimulator gpu(scene, model, compute_dir());
@@ -55,7 +55,7 @@ TEST_CASE("two GPU runs with self-collision are bitwise identical, and equal the
   int contact_steps = 0;
   for (int k = 0; k < substeps; ++k) {
     accumulate_forces(model, c, s);
-    integrate(c, s);
+    integrate(model, c, s);
     const Positions before = s.pos;
     collide_self(c, s);
     contact_steps += mismatches(before, s.pos) > 0;
@@ -74,7 +74,7 @@ TEST_CASE("the selfCollision cloth heaps on the plane without non-neighbours clo
   REQUIRE_GL_CONTEXT();
   // The classic scene as shipped: 50x50, 200 frames (6000 substeps; about 25 s on llvmpipe).
   const Scene scene = load_scene(test::source_path("scenes/selfCollision.json"));
-  const ClothModel model = build_cloth(scene.cloth);
+  const ClothModel model = build_cloth(scene);
   GpuSimulator gpu(scene, model, compute_dir());
   for (int f = 0; f < 200; ++f) gpu.step_frame();
   State<float> s;

@@ -45,7 +45,7 @@ TEST_CASE("xpbd on the GPU: a hanging cloth's bottom centre is within 2 cm at 33
   int k = 0;
   for (int n : {33, 65}) {
     const Scene s = test::hanging_cloth(n);
-    const ClothModel m = build_cloth(s.cloth);
+    const ClothModel m = build_cloth(s);
     bool diverged = false;
     const State<float> g = run_both(s, m, 180, &diverged);
     CHECK(!diverged);
@@ -60,7 +60,7 @@ TEST_CASE("xpbd on the GPU: no NaN and no divergence for ks from 10 to 1e9 at fa
   REQUIRE_GL_CONTEXT();
   for (double ks : test::kXpbdStiffnesses) {
     const Scene s = test::hanging_cloth(17, ks);
-    const ClothModel m = build_cloth(s.cloth);
+    const ClothModel m = build_cloth(s);
     bool diverged = false;
     const State<float> g = run_both(s, m, 60, &diverged);
     bool finite = true;
@@ -80,7 +80,7 @@ TEST_CASE("an xpbd substep takes no more dispatches than a classic one", "[gpu][
       Scene s = test::hanging_cloth(33);
       s.simulation.solver = Solver(solver);
       s.simulation.self_collision = self_collision;
-      const ClothModel m = build_cloth(s.cloth);
+      const ClothModel m = build_cloth(s);
       GpuSimulator gpu(s, m, test::source_path("compute"));
       const GpuCounters before = gpu.counters();
       gpu.step();

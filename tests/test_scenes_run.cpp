@@ -17,7 +17,7 @@ TEST_CASE("every scene under scenes/ loads and runs 30 frames with finite result
       const bool large = load_scene(entry.path()).particle_count() > 10000;
       Scene s = load_scene(entry.path(), large ? std::vector<std::string>{"simulation.simulation_steps=2"}
                                                : std::vector<std::string>{});
-      ClothModel m = build_cloth(s.cloth);
+      ClothModel m = build_cloth(s);
       const int frames = large ? 1 : 30;
       CpuBackend<float> cpu(s, m);
       for (int f = 1; f <= frames; ++f) {

@@ -15,7 +15,7 @@ namespace {
 // A 9x18 grid laid as two 9x9 sheets, the upper `gap` metres above the lower one.
 struct TwoSheets {
   Scene scene = test::make_scene(9, 18, 0, {"cloth.height=2.0"});
-  ClothModel model = build_cloth(scene.cloth);
+  ClothModel model = build_cloth(scene);
   Constants<double> c = make_constants<double>(scene, model);
   State<double> s = initial_state<double>(model);
   explicit TwoSheets(double gap) {
@@ -99,7 +99,7 @@ TEST_CASE("self-collision does not depend on the order particles are filled into
 TEST_CASE("the correction is the average push divided by simulation_steps", "[self_collision]") {
   // Two free masses 0.01 apart along x (2 * thickness = 0.019): each moves (0.019 - 0.01) / steps.
   Scene s = test::make_scene(2, 2, 0, {"cloth.width=0.01", "cloth.height=5.0"});
-  ClothModel m = build_cloth(s.cloth);
+  ClothModel m = build_cloth(s);
   auto c = make_constants<double>(s, m);
   auto st = initial_state<double>(m);
   collide_self(c, st);

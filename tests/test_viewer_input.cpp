@@ -52,7 +52,7 @@ TEST_CASE("zooming in shortens the distance and zooming out restores it", "[view
 
 TEST_CASE("the pick ray through a particle's pixel hits that particle on a known cloth", "[viewer]") {
   Scene s = test::make_scene(9, 7, 0);
-  ClothModel m = build_cloth(s.cloth);
+  ClothModel m = build_cloth(s);
   std::vector<glm::vec4> pos;
   for (auto& p : m.initial) pos.emplace_back(glm::vec3(p), 1.f);
   OrbitCamera cam = default_camera(s, m, 800.f / 600.f);

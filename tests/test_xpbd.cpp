@@ -17,7 +17,7 @@ TEST_CASE("xpbd: a hanging cloth's bottom centre is within 2 cm at 33² and 65²
   int k = 0;
   for (int n : {33, 65}) {
     const Scene s = test::hanging_cloth(n);
-    const ClothModel m = build_cloth(s.cloth);
+    const ClothModel m = build_cloth(s);
     CpuBackend<float> cpu(s, m);
     for (int f = 0; f < 180; ++f) cpu.step_frame();
     const glm::dvec3 bottom(cpu.state().pos[m.index((n - 1) / 2, 0)]);
@@ -33,7 +33,7 @@ TEST_CASE("xpbd: a hanging cloth's bottom centre is within 2 cm at 33² and 65²
 TEST_CASE("xpbd: no NaN and no divergence for ks from 10 to 1e9 at fabric density (CPU reference)", "[reference][xpbd]") {
   for (double ks : test::kXpbdStiffnesses) {
     const Scene s = test::hanging_cloth(17, ks);
-    const ClothModel m = build_cloth(s.cloth);
+    const ClothModel m = build_cloth(s);
     CpuBackend<float> cpu(s, m);
     bool diverged = false;
     for (int f = 0; f < 60; ++f) {
@@ -51,7 +51,7 @@ TEST_CASE("xpbd: no NaN and no divergence for ks from 10 to 1e9 at fabric densit
 TEST_CASE("the classic solver diverges on the same fabric cloth that xpbd keeps (why xpbd exists)", "[reference][xpbd]") {
   Scene s = test::hanging_cloth(33);
   s.simulation.solver = Solver::Classic;
-  const ClothModel m = build_cloth(s.cloth);
+  const ClothModel m = build_cloth(s);
   CpuBackend<float> cpu(s, m);
   bool diverged = false;
   for (int f = 0; f < 60 && !diverged; ++f) {
@@ -67,7 +67,7 @@ TEST_CASE("the vertical jitter is at most 5 % of the spacing, and the classic 1 
   CHECK(jitter_amplitude(0.5) == 1e-3);
   for (int n : {50, 257, 1024}) {
     const Scene s = test::make_scene(n, n, 1);
-    const ClothModel m = build_cloth(s.cloth);
+    const ClothModel m = build_cloth(s);
     const double spacing = 1.0 / (n - 1);
     double largest = 0;
     for (const auto& p : m.initial) largest = std::max(largest, std::abs(p.z));
@@ -76,6 +76,6 @@ TEST_CASE("the vertical jitter is at most 5 % of the spacing, and the classic 1 
     CHECK(largest > 0.04 * std::min(spacing, 1.0 / 49));  // it is still there
   }
   // The classic cloth is exactly as before: the offsets of a 50 x 50 cloth are the hash times 1e-3.
-  const ClothModel classic = build_cloth(test::make_scene(50, 50, 1).cloth);
+  const ClothModel classic = build_cloth(test::make_scene(50, 50, 1));
   for (uint32_t i : {0u, 7u, 2499u}) CHECK(classic.initial[i].z == vertical_offset(i, 1e-3));
 }

@@ -91,7 +91,7 @@ BenchRunner::BenchRunner(const std::string& root, int frames)
 BenchRunner::~BenchRunner() = default;
 
 BenchResult BenchRunner::run_gpu(const Scene& scene) {
-  const ClothModel model = build_cloth(scene.cloth);
+  const ClothModel model = build_cloth(scene);
   GpuSimulator sim(scene, model, compute_dir_);
   for (int f = 0; f < kWarmupFrames; ++f) sim.step_frame();
   glFinish();
@@ -137,7 +137,7 @@ BenchResult BenchRunner::run_gpu(const Scene& scene) {
 }
 
 BenchResult BenchRunner::run_cpu(const Scene& scene) {
-  const ClothModel model = build_cloth(scene.cloth);
+  const ClothModel model = build_cloth(scene);
   CpuBackend<float> cpu(scene, model);
   for (int f = 0; f < kWarmupFrames; ++f) cpu.step_frame();
   const auto t = Clock::now();

@@ -71,7 +71,7 @@ int run_render(const Opts& o) {
   const Scene scene = o.scene.load();
   const double fps = o.fps > 0 ? o.fps : scene.simulation.frames_per_sec / o.every;
   FrameSink::check(o.out, w, h, fps);
-  const ClothModel model = build_cloth(scene.cloth);
+  const ClothModel model = build_cloth(scene);
   const BackendKind kind = parse_backend(o.backend);
   auto context = require_headless_context();
   const auto root = find_project_root(o.root);

@@ -107,7 +107,7 @@ void add_simulate_command(CLI::App& app, std::function<int()>& run) {
       if (kind == ExportKind::Obj || kind == ExportKind::PointCache) check_writable("--export", o->export_path);
       if (!o->save_path.empty()) check_writable("--save-state", o->save_path);
       const Scene scene = o->scene.load();
-      const ClothModel model = build_cloth(scene.cloth);
+      const ClothModel model = build_cloth(scene);
       std::unique_ptr<Backend> backend = make_backend(parse_backend(o->backend), scene, model);
       fmt::print("{}: {}x{} cloth, {} substeps/frame, backend {}\n", scene.source, model.nw, model.nh,
                  scene.simulation.simulation_steps, backend->name());

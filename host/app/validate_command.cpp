@@ -25,7 +25,7 @@ struct Opts {
 
 int run_validate(const Opts& o) {
   const Scene scene = o.scene.load();
-  const ClothModel model = build_cloth(scene.cloth);
+  const ClothModel model = build_cloth(scene);
   auto context = require_headless_context();
   GpuSimulator gpu(scene, model, find_project_root() / "compute");
   fmt::print("{}: {}x{} cloth, {} substeps/frame, {}\n", scene.source, model.nw, model.nh,

@@ -89,6 +89,15 @@ uint64_t cloth_hash(const ClothModel& m) {
   fnv(h, grid, sizeof grid);
   fnv(h, m.initial.data(), m.initial.size() * sizeof(glm::dvec3));
   fnv(h, m.pinned.data(), m.pinned.size());
+  // A grid's topology follows from nw x nh (and its hash is what it was before meshes); any
+  // other model also hashes its triangles and springs, so a state never loads into another mesh.
+  if (!m.is_grid()) {
+    fnv(h, m.triangles.data(), m.triangles.size() * sizeof(m.triangles[0]));
+    for (const Spring& s : m.springs) {
+      const uint32_t ends[3] = {s.i, s.j, uint32_t(s.type)};
+      fnv(h, ends, sizeof ends);
+    }
+  }
   return h;
 }
 
@@ -97,8 +106,10 @@ void write_checkpoint(const std::string& path, const Checkpoint& c) {
   std::vector<uint8_t> head(kMagic, kMagic + sizeof kMagic);
   put<uint32_t>(head, kVersion);
   put<uint32_t>(head, uint32_t(s.scalar_bytes));
-  put<uint32_t>(head, uint32_t(c.nw));
-  put<uint32_t>(head, uint32_t(c.nh));
+  // A mesh (or several cloths) has no grid: its particles are stored as count x 1.
+  const bool grid = c.nw > 0 && c.nh > 0;
+  put<uint32_t>(head, grid ? uint32_t(c.nw) : uint32_t(s.positions.size() / (4 * size_t(s.scalar_bytes))));
+  put<uint32_t>(head, grid ? uint32_t(c.nh) : 1u);
   put<uint64_t>(head, c.cloth);
   put<int64_t>(head, s.frame);
   put<double>(head, s.time);
@@ -148,7 +159,7 @@ Checkpoint read_checkpoint(const std::string& path) {
   const uint32_t scalar = get<uint32_t>(head + 20), nw = get<uint32_t>(head + 24), nh = get<uint32_t>(head + 28);
   const uint32_t scene_len = get<uint32_t>(head + 56), backend_len = get<uint32_t>(head + 60);
   if (scalar != 4 && scalar != 8) throw fail(fmt::format("scalar size {} bytes (expected 4 or 8)", scalar));
-  if (nw < 2 || nh < 2 || uint64_t(nw) * nh > uint64_t(kMaxParticles))
+  if (nw < 1 || nh < 1 || uint64_t(nw) * nh < 3 || uint64_t(nw) * nh > uint64_t(kMaxParticles))
     throw fail(fmt::format("grid {}x{} is out of range", nw, nh));
   if (scene_len > kMaxName || backend_len > kMaxName) throw fail("corrupted header (name lengths out of range)");
   const uint64_t stream = uint64_t(nw) * nh * 4 * scalar;

@@ -1,7 +1,12 @@
+// What every cloth builder shares: the model's derived lists (springs sorted by colour, the
+// force gather, the triangles around each particle, the tethers) and the masses.
 #include "cloth.hpp"
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
+
+#include <fmt/format.h>
 
 namespace clothsim {
 
@@ -26,46 +31,138 @@ double particle_mass(const ClothParams& p) {
   return p.width * p.height * p.density / (double(p.num_width_points) * double(p.num_height_points));
 }
 
-ClothModel build_cloth(const ClothParams& p) {
-  ClothModel m;
-  m.nw = p.num_width_points;
-  m.nh = p.num_height_points;
-  const int n = m.count();
-  m.mass = particle_mass(p);
-  const double sx = p.width / (m.nw - 1), sy = p.height / (m.nh - 1);
-  const double jitter = jitter_amplitude(std::min(sx, sy));
+std::vector<double> particle_masses(const Scene& scene, const ClothModel& m) {
+  const auto cloths = scene.cloths();
+  std::vector<double> mass(m.count());
+  for (size_t k = 0; k < m.parts.size(); ++k) {
+    const ClothPart& part = m.parts[k];
+    const ClothParams& p = *cloths.at(k);
+    // A grid keeps the CS184 formula exactly (its particles all weigh the same, to the bit).
+    const double grid_mass = part.nw > 0 ? particle_mass(p) : 0.0;
+    for (uint32_t i = part.first; i < part.first + part.count; ++i)
+      mass[i] = part.nw > 0 ? grid_mass : m.area[i] * p.density;
+  }
+  return mass;
+}
 
-  m.initial.resize(n);
-  m.uv.resize(n);
-  for (int y = 0; y < m.nh; ++y)
-    for (int x = 0; x < m.nw; ++x) {
-      int i = m.index(x, y);
-      m.initial[i] = p.orientation == Orientation::Horizontal
-                         ? glm::dvec3(x * sx, 1.0, y * sy)
-                         : glm::dvec3(x * sx, y * sy, vertical_offset(uint32_t(i), jitter));
-      m.uv[i] = {double(x) / (m.nw - 1), double(y) / (m.nh - 1)};
+int ClothModel::springs_of(SpringType type) const {
+  return int(std::count_if(springs.begin(), springs.end(), [&](const Spring& s) { return s.type == type; }));
+}
+
+namespace {
+
+// Springs of all parts sorted into colours: by type, then by the colour within the type (the
+// same colour of two parts merges into one: their particles are disjoint). Returns, for each
+// spring of each part in order, its index in the sorted list.
+std::vector<uint32_t> sort_by_colour(ClothModel& m, const std::vector<PartSprings>& parts) {
+  uint32_t per_type[3] = {0, 0, 0};
+  for (auto& p : parts)
+    for (size_t s = 0; s < p.springs.size(); ++s) {
+      uint32_t& n = per_type[int(p.springs[s].type)];
+      n = std::max(n, p.colour[s] + 1);
     }
+  const uint32_t first[3] = {0, per_type[0], per_type[0] + per_type[1]};
+  const uint32_t colours = first[2] + per_type[2];
+  std::vector<uint32_t> size(colours, 0);
+  std::vector<uint32_t> global;  // global colour of each spring, parts in order
+  for (auto& p : parts)
+    for (size_t s = 0; s < p.springs.size(); ++s) {
+      global.push_back(first[int(p.springs[s].type)] + p.colour[s]);
+      ++size[global.back()];
+    }
+  m.colour_start.assign(colours + 1, 0);
+  for (uint32_t c = 0; c < colours; ++c) m.colour_start[c + 1] = m.colour_start[c] + size[c];
+  // A stable counting sort: within a colour, springs keep their builder's order.
+  std::vector<uint32_t> cursor(m.colour_start.begin(), m.colour_start.end() - 1);
+  std::vector<uint32_t> where(global.size());
+  m.springs.resize(global.size());
+  size_t k = 0;
+  for (auto& p : parts)
+    for (const Spring& s : p.springs) {
+      where[k] = cursor[global[k]]++;
+      m.springs[where[k]] = s;
+      ++k;
+    }
+  return where;
+}
 
-  m.pinned.assign(n, 0);
-  for (auto& pin : p.pinned) m.pinned[m.index(pin[0], pin[1])] = 1;
+}  // namespace
 
-  m.rest.assign(n, {});
-  for (int y = 0; y < m.nh; ++y)
-    for (int x = 0; x < m.nw; ++x)
-      for (int d = 0; d < NUM_DIRECTIONS; ++d) {
-        int x2 = x + kDirections[d].dx, y2 = y + kDirections[d].dy;
-        if (!in_grid(x2, y2, m.nw, m.nh)) continue;
-        glm::dvec3 e = m.initial[m.index(x2, y2)] - m.initial[m.index(x, y)];
-        m.rest[m.index(x, y)][d] = std::sqrt(e.x * e.x + e.y * e.y + e.z * e.z);
+void finish_model(ClothModel& m, const std::vector<PartSprings>& parts) {
+  const std::vector<uint32_t> where = sort_by_colour(m, parts);
+  const uint32_t n = uint32_t(m.count());
+  // The force gather: a builder's own order where it gives one (the grid's kGatherOrder, which
+  // keeps the classic sums to the bit), else every spring at the particle in sorted order.
+  m.gather_start.assign(n + 1, 0);
+  std::vector<std::vector<uint32_t>> lists(n);
+  size_t offset = 0;
+  for (size_t k = 0; k < parts.size(); ++k) {
+    const ClothPart& part = m.parts[k];
+    if (!parts[k].gather.empty()) {
+      uint32_t i = part.first;
+      for (uint32_t s : parts[k].gather) {
+        if (s == kEndOfList) { ++i; continue; }
+        lists[i].push_back(where[offset + s]);
       }
-
-  for (int y = 0; y + 1 < m.nh; ++y)
-    for (int x = 0; x + 1 < m.nw; ++x) {
-      uint32_t a = m.index(x, y), b = m.index(x + 1, y), c = m.index(x, y + 1), d = m.index(x + 1, y + 1);
-      m.triangles.push_back({a, c, b});
-      m.triangles.push_back({b, c, d});
     }
+    offset += parts[k].springs.size();
+  }
+  std::vector<uint8_t> given(n, 0);
+  for (size_t k = 0; k < parts.size(); ++k)
+    if (!parts[k].gather.empty())
+      for (uint32_t i = m.parts[k].first; i < m.parts[k].first + m.parts[k].count; ++i) given[i] = 1;
+  for (uint32_t s = 0; s < m.springs.size(); ++s)
+    for (uint32_t end : {m.springs[s].i, m.springs[s].j})
+      if (!given[end]) lists[end].push_back(s);
+  for (uint32_t i = 0; i < n; ++i) {
+    m.gather_start[i + 1] = m.gather_start[i] + uint32_t(lists[i].size());
+    m.gather.insert(m.gather.end(), lists[i].begin(), lists[i].end());
+  }
+  // The triangles around each particle, ascending: on a grid that is the classic order of the
+  // cells (x-1..x, y-1..y), each (A, C, B) then (B, C, D).
+  m.corner_start.assign(n + 1, 0);
+  for (auto& t : m.triangles)
+    for (uint32_t v : t) ++m.corner_start[v + 1];
+  for (uint32_t i = 0; i < n; ++i) m.corner_start[i + 1] += m.corner_start[i];
+  m.corner_triangles.resize(m.corner_start[n]);
+  std::vector<uint32_t> cursor(m.corner_start.begin(), m.corner_start.end() - 1);
+  for (uint32_t t = 0; t < m.triangles.size(); ++t)
+    for (uint32_t v : m.triangles[t]) m.corner_triangles[cursor[v]++] = t;
   build_tethers(m);
+}
+
+ClothModel build_cloth(const Scene& scene) {
+  ClothModel m;
+  std::vector<PartSprings> parts;
+  const auto cloths = scene.cloths();
+  long long total = 0;
+  for (uint32_t k = 0; k < cloths.size(); ++k) {
+    const ClothParams& p = *cloths[k];
+    ClothPart part;
+    part.first = uint32_t(m.count());
+    part.first_triangle = uint32_t(m.triangles.size());
+    if (p.is_mesh()) {
+      part.mesh = p.mesh_path.string();
+      parts.push_back(append_mesh(m, scene, p, k));
+    } else {
+      part.nw = p.num_width_points;
+      part.nh = p.num_height_points;
+      parts.push_back(append_grid(m, p, k));
+    }
+    part.count = uint32_t(m.count()) - part.first;
+    part.triangle_count = uint32_t(m.triangles.size()) - part.first_triangle;
+    m.parts.push_back(part);
+    total += part.count;
+    if (total > kMaxParticles)
+      throw SceneError(fmt::format("{}: cloth: the cloths have {} particles in all, more than the {} this build "
+                                   "accepts", scene.source, total, kMaxParticles));
+  }
+  if (m.parts.size() == 1 && m.parts[0].nw > 0) {
+    m.nw = m.parts[0].nw;
+    m.nh = m.parts[0].nh;
+  }
+  finish_model(m, parts);
+  m.mass = particle_masses(scene, m);
   return m;
 }
 

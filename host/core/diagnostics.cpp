@@ -9,7 +9,6 @@
 #include <fmt/format.h>
 #include <fmt/os.h>
 
-#include "spring_grid.hpp"
 
 namespace clothsim {
 namespace {
@@ -27,28 +26,26 @@ glm::dvec3 initial_centre(const ClothModel& m) {
 ClothStats measure(const Scene& scene, const ClothModel& m, const ClothSnapshot& s) {
   ClothStats st;
   const double dt = scene.dt();
-  const bool enabled[3] = {scene.cloth.enable_structural, scene.cloth.enable_shearing, scene.cloth.enable_bending};
+  const auto cloths = scene.cloths();
+  const std::vector<double> mass = particle_masses(scene, m);
   for (int i = 0; i < m.count(); ++i) {
     const glm::dvec3 x = xyz(s.pos[i]);
     for (int c = 0; c < 4; ++c) st.finite = st.finite && std::isfinite(s.pos[i][c]) && std::isfinite(s.disp[i][c]);
     const glm::dvec3 v = xyz(s.disp[i]) / dt;
-    if (!m.pinned[i]) st.kinetic += 0.5 * m.mass * glm::dot(v, v);
+    if (!m.pinned[i]) st.kinetic += 0.5 * mass[i] * glm::dot(v, v);
     st.max_speed = std::max(st.max_speed, glm::length(v));
-    st.gravitational -= m.mass * glm::dot(scene.simulation.gravity, x);
+    st.gravitational -= mass[i] * glm::dot(scene.simulation.gravity, x);
   }
-  for (int y = 0; y < m.nh; ++y)
-    for (int x = 0; x < m.nw; ++x)
-      for (int d = 0; d < NUM_DIRECTIONS; ++d) {
-        const Direction& dir = kDirections[d];
-        if (!in_grid(x + dir.dx, y + dir.dy, m.nw, m.nh)) continue;
-        const double rest = m.rest[m.index(x, y)][d];
-        const double len = glm::length(xyz(s.pos[m.index(x + dir.dx, y + dir.dy)]) - xyz(s.pos[m.index(x, y)]));
-        st.max_stretch_ratio = std::max(st.max_stretch_ratio, len / rest);
-        if (enabled[int(dir.type)]) {
-          const double k = dir.type == SpringType::Bending ? 0.2 * scene.cloth.ks : scene.cloth.ks;
-          st.spring += 0.5 * k * (len - rest) * (len - rest);
-        }
-      }
+  for (const Spring& sp : m.springs) {
+    const double len = glm::length(xyz(s.pos[sp.j]) - xyz(s.pos[sp.i]));
+    st.max_stretch_ratio = std::max(st.max_stretch_ratio, len / sp.rest);
+    const ClothParams& p = *cloths.at(sp.material);
+    const bool enabled[3] = {p.enable_structural, p.enable_shearing, p.enable_bending};
+    if (enabled[int(sp.type)]) {
+      const double k = sp.type == SpringType::Bending ? 0.2 * p.ks : p.ks;
+      st.spring += 0.5 * k * (len - sp.rest) * (len - sp.rest);
+    }
+  }
   const glm::dvec3 centre = initial_centre(m);
   for (auto& sp : scene.spheres) {
     double best = std::numeric_limits<double>::infinity();
@@ -68,7 +65,11 @@ ClothStats measure(const Scene& scene, const ClothModel& m, const ClothSnapshot&
 void write_obj(const std::string& path, const ClothModel& m, const ClothSnapshot& s) {
   std::FILE* f = std::fopen(path.c_str(), "w");
   if (!f) throw std::runtime_error(fmt::format("{}: cannot open for writing", path));
-  fmt::print(f, "# clothsim cloth, {}x{} particles, row-major\n", m.nw, m.nh);
+  if (m.is_grid())
+    fmt::print(f, "# clothsim cloth, {}x{} particles, row-major\n", m.nw, m.nh);
+  else
+    fmt::print(f, "# clothsim cloth, {} particles in {} cloth(s), each mesh in its file's vertex order\n", m.count(),
+               m.parts.size());
   for (auto& p : s.pos) fmt::print(f, "v {:.9g} {:.9g} {:.9g}\n", p.x, p.y, p.z);
   for (auto& t : m.uv) fmt::print(f, "vt {:.9g} {:.9g}\n", t.x, t.y);
   for (int i = 0; i < m.count(); ++i) {

@@ -2,6 +2,8 @@
 // cannot drift from what the loader accepts: a ctest test compares the committed file.
 #include "param_doc.hpp"
 
+#include <string_view>
+
 #include <fmt/format.h>
 
 #include "scene_table.hpp"
@@ -55,6 +57,10 @@ class Doc final : public ParamVisitor {
     for (const char* c : p.choices) names += fmt::format("{}`\"{}\"`", names.empty() ? "" : " \\| ", c);
     add(p, "string", fmt::format("`\"{}\"`", p.choices[size_t(v)]), names);
   }
+  void text(const ParamInfo& p, std::string& v) override {
+    add(p, "string", v.empty() ? "absent" : fmt::format("`\"{}\"`", v), "non-empty");
+  }
+  void indices(const ParamInfo& p, std::vector<int>&) override { add(p, "[i, ...]", "[]", "each " + range(p)); }
   void grid_indices(const ParamInfo& p, GridIndices&, int, int) override {
     add(p, "[[x, y], ...]", "[]", "inside the grid");
   }
@@ -74,8 +80,13 @@ class Doc final : public ParamVisitor {
 
  private:
   void add(const ParamInfo& p, const char* type, const std::string& def, const std::string& valid) {
-    out_ += fmt::format("| `{}{}` | {} | {} | {} | {} | {} | {} |\n", prefix_, p.key, type,
-                        p.required ? "**required**" : def, valid, p.unit, p.meaning, viewer(p.widget, p));
+    // A row of one kind of cloth says so: required only there, absent in the other.
+    const char* shape = p.shape == Shape::Grid ? "grid" : p.shape == Shape::Mesh ? "mesh" : nullptr;
+    const std::string presence =
+        p.required ? (shape ? fmt::format("**required** ({} cloth)", shape) : std::string("**required**")) : def;
+    const std::string meaning = shape ? fmt::format("{} cloth only: {}", shape, p.meaning) : std::string(p.meaning);
+    out_ += fmt::format("| `{}{}` | {} | {} | {} | {} | {} | {} |\n", prefix_, p.key, type, presence, valid, p.unit,
+                        meaning, viewer(p.widget, p));
   }
   std::string& out_;
   std::string prefix_;
@@ -91,7 +102,8 @@ class Sections final : public ParamVisitor {
     o.visit(rows);
   }
   void list(const ParamInfo& p, ListRef& l) override {
-    head(p, "optional; the rows below apply to each element");
+    head(p, p.required ? "required; the rows below apply to each element"
+                       : "optional; the rows below apply to each element");
     Doc rows(out_, "");
     l.visit_default(rows);
   }
@@ -101,6 +113,8 @@ class Sections final : public ParamVisitor {
   void boolean(const ParamInfo&, bool&) override {}
   void vec3(const ParamInfo&, glm::dvec3&) override {}
   void choice(const ParamInfo&, int&) override {}
+  void text(const ParamInfo&, std::string&) override {}
+  void indices(const ParamInfo&, std::vector<int>&) override {}
   void grid_indices(const ParamInfo&, GridIndices&, int, int) override {}
   void keyframes(const ParamInfo&, Keyframes&) override {}
 
@@ -124,6 +138,22 @@ std::string parameters_markdown() {
       "the file and the key path (exit 2). `--set key.path=value` overrides any of them, e.g.\n"
       "`--set cloth.ks=500`, `--set sphere[0].radius=0.3`. The viewer column says how the\n"
       "*Simulation* panel shows the key (its label is the key).\n";
+  // Which cloth keys go together, from the rows.
+  std::string grid, mesh;
+  for (const Param<ClothParams>& p : param_rows<ClothParams>()) {
+    std::string& to = p.info.shape == Shape::Grid ? grid : mesh;
+    if (p.info.shape != Shape::Any && p.info.key != std::string_view(kMeshKey))
+      to += fmt::format("{}`{}`", to.empty() ? "" : ", ", p.info.key);
+  }
+  out += fmt::format(
+      "\n`cloth` is one cloth object, or an array of them: several cloths in one scene, each with its own\n"
+      "keys, sharing the simulation; errors name `cloth[1].ks` and so on. `--set cloth.ks=...` edits the\n"
+      "first cloth, `--set cloth[1].ks=...` the second.\n\n"
+      "A cloth is a grid or a mesh. A grid cloth has the grid keys\n{};\n"
+      "a mesh cloth has `{}`, the mesh file's path relative to the scene file, and may have\n{}.\n"
+      "The keys of one kind are an error in a cloth of the other, and the grid keys marked required\n"
+      "are required of a grid cloth only. `--set cloth.{}=file.obj` drops that cloth's grid keys.\n",
+      grid, kMeshKey, mesh, kMeshKey);
   Scene defaults;
   Sections top(out);
   visit_rows(defaults, top);

@@ -17,6 +17,7 @@
 #include <cstddef>
 #include <optional>
 #include <span>
+#include <string>
 #include <type_traits>
 #include <vector>
 
@@ -28,6 +29,8 @@ namespace clothsim {
 // parameter can be edited in the unit people think in (density in g/cm^2, scale 0.1).
 struct Widget {
   enum Style { Hidden, Drag, Checkbox, ReadOnly };  // ReadOnly: changing it rebuilds the cloth
+  // A list row (the cloths): Hidden, the panel shows none of its elements (colliders: edit the
+  // file); any other style, it shows the rows of each element.
   Style style = Hidden;
   float speed = 1;        // drag speed, in shown units per pixel
   double lo = 0, hi = 0;  // drag and clamp range in shown units (lo == hi: unclamped)
@@ -36,10 +39,17 @@ struct Widget {
   const char* unit = nullptr;  // shown unit when it differs from the row's (nullptr: the row's)
 };
 
+// Which kind of cloth a row belongs to. A cloth object that has the key kMeshKey is a mesh
+// cloth, any other a grid: a row of the other kind must be absent (the loader names both keys,
+// with the row's `instead`), is never required, and is not written.
+enum class Shape : unsigned char { Any, Grid, Mesh };
+inline constexpr const char* kMeshKey = "mesh";
+
 // Everything about a row but the member it lives in.
 struct ParamInfo {
   const char* key;              // JSON key, also the C++ member name and the viewer's label
-  bool required = false;        // else absent means the struct's default member initialiser
+  bool required = false;        // else absent means the struct's default member initialiser;
+                                // a required list (the cloths) needs at least one element
   double lo = -HUGE_VAL;        // valid range of a number or integer, inclusive
   double hi = HUGE_VAL;
   const char* expected = "";    // a number out of range: "expected <this>, got 5" (the loader's message)
@@ -48,6 +58,12 @@ struct ParamInfo {
   Widget widget = {};
   std::span<const char* const> choices = {};  // an enum stored as a JSON string: its names, by value
   bool one_or_many = false;     // a list that may also be written as a single object (sphere, plane)
+  bool single_as_object = false;  // one_or_many, and a list of one is written as that object (cloth)
+  Shape shape = Shape::Any;
+  // A row of one Shape given to a cloth of the other: the end of the loader's message, after
+  // "cloth.mesh and cloth.width: " (a grid row) or "cloth.scale is for a mesh cloth
+  // (cloth.mesh); " (a mesh row). "{}" stands for the cloth's key path and a dot ("cloth.").
+  const char* instead = "";
   // A rule the range cannot say (the plane normal), run by the loader right after a vec3 row is
   // read: may adjust the value, and returns the "expected ..." message of a bad one, else nullptr.
   const char* (*after_read)(glm::dvec3&) = nullptr;
@@ -90,6 +106,11 @@ class ParamVisitor {
   virtual void boolean(const ParamInfo&, bool&) = 0;
   virtual void vec3(const ParamInfo&, glm::dvec3&) = 0;
   virtual void choice(const ParamInfo&, int& index) = 0;  // index into info.choices
+  // A string (the mesh file, as the scene writes it): UTF-8, non-empty when present.
+  virtual void text(const ParamInfo&, std::string&) = 0;
+  // `[i, ...]`: integers in [info.lo, info.hi] (pinned_vertices: >= 0; the mesh builder checks
+  // them against the mesh).
+  virtual void indices(const ParamInfo&, std::vector<int>&) = 0;
   // Special case: `pinned`, a list of [x, y] indices into the owner's nw x nh grid.
   virtual void grid_indices(const ParamInfo&, GridIndices&, int nw, int nh) = 0;
   // `[[t, [x, y, z]], ...]`: times finite, >= 0 and strictly ascending, values finite.
@@ -175,6 +196,8 @@ void visit_member(typename member_traits<decltype(M)>::owner& s, const ParamInfo
   else if constexpr (std::is_same_v<T, int>) v.integer(info, m);
   else if constexpr (std::is_same_v<T, bool>) v.boolean(info, m);
   else if constexpr (std::is_same_v<T, glm::dvec3>) v.vec3(info, m);
+  else if constexpr (std::is_same_v<T, std::string>) v.text(info, m);
+  else if constexpr (std::is_same_v<T, std::vector<int>>) v.indices(info, m);  // before the list of objects
   else if constexpr (std::is_same_v<T, GridIndices>) v.grid_indices(info, m, s.num_width_points, s.num_height_points);
   else if constexpr (std::is_same_v<T, Keyframes>) v.keyframes(info, m);  // before the list of objects
   else if constexpr (std::is_enum_v<T>) {

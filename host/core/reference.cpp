@@ -1,5 +1,6 @@
 #include "reference.hpp"
 
+#include <algorithm>
 #include <numeric>
 
 #include "motion.hpp"
@@ -39,6 +40,7 @@ template <class R> void make_timeline(const Scene& scene, const ClothModel& mode
   tl.dt = scene.dt();
   for (auto& s : scene.spheres) tl.spheres.push_back(s.motion ? std::optional(s.motion->keyframes) : std::nullopt);
   for (auto& p : scene.planes) tl.planes.push_back(p.motion ? std::optional(p.motion->keyframes) : std::nullopt);
+  // pinned_motion of the first cloth moves the pins of every cloth (one offset for all).
   if (scene.cloth.pinned_motion) {
     tl.pins = scene.cloth.pinned_motion->keyframes;
     for (int i = 0; i < model.count(); ++i)
@@ -79,23 +81,31 @@ template <class R> Constants<R> make_constants(const Scene& scene, const ClothMo
   const double dt = scene.dt();
   // Derived values are formed in double and rounded once, identically for the GPU upload.
   c.gravity = Vec3<R>(sp.gravity);
-  c.mass = R(particle_mass(cp));  // from the scene, so a live density edit takes effect
-  c.ks = R(cp.ks);
-  c.ks_bending = R(0.2 * cp.ks);
-  c.keep_velocity = R(1.0 - cp.damping / 100.0);
   c.dt2 = R(dt * dt);
   c.stretch_limit = R(1.0 + sp.max_stretch);
-  c.contact_distance = R(2.0 * cp.thickness);
-  c.inv_cell = R(1.0 / (2.0 * cp.thickness));
+  // Cloths of different thickness keep the thickest one's distance from each other and themselves.
+  double thickness = cp.thickness;
+  for (const ClothParams* k : scene.cloths()) thickness = std::max(thickness, k->thickness);
+  c.contact_distance = R(2.0 * thickness);
+  c.inv_cell = R(1.0 / (2.0 * thickness));
   c.steps = R(sp.simulation_steps);
-  // 1 / (ks dt^2): ks = 0 gives +inf, a constraint that never pulls.
-  c.alpha = R(1.0 / (cp.ks * dt * dt));
-  c.alpha_bending = R(1.0 / (0.2 * cp.ks * dt * dt));
+  for (const ClothParams* k : scene.cloths()) {
+    MaterialC<R> mat{};
+    mat.ks = R(k->ks);
+    mat.ks_bending = R(0.2 * k->ks);
+    mat.keep_velocity = R(1.0 - k->damping / 100.0);
+    // 1 / (ks dt^2): ks = 0 gives +inf, a constraint that never pulls.
+    mat.alpha = R(1.0 / (k->ks * dt * dt));
+    mat.alpha_bending = R(1.0 / (0.2 * k->ks * dt * dt));
+    mat.enabled[0] = k->enable_structural;
+    mat.enabled[1] = k->enable_shearing;
+    mat.enabled[2] = k->enable_bending;
+    c.materials.push_back(mat);
+  }
+  // From the scene, so a live density edit takes effect.
+  for (double m : particle_masses(scene, model)) c.mass.push_back(R(m));
   c.xpbd = sp.solver == Solver::Xpbd;
   c.tether_limit = R(1.0 + sp.tether_stretch);
-  c.enabled[0] = cp.enable_structural;
-  c.enabled[1] = cp.enable_shearing;
-  c.enabled[2] = cp.enable_bending;
   c.iterations = sp.constraint_iterations;
   c.self_collision = sp.self_collision;
   for (auto& s : scene.spheres) c.spheres.push_back({Vec3<R>(s.origin), R(s.radius), R(1.0 - s.friction)});
@@ -110,7 +120,7 @@ template <class R> State<R> initial_state(const ClothModel& m) {
   const int n = m.count();
   s.pos.resize(n);
   for (int i = 0; i < n; ++i)
-    s.pos[i] = Vec4<R>(Vec3<R>(m.initial[i]), m.pinned[i] ? R(0) : R(1.0 / m.mass));
+    s.pos[i] = Vec4<R>(Vec3<R>(m.initial[i]), m.pinned[i] ? R(0) : R(1.0 / m.mass[i]));
   s.disp.assign(n, Vec4<R>(0));  // at rest
   s.force.assign(n, Vec4<R>(0));
   s.normal.assign(n, Vec4<R>(0));

@@ -51,18 +51,28 @@ struct Timeline {
   bool moves() const;  // anything above is set
 };
 
+// One cloth's material, converted once to R (a scene with several cloths has one each).
+template <class R> struct MaterialC {
+  R ks, ks_bending;        // N/m: structural and shearing, bending (0.2 ks)
+  R keep_velocity;         // 1 - damping / 100
+  // xpbd: the time-scaled compliance alpha~ = 1 / (ks' dt^2) of a spring's distance constraint.
+  R alpha, alpha_bending;
+  bool enabled[3];         // by SpringType
+  R stiffness(SpringType t) const { return t == SpringType::Bending ? ks_bending : ks; }
+  R compliance(SpringType t) const { return t == SpringType::Bending ? alpha_bending : alpha; }
+};
+
 // Scene parameters converted once to R: the GPU uploads exactly Constants<float>.
 template <class R> struct Constants {
   Vec3<R> gravity;
-  R mass, ks, ks_bending, keep_velocity, dt2;
+  R dt2;
   R stretch_limit;      // 1 + max_stretch
-  R contact_distance;   // 2 * thickness
-  R inv_cell;           // 1 / cell edge (cell edge = 2 * thickness)
+  R contact_distance;   // 2 * thickness (the thickest cloth's)
+  R inv_cell;           // 1 / cell edge (cell edge = contact_distance)
   R steps;              // simulation_steps
-  // xpbd: the time-scaled compliance alpha~ = 1 / (ks' dt^2) of a spring's distance constraint.
-  R alpha, alpha_bending;
   R tether_limit;       // xpbd: 1 + tether_stretch
-  bool enabled[3];      // by SpringType
+  std::vector<MaterialC<R>> materials;  // by cloth, Scene::cloths() order
+  std::vector<R> mass;  // kg, per particle (particle_masses: follows a live density edit)
   int iterations;
   bool self_collision;
   bool xpbd;            // simulation.solver
@@ -76,6 +86,13 @@ template <class R> struct Constants {
   Timeline timeline;
   bool has_colliders() const { return !spheres.empty() || !planes.empty(); }
   bool moving_pins() const { return !anchors.empty(); }
+  bool enabled(const Spring& s) const { return materials[s.material].enabled[int(s.type)]; }
+  // Colour c of `m` runs at all: its type is enabled in some cloth (a colour is of one type).
+  bool colour_enabled(const ClothModel& m, int c) const {
+    for (auto& mat : materials)
+      if (mat.enabled[int(m.colour_type(c))]) return true;
+    return false;
+  }
 };
 
 template <class R> Constants<R> make_constants(const Scene& scene, const ClothModel& model);
@@ -110,7 +127,7 @@ template <class R> void rescale_displacement(State<R>& s, double dt_ratio) {
 // With wind: the aerodynamic force of every particle's triangles, gathered (wind.glsl).
 template <class R> void compute_wind_forces(const ClothModel& m, const Constants<R>& c, State<R>& s);
 template <class R> void accumulate_forces(const ClothModel& m, const Constants<R>& c, State<R>& s);
-template <class R> void integrate(const Constants<R>& c, State<R>& s);
+template <class R> void integrate(const ClothModel& m, const Constants<R>& c, State<R>& s);
 // Builds the hash (count_cells, scan_cells, fill_cells, sort_cells in spatial_hash.hpp), then
 // resolve_self_contacts: the stages the GPU runs as five passes of the same names.
 template <class R> void collide_self(const Constants<R>& c, State<R>& s);
@@ -125,10 +142,11 @@ template <class R> void compute_normals(const ClothModel& m, State<R>& s);
 // the pass checks (host/gpu/pass_check.cpp); its step runs advance.
 template <class R> void advance(const ClothModel& m, const Constants<R>& c, State<R>& s) {
   accumulate_forces(m, c, s);
-  integrate(c, s);
+  integrate(m, c, s);
 }
 
-// One constraint colour (used by the per-pass check that dispatches colours one by one).
+// One constraint colour (used by the per-pass check that dispatches colours one by one): the
+// springs model.colour_start[colour] .. model.colour_start[colour + 1].
 template <class R> void solve_length_constraint_colour(const ClothModel& m, const Constants<R>& c, int colour, State<R>& s);
 
 // The xpbd solver (docs/model.md): predict moves every free particle by its damped

@@ -7,18 +7,13 @@ namespace clothsim {
 
 namespace {
 
-// Calls visit(i, j, direction) for every spring of `colour` (from particle i to j) whose type is
-// enabled, in grid order: the springs of a colour share no particle, so the order does not
-// change the result (the GPU dispatches them at once, constraint_colour.glsl).
+// Calls visit(spring) for every spring of `colour` whose type is enabled in its cloth, in list
+// order: the springs of a colour share no particle, so the order does not change the result
+// (the GPU dispatches them at once, constraint_colour.glsl).
 template <class R, class Visit>
 void for_each_spring_of_colour(const ClothModel& m, const Constants<R>& c, int colour, Visit&& visit) {
-  const int dir = colour / 2;
-  const Direction& d = kDirections[dir];
-  if (!c.enabled[int(d.type)]) return;
-  for (int y = 0; y < m.nh; ++y)
-    for (int x = 0; x < m.nw; ++x)
-      if (spring_colour(dir, x, y) == colour && in_grid(x + d.dx, y + d.dy, m.nw, m.nh))
-        visit(m.index(x, y), m.index(x + d.dx, y + d.dy), dir);
+  for (uint32_t k = m.colour_start[colour]; k < m.colour_start[colour + 1]; ++k)
+    if (c.enabled(m.springs[k])) visit(m.springs[k]);
 }
 
 // Provot's projection: a spring from xi to xj longer than `limit` is shortened to it, both ends
@@ -44,11 +39,12 @@ bool limit_stretch(Vec3<R>& xi, Vec3<R>& xj, Vec3<R>& di, Vec3<R>& dj, R wi, R w
 
 template <class R>
 void solve_length_constraint_colour(const ClothModel& m, const Constants<R>& c, int colour, State<R>& s) {
-  for_each_spring_of_colour(m, c, colour, [&](int i, int j, int dir) {
+  for_each_spring_of_colour(m, c, colour, [&](const Spring& sp) {
+    const uint32_t i = sp.i, j = sp.j;
     const R wi = s.pos[i].w, wj = s.pos[j].w, wsum = wi + wj;
     if (wsum == R(0)) return;
     Vec3<R> xi(s.pos[i]), xj(s.pos[j]), di(s.disp[i]), dj(s.disp[j]);
-    if (!limit_stretch(xi, xj, di, dj, wi, wj, wsum, c.stretch_limit * R(m.rest[i][dir]))) return;
+    if (!limit_stretch(xi, xj, di, dj, wi, wj, wsum, c.stretch_limit * R(sp.rest))) return;
     s.pos[i] = Vec4<R>(xi, wi);
     s.pos[j] = Vec4<R>(xj, wj);
     s.disp[i] = Vec4<R>(di, R(0));
@@ -58,16 +54,17 @@ void solve_length_constraint_colour(const ClothModel& m, const Constants<R>& c, 
 
 template <class R> void solve_length_constraints(const ClothModel& m, const Constants<R>& c, State<R>& s) {
   for (int it = 0; it < c.iterations; ++it)
-    for (int colour = 0; colour < NUM_COLOURS; ++colour) solve_length_constraint_colour(m, c, colour, s);
+    for (int colour = 0; colour < m.colours(); ++colour) solve_length_constraint_colour(m, c, colour, s);
 }
 
 template <class R>
 void solve_distance_constraint_colour(const ClothModel& m, const Constants<R>& c, int colour, State<R>& s) {
-  const R alpha = kDirections[colour / 2].type == SpringType::Bending ? c.alpha_bending : c.alpha;
-  for_each_spring_of_colour(m, c, colour, [&](int i, int j, int dir) {
+  for_each_spring_of_colour(m, c, colour, [&](const Spring& sp) {
+    const uint32_t i = sp.i, j = sp.j;
+    const R alpha = c.materials[sp.material].compliance(sp.type);
     const R wi = s.pos[i].w, wj = s.pos[j].w, wsum = wi + wj;
     if (wsum == R(0)) return;
-    const R rest = R(m.rest[i][dir]);
+    const R rest = R(sp.rest);
     Vec3<R> xi(s.pos[i]), xj(s.pos[j]), di(s.disp[i]), dj(s.disp[j]);
     const Vec3<R> e = xj - xi;
     const R len = length3(e);
@@ -97,7 +94,7 @@ void solve_distance_constraint_colour(const ClothModel& m, const Constants<R>& c
 }
 
 template <class R> void solve_distance_constraints(const ClothModel& m, const Constants<R>& c, State<R>& s) {
-  for (int colour = 0; colour < NUM_COLOURS; ++colour) solve_distance_constraint_colour(m, c, colour, s);
+  for (int colour = 0; colour < m.colours(); ++colour) solve_distance_constraint_colour(m, c, colour, s);
 }
 
 #define CLOTHSIM_INSTANTIATE(R) \

@@ -4,15 +4,6 @@
 
 namespace clothsim {
 
-// Rest length of spring `ref` seen from (x, y), or 0 when it leaves the grid.
-inline double rest_of(const ClothModel& m, int x, int y, const SpringRef& ref, int* j) {
-  const Direction& d = kDirections[ref.direction];
-  int x2 = x + ref.sign * d.dx, y2 = y + ref.sign * d.dy;
-  if (!in_grid(x2, y2, m.nw, m.nh)) return 0;
-  *j = m.index(x2, y2);
-  return ref.sign > 0 ? m.rest[m.index(x, y)][ref.direction] : m.rest[*j][ref.direction];
-}
-
 // The parabolic stand-in for sin(2 pi phase) of the gusts: + - * and floor only, which both
 // backends round alike (a shader's sin does not match std::sin); within 0.056 of the sine.
 template <class R> R gust_wave(R phase) {
@@ -48,58 +39,51 @@ Vec3<R> triangle_wind_share(const WindC<R>& w, const Vec3<R>& pa, const Vec3<R>&
   return drag + across * (w.lift * len * normal_speed);
 }
 
-// Calls visit(t) for each of the up to six triangles (DESIGN.md §1) that have (x, y) as a
-// corner, in a fixed order: the cells (x-1..x, y-1..y), each split into (A, C, B) and (B, C, D).
-// compute_normals and compute_wind_forces gather over them, as their shaders do.
-template <class Visit> void for_each_triangle_around(const ClothModel& m, int x, int y, Visit&& visit) {
-  const int self = m.index(x, y);
-  for (int cy = y - 1; cy <= y; ++cy)
-    for (int cx = x - 1; cx <= x; ++cx) {
-      if (cx < 0 || cy < 0 || cx + 1 >= m.nw || cy + 1 >= m.nh) continue;
-      const int a = m.index(cx, cy), b = m.index(cx + 1, cy), cc = m.index(cx, cy + 1), dd = m.index(cx + 1, cy + 1);
-      const int tris[2][3] = {{a, cc, b}, {b, cc, dd}};
-      for (auto& t : tris)
-        if (t[0] == self || t[1] == self || t[2] == self) visit(t);
-    }
+// Calls visit(t) for each triangle that has particle i as a corner, in ascending order (on a
+// grid: the cells (x-1..x, y-1..y), each split into (A, C, B) and (B, C, D)). compute_normals
+// and compute_wind_forces gather over them, as their shaders do.
+template <class Visit> void for_each_triangle_around(const ClothModel& m, uint32_t i, Visit&& visit) {
+  for (uint32_t k = m.corner_start[i]; k < m.corner_start[i + 1]; ++k) {
+    const auto& t = m.triangles[m.corner_triangles[k]];
+    const int tri[3] = {int(t[0]), int(t[1]), int(t[2])};
+    visit(tri);
+  }
 }
 
 template <class R> void compute_wind_forces(const ClothModel& m, const Constants<R>& c, State<R>& s) {
   s.wind.resize(s.pos.size());
-  for (int y = 0; y < m.nh; ++y)
-    for (int x = 0; x < m.nw; ++x) {
-      const int self = m.index(x, y);
-      Vec3<R> f(0);
-      for_each_triangle_around(m, x, y, [&](const int (&t)[3]) {
-        f += triangle_wind_share(c.wind, Vec3<R>(s.pos[t[0]]), Vec3<R>(s.pos[t[1]]), Vec3<R>(s.pos[t[2]]),
-                                 Vec3<R>(s.disp[t[0]]), Vec3<R>(s.disp[t[1]]), Vec3<R>(s.disp[t[2]]));
-      });
-      s.wind[self] = Vec4<R>(f, R(0));
-    }
+  for (uint32_t self = 0; self < uint32_t(m.count()); ++self) {
+    Vec3<R> f(0);
+    for_each_triangle_around(m, self, [&](const int (&t)[3]) {
+      f += triangle_wind_share(c.wind, Vec3<R>(s.pos[t[0]]), Vec3<R>(s.pos[t[1]]), Vec3<R>(s.pos[t[2]]),
+                               Vec3<R>(s.disp[t[0]]), Vec3<R>(s.disp[t[1]]), Vec3<R>(s.disp[t[2]]));
+    });
+    s.wind[self] = Vec4<R>(f, R(0));
+  }
 }
 
 template <class R> void accumulate_forces(const ClothModel& m, const Constants<R>& c, State<R>& s) {
-  for (int y = 0; y < m.nh; ++y)
-    for (int x = 0; x < m.nw; ++x) {
-      const int i = m.index(x, y);
-      const Vec3<R> xi(s.pos[i]);
-      Vec3<R> f = c.gravity * c.mass;
-      for (const SpringRef& ref : kGatherOrder) {
-        const Direction& d = kDirections[ref.direction];
-        int j = -1;
-        const R rest = R(rest_of(m, x, y, ref, &j));
-        if (j < 0 || !c.enabled[int(d.type)]) continue;
-        const R k = d.type == SpringType::Bending ? c.ks_bending : c.ks;
-        const Vec3<R> e = Vec3<R>(s.pos[j]) - xi;
-        const R len = length3(e);
-        if (len > R(0)) {
-          // Divisions are written as x * (1 / y): the GLSL compiler lowers a / b that way.
-          const R inv = R(1) / len;
-          f += e * (k * (len - rest) * inv);
-        }
+  for (uint32_t i = 0; i < uint32_t(m.count()); ++i) {
+    const Vec3<R> xi(s.pos[i]);
+    Vec3<R> f = c.gravity * c.mass[i];
+    // The particle's springs in the model's gather order (the grid's: kGatherOrder).
+    for (uint32_t g = m.gather_start[i]; g < m.gather_start[i + 1]; ++g) {
+      const Spring& sp = m.springs[m.gather[g]];
+      if (!c.enabled(sp)) continue;
+      const uint32_t j = sp.i == i ? sp.j : sp.i;
+      const R rest = R(sp.rest);
+      const R k = c.materials[sp.material].stiffness(sp.type);
+      const Vec3<R> e = Vec3<R>(s.pos[j]) - xi;
+      const R len = length3(e);
+      if (len > R(0)) {
+        // Divisions are written as x * (1 / y): the GLSL compiler lowers a / b that way.
+        const R inv = R(1) / len;
+        f += e * (k * (len - rest) * inv);
       }
-      if (c.wind.enabled) f += Vec3<R>(s.wind[i]);  // after the springs, as advance.comp adds it
-      s.force[i] = Vec4<R>(f, R(0));
     }
+    if (c.wind.enabled) f += Vec3<R>(s.wind[i]);  // after the springs, as advance.comp adds it
+    s.force[i] = Vec4<R>(f, R(0));
+  }
 }
 
 // A pinned mass keeps its position, or with pinned_motion goes to its anchor + the offset at
@@ -120,8 +104,9 @@ template <class R> void move_pinned(const Constants<R>& c, size_t i, State<R>& s
   s.pos[i] = Vec4<R>(next, s.pos[i].w);
 }
 
-template <class R> void integrate(const Constants<R>& c, State<R>& s) {
+template <class R> void integrate(const ClothModel& m, const Constants<R>& c, State<R>& s) {
   for (size_t i = 0; i < s.pos.size(); ++i) {
+    const R keep = c.materials[m.material[i]].keep_velocity;
     const R w = s.pos[i].w;
     if (w == R(0)) {
       move_pinned(c, i, s);
@@ -129,7 +114,7 @@ template <class R> void integrate(const Constants<R>& c, State<R>& s) {
     }
     const Vec3<R> a = Vec3<R>(s.force[i]) * w;
     // x' = x + (1 - damping) (x - x_prev) + a dt^2, with d = x - x_prev kept as its own vector.
-    const Vec3<R> d = Vec3<R>(s.disp[i]) * c.keep_velocity + a * c.dt2;
+    const Vec3<R> d = Vec3<R>(s.disp[i]) * keep + a * c.dt2;
     s.disp[i] = Vec4<R>(d, R(0));
     s.pos[i] = Vec4<R>(Vec3<R>(s.pos[i]) + d, w);
   }
@@ -150,7 +135,7 @@ template <class R> void predict(const ClothModel& m, const Constants<R>& c, Stat
     }
     Vec3<R> acc = c.gravity;
     if (c.wind.enabled) acc = acc + Vec3<R>(s.wind[i]) * w;  // compute_wind_forces ran before
-    Vec3<R> d = Vec3<R>(s.disp[i]) * c.keep_velocity + acc * c.dt2;
+    Vec3<R> d = Vec3<R>(s.disp[i]) * c.materials[m.material[i]].keep_velocity + acc * c.dt2;
     Vec3<R> x = Vec3<R>(s.pos[i]) + d;
     if (const int pin = m.tether_pin[i]; pin >= 0) {
       const Vec3<R> e = x - pin_position(pin);
@@ -168,24 +153,23 @@ template <class R> void predict(const ClothModel& m, const Constants<R>& c, Stat
 }
 
 template <class R> void compute_normals(const ClothModel& m, State<R>& s) {
-  for (int y = 0; y < m.nh; ++y)
-    for (int x = 0; x < m.nw; ++x) {
-      Vec3<R> sum(0);
-      for_each_triangle_around(m, x, y, [&](const int (&t)[3]) {
-        const Vec3<R> p0(s.pos[t[0]]), p1(s.pos[t[1]]), p2(s.pos[t[2]]);
-        const Vec3<R> u = p1 - p0, v = p2 - p0;
-        // Unnormalised cross product: its length is twice the area, so this is area-weighted.
-        sum += Vec3<R>(u.y * v.z - u.z * v.y, u.z * v.x - u.x * v.z, u.x * v.y - u.y * v.x);
-      });
-      const R len = length3(sum);
-      s.normal[m.index(x, y)] = len > R(0) ? Vec4<R>(sum * (R(1) / len), R(0)) : Vec4<R>(0, 1, 0, 0);
-    }
+  for (uint32_t i = 0; i < uint32_t(m.count()); ++i) {
+    Vec3<R> sum(0);
+    for_each_triangle_around(m, i, [&](const int (&t)[3]) {
+      const Vec3<R> p0(s.pos[t[0]]), p1(s.pos[t[1]]), p2(s.pos[t[2]]);
+      const Vec3<R> u = p1 - p0, v = p2 - p0;
+      // Unnormalised cross product: its length is twice the area, so this is area-weighted.
+      sum += Vec3<R>(u.y * v.z - u.z * v.y, u.z * v.x - u.x * v.z, u.x * v.y - u.y * v.x);
+    });
+    const R len = length3(sum);
+    s.normal[i] = len > R(0) ? Vec4<R>(sum * (R(1) / len), R(0)) : Vec4<R>(0, 1, 0, 0);
+  }
 }
 
 #define CLOTHSIM_INSTANTIATE(R) \
   template void compute_wind_forces<R>(const ClothModel&, const Constants<R>&, State<R>&); \
   template void accumulate_forces<R>(const ClothModel&, const Constants<R>&, State<R>&); \
-  template void integrate<R>(const Constants<R>&, State<R>&); \
+  template void integrate<R>(const ClothModel&, const Constants<R>&, State<R>&); \
   template void predict<R>(const ClothModel&, const Constants<R>&, State<R>&); \
   template void compute_normals<R>(const ClothModel&, State<R>&);
 CLOTHSIM_INSTANTIATE(float)

@@ -55,6 +55,26 @@ class KeyPathFinder : public nlohmann::json_sax<json> {
   std::vector<Frame> stack_;
 };
 
+// What the rows cannot say about a cloth, and where its mesh file is. `key` is its key path
+// ("cloth", or "cloth[1]" in an array).
+void finish_cloth(ClothParams& c, const std::string& source, const std::string& key) {
+  if (c.pinned_box) {
+    const glm::dvec3 lo = c.pinned_box->min, hi = c.pinned_box->max;
+    if (lo.x > hi.x || lo.y > hi.y || lo.z > hi.z)
+      throw SceneError(fmt::format("{}: {}.pinned_box: expected min <= max in each of x, y, z, got min [{}, {}, {}] "
+                                   "and max [{}, {}, {}]",
+                                   source, key, lo.x, lo.y, lo.z, hi.x, hi.y, hi.z));
+  }
+  // Relative to the scene file's directory; a scene that is no file ("<built-in>", "<fuzz>"):
+  // to the current directory.
+  c.mesh_path.clear();
+  if (c.is_mesh()) {
+    const std::filesystem::path mesh(c.mesh);
+    const bool file = !source.empty() && source[0] != '<';
+    c.mesh_path = (file ? std::filesystem::path(source).parent_path() / mesh : mesh).lexically_normal();
+  }
+}
+
 }  // namespace
 
 std::string Scene::name() const {
@@ -81,6 +101,21 @@ Scene parse_scene(const std::string& text, const std::string& source, const std:
   Scene s;
   s.source = source;
   read_params(j, source, "", s);  // the rows of scene_table.cpp
+  // Special cases, across rows: see finish_cloth; and the grid cloths together must fit in
+  // memory like one (a mesh is counted once it is loaded).
+  const bool array = j.is_object() && j.contains("cloth") && j["cloth"].is_array();
+  long long particles = 0;
+  for (size_t i = 0; i <= s.extra_cloths.size(); ++i) {
+    ClothParams& c = i == 0 ? s.cloth : s.extra_cloths[i - 1];
+    const std::string key = array ? fmt::format("cloth[{}]", i) : std::string("cloth");
+    finish_cloth(c, source, key);
+    if (c.is_mesh()) continue;
+    particles += (long long)c.num_width_points * c.num_height_points;
+    if (particles > kMaxParticles)
+      throw SceneError(fmt::format("{}: {}.num_width_points: the grid cloths have {} particles in all, too many for "
+                                   "memory; at most {} particles",
+                                   source, key, particles, kMaxParticles));
+  }
   // Special case, across two rows: XPBD's compliance is exact for one solve per substep (its
   // Lagrange multipliers start at zero every substep); a stiffer xpbd cloth needs more substeps.
   if (s.simulation.solver == Solver::Xpbd && s.simulation.constraint_iterations != 1)
@@ -107,5 +142,22 @@ Scene default_scene(const std::vector<std::string>& overrides) {
 }
 
 std::string scene_to_json(const Scene& s) { return write_params(s).dump(2) + "\n"; }
+
+}  // namespace clothsim
+
+namespace clothsim {
+
+std::vector<const ClothParams*> Scene::cloths() const {
+  std::vector<const ClothParams*> all{&cloth};
+  for (auto& c : extra_cloths) all.push_back(&c);
+  return all;
+}
+
+int Scene::particle_count() const {
+  long long n = 0;
+  for (const ClothParams* c : cloths())
+    if (!c->is_mesh()) n += (long long)c->num_width_points * c->num_height_points;
+  return int(n);
+}
 
 }  // namespace clothsim

@@ -35,6 +35,19 @@ struct MotionParams {
   bool operator==(const MotionParams&) const = default;
 };
 
+// `cloth.pinned_box`: every vertex of a mesh cloth inside [min, max] (inclusive) is pinned.
+struct BoxParams {
+  glm::dvec3 min{0.0};
+  glm::dvec3 max{0.0};
+
+  bool operator==(const BoxParams&) const = default;
+};
+
+// How a mesh cloth's mass (density x area) is spread over its vertices: `area`, each vertex a
+// third of the area of each triangle around it (a quarter of each quad); `uniform`, the total
+// shared equally, as the CS184 grid does (docs/model.md, "Mesh cloth").
+enum class MassLumping { Area = 0, Uniform = 1 };
+
 // Field names are the JSON keys (one name end to end: file, code, GUI).
 struct ClothParams {
   double width = 1.0;
@@ -51,7 +64,21 @@ struct ClothParams {
   double density = 150;   // kg/m^2
   double ks = 5000;       // N/m
   std::optional<MotionParams> pinned_motion;  // keys are offsets [dx, dy, dz] of every pinned mass
+  // A cloth from a mesh file instead of the grid (docs/model.md, "Mesh cloth"). `mesh` is the
+  // path as the scene writes it, relative to the scene file; mesh_path is it resolved (set by
+  // the loader; empty: the CS184 grid of num_width_points x num_height_points).
+  std::string mesh;
+  std::filesystem::path mesh_path;
+  std::vector<int> pinned_vertices;     // 0-based, in the file's vertex order
+  std::optional<BoxParams> pinned_box;  // every vertex inside is pinned
+  // Placement of the mesh: x' = R(axis, degrees) (scale x) + offset.
+  double scale = 1;
+  glm::dvec3 offset{0.0};
+  glm::dvec3 rotation_axis{0, 1, 0};
+  double rotation_degrees = 0;
+  MassLumping mass_lumping = MassLumping::Area;
 
+  bool is_mesh() const { return !mesh.empty(); }
   bool operator==(const ClothParams&) const = default;
 };
 
@@ -109,7 +136,10 @@ struct WindParams {
 
 struct Scene {
   std::string source;  // file name used in messages ("<built-in>" for the default scene)
-  ClothParams cloth;
+  ClothParams cloth;   // the first (or only) cloth: `--set cloth.KEY` edits this one
+  // `cloth` written as an array: the cloths after the first, each with its own material. All
+  // cloths share the simulation (substeps, solver, self-collision: they collide with each other).
+  std::vector<ClothParams> extra_cloths;
   std::vector<SphereParams> spheres;  // applied in file order
   std::vector<PlaneParams> planes;    // applied in file order
   SimulationParams simulation;
@@ -117,7 +147,9 @@ struct Scene {
 
   std::string name() const;  // file stem, for titles and output names
   double dt() const { return 1.0 / simulation.frames_per_sec / simulation.simulation_steps; }
-  int particle_count() const { return cloth.num_width_points * cloth.num_height_points; }
+  // Of the grid cloths (a mesh's count is known once it is loaded: ClothModel::count()).
+  int particle_count() const;
+  std::vector<const ClothParams*> cloths() const;  // &cloth, then every extra cloth
 };
 
 // Bad input: the message already names the file, the key path and what was expected.

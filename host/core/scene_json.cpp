@@ -4,6 +4,7 @@
 #include <climits>
 #include <cmath>
 #include <set>
+#include <string_view>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -36,13 +37,35 @@ class ObjectReader {
 
   // The value of key `k`, or nullptr when it is absent (an error when it is required).
   const json* get(const ParamInfo& info, const std::string& expected) {
+    if (!of_this_shape(info)) return nullptr;
     if (has(info.key)) return &raw(info.key);
     if (info.required) fail(key(info.key), fmt::format("missing required key (expected {})", expected));
     return nullptr;
   }
+  // A row of a grid or of a mesh cloth (param_table.hpp, Shape): false for one of the other
+  // kind, which must then be absent.
+  bool of_this_shape(const ParamInfo& info) const {
+    if (info.shape == Shape::Any) return true;
+    const bool mesh = has(kMeshKey);
+    if ((info.shape == Shape::Mesh) == mesh) return true;
+    if (has(info.key)) {
+      if (mesh) fail(key(kMeshKey) + " and " + key(info.key), instead(info));
+      fail("", fmt::format("{} is for a mesh cloth ({}); {}", key(info.key), key(kMeshKey), instead(info)));
+    }
+    return false;
+  }
   void reject_unknown() const {
     for (auto it = j_.begin(); it != j_.end(); ++it)
       if (!used_.count(it.key())) fail(key(it.key()), "unknown key");
+  }
+
+  // The row's `instead` with "{}" replaced by this object's key path and a dot.
+  std::string instead(const ParamInfo& info) const {
+    std::string out = info.instead;
+    const std::string prefix = key("");
+    for (size_t at = out.find("{}"); at != std::string::npos; at = out.find("{}", at + prefix.size()))
+      out.replace(at, 2, prefix);
+    return out;
   }
 
   static std::string describe(const json& v) {
@@ -116,8 +139,44 @@ class Reader final : public ParamVisitor {
       if (v->get_ref<const std::string&>() == info.choices[i]) { m = int(i); return; }
     r_.fail(r_.key(info.key), fmt::format("expected one of {}, got {}", names, ObjectReader::describe(*v)));
   }
+  void text(const ParamInfo& info, std::string& m) override {
+    const std::string expected = *info.expected ? info.expected : "a string";
+    const json* v = r_.get(info, expected);
+    if (!v) return;
+    // A --set value that is not JSON is a string as typed: it may not be UTF-8, which
+    // scene_to_json could not write. A NUL is no part of a file name.
+    bool ok = v->is_string() && !v->get_ref<const std::string&>().empty() &&
+              v->get_ref<const std::string&>().find('\0') == std::string::npos;
+    if (ok) {
+      try {
+        (void)v->dump();
+      } catch (const json::type_error&) {
+        ok = false;
+      }
+    }
+    if (!ok) r_.fail(r_.key(info.key), fmt::format("expected {}, got {}", expected, ObjectReader::describe(*v)));
+    m = v->get<std::string>();
+  }
+  void indices(const ParamInfo& info, std::vector<int>& m) override {
+    const json* p = r_.get(info, "an array of integers");
+    if (!p) return;
+    const std::string kp0 = r_.key(info.key);
+    if (!p->is_array()) r_.fail(kp0, "expected an array of integers, got " + ObjectReader::describe(*p));
+    const long long lo = (long long)std::max(info.lo, double(INT_MIN)), hi = (long long)std::min(info.hi, double(INT_MAX));
+    m.clear();
+    for (size_t k = 0; k < p->size(); ++k) {
+      const json& e = (*p)[k];
+      const std::string kp = fmt::format("{}[{}]", kp0, k);
+      // Below the range: the row's own words ("a vertex index >= 0"); else the integer range.
+      if (*info.expected && e.is_number() && e.get<double>() < double(lo) &&
+          e.get<double>() == std::floor(e.get<double>()))
+        r_.fail(kp, fmt::format("expected {}, got {}", info.expected, e.get<double>()));
+      m.push_back(r_.check_integer(e, kp, lo, hi));
+    }
+  }
   // Special case (pinned): the grid must fit in memory before pins are checked against it.
   void grid_indices(const ParamInfo& info, GridIndices& m, int nw, int nh) override {
+    if (!r_.of_this_shape(info)) return;  // a mesh cloth: no grid to check
     const long long n = (long long)nw * nh;
     if (n > kMaxParticles)
       r_.fail(r_.key("num_width_points"),
@@ -166,9 +225,10 @@ class Reader final : public ParamVisitor {
     o.set_present(v != nullptr);
     if (v) read_object(*v, r_.source(), r_.key(info.key), o);
   }
-  // `one_or_many`: one object (the classic sphere/plane) or an array of them (extension).
+  // `one_or_many`: one object (the classic cloth, sphere, plane) or an array of them (extension).
   void list(const ParamInfo& info, ListRef& l) override {
-    const json* v = r_.get(info, "an array of objects");
+    const json* v = r_.get(info, info.one_or_many ? fmt::format("the {} object or an array of them", info.key)
+                                                  : std::string("an array of objects"));
     if (!v) return;
     const std::string kp = r_.key(info.key);
     if (!v->is_array() && info.one_or_many) {
@@ -177,6 +237,8 @@ class Reader final : public ParamVisitor {
       return;
     }
     if (!v->is_array()) r_.fail(kp, fmt::format("expected an array of objects, got {}", ObjectReader::describe(*v)));
+    if (v->empty() && info.required)
+      r_.fail(kp, fmt::format("expected at least one {} object, got an empty array", info.key));
     l.resize(v->size());
     for (size_t i = 0; i < v->size(); ++i) read_element((*v)[i], fmt::format("{}[{}]", kp, i), l, i);
   }
@@ -191,41 +253,60 @@ class Reader final : public ParamVisitor {
   ObjectReader& r_;
 };
 
-// Writes each row into one JSON object.
+// Writes each row into one JSON object; finish() then drops the rows of the other kind of
+// cloth (a grid cloth's mesh rows, a mesh cloth's grid rows), which the loader would reject.
 class Writer final : public ParamVisitor {
  public:
   explicit Writer(json& j) : j_(j) {}
-  void number(const ParamInfo& info, double& m) override { j_[info.key] = m; }
-  void integer(const ParamInfo& info, int& m) override { j_[info.key] = m; }
-  void boolean(const ParamInfo& info, bool& m) override { j_[info.key] = m; }
-  void vec3(const ParamInfo& info, glm::dvec3& m) override { j_[info.key] = json::array({m.x, m.y, m.z}); }
-  void choice(const ParamInfo& info, int& m) override { j_[info.key] = info.choices[size_t(m)]; }
+  void number(const ParamInfo& info, double& m) override { put(info, m); }
+  void integer(const ParamInfo& info, int& m) override { put(info, m); }
+  void boolean(const ParamInfo& info, bool& m) override { put(info, m); }
+  void vec3(const ParamInfo& info, glm::dvec3& m) override { put(info, json::array({m.x, m.y, m.z})); }
+  void choice(const ParamInfo& info, int& m) override { put(info, info.choices[size_t(m)]); }
+  void text(const ParamInfo& info, std::string& m) override {
+    if (std::string_view(info.key) == kMeshKey) mesh_ = !m.empty();
+    if (!m.empty()) put(info, m);  // absent, not "": the loader takes no empty string
+  }
+  void indices(const ParamInfo& info, std::vector<int>& m) override { put(info, m); }
   void grid_indices(const ParamInfo& info, GridIndices& m, int, int) override {
     json pins = json::array();
     for (auto& p : m) pins.push_back({p[0], p[1]});
-    j_[info.key] = std::move(pins);
+    put(info, std::move(pins));
   }
   void keyframes(const ParamInfo& info, Keyframes& m) override {
     json keys = json::array();
     for (auto& k : m) keys.push_back({k.time, json::array({k.value.x, k.value.y, k.value.z})});
-    j_[info.key] = std::move(keys);
+    put(info, std::move(keys));
   }
   void object(const ParamInfo& info, ObjectRef& o) override {
-    if (o.present()) j_[info.key] = write_object(o);
+    if (o.present()) put(info, write_object(o));
   }
+  // A `single_as_object` list of one is written as that object (a classic one-cloth scene).
   void list(const ParamInfo& info, ListRef& l) override {
     json a = json::array();
     for (size_t i = 0; i < l.size(); ++i) {
       json e = json::object();
       Writer w(e);
       l.visit(i, w);
+      w.finish();
       a.push_back(std::move(e));
     }
-    j_[info.key] = std::move(a);
+    if (info.single_as_object && a.size() == 1) put(info, std::move(a[0]));
+    else put(info, std::move(a));
+  }
+  void finish() {
+    for (const ParamInfo* info : shaped_)
+      if ((info->shape == Shape::Mesh) != mesh_) j_.erase(info->key);
   }
 
  private:
+  void put(const ParamInfo& info, json v) {
+    if (info.shape != Shape::Any) shaped_.push_back(&info);
+    j_[info.key] = std::move(v);
+  }
   json& j_;
+  bool mesh_ = false;
+  std::vector<const ParamInfo*> shaped_;
 };
 
 }  // namespace
@@ -241,6 +322,7 @@ json write_object(ObjectRef& object) {
   json j = json::object();
   Writer w(j);
   object.visit(w);
+  w.finish();
   return j;
 }
 

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "scene.hpp"
+#include "scene_table.hpp"
 
 namespace clothsim {
 namespace {
@@ -45,6 +46,21 @@ std::vector<Segment> split_path(const std::string& path, const std::string& wher
   return out;
 }
 
+// The top-level row of `key` when it is a list usually written as one object (the cloth), else
+// nullptr.
+const ParamInfo* single_object_list(const std::string& key) {
+  for (const Param<Scene>& p : param_rows<Scene>())
+    if (p.info.single_as_object && key == p.info.key) return &p.info;
+  return nullptr;
+}
+
+// A cloth switched to a mesh by --set: its grid keys go, which the loader would otherwise
+// report as "cloth.mesh and cloth.width: ..." (the grid rows and kMeshKey exclude each other).
+void drop_grid_keys(nlohmann::json& cloth) {
+  for (const Param<ClothParams>& p : param_rows<ClothParams>())
+    if (p.info.shape == Shape::Grid) cloth.erase(p.info.key);
+}
+
 }  // namespace
 
 nlohmann::json parse_json_limited(const std::string& text, const std::string& where, bool allow_exceptions) {
@@ -78,12 +94,24 @@ void apply_overrides(nlohmann::json& scene, const std::vector<std::string>& over
     if (value.is_discarded()) value = text;
 
     nlohmann::json* node = &scene;
-    for (const Segment& s : path) {
+    nlohmann::json* cloth = nullptr;  // the cloth object the path has reached, if any
+    for (size_t k = 0; k < path.size(); ++k) {
+      const Segment& s = path[k];
+      // `cloth` (a single_object_list) may be one object or an array: `cloth.ks` is the first
+      // cloth's in both, `cloth[0].ks` too, `cloth[1].ks` the second's in an array.
+      const bool one_or_many = k == 1 && single_object_list(path[0].key);
       if (s.index >= 0) {
+        if (one_or_many && node->is_object() && s.index == 0) {
+          cloth = node;
+          continue;
+        }
         if (!node->is_array() || size_t(s.index) >= node->size())
           throw SceneError(fmt::format("{}: [{}] does not name an existing array element", where, s.index));
         node = &(*node)[size_t(s.index)];
+        if (one_or_many) cloth = node;
       } else {
+        if (one_or_many && node->is_array() && !node->empty()) node = &(*node)[0];
+        if (one_or_many) cloth = node;
         if (node->is_null()) *node = nlohmann::json::object();
         if (!node->is_object())
           throw SceneError(fmt::format("{}: '{}' is inside a value that is not an object", where, s.key));
@@ -91,6 +119,9 @@ void apply_overrides(nlohmann::json& scene, const std::vector<std::string>& over
       }
     }
     *node = std::move(value);
+    // `--set cloth.mesh=x.obj` turns a grid cloth into a mesh cloth.
+    if (cloth && cloth->is_object() && path[0].key == "cloth" && path.back().key == kMeshKey)
+      if (auto it = cloth->find(kMeshKey); it != cloth->end() && &*it == node) drop_grid_keys(*cloth);
   }
 }
 

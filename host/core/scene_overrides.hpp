@@ -13,6 +13,12 @@ namespace clothsim {
 // `sphere[0].radius`, `simulation.gravity[1]`. The value is JSON (`500`, `false`,
 // `[0, -9.8, 0]`); anything that is not JSON is taken as a string, which validation rejects
 // with the key's expected type. Missing objects along the path are created.
+//
+// `cloth` may be one object or an array of cloths: `cloth.ks` and `cloth[0].ks` edit the first
+// cloth either way, `cloth[1].ks` the second of an array. Setting a cloth's `mesh` removes its
+// grid keys (width, height, num_width_points, num_height_points, orientation, pinned), so that
+// `--set cloth.mesh=flag.obj` turns a grid scene's cloth into a mesh cloth (the path is relative
+// to the scene file, like one written in it).
 void apply_overrides(nlohmann::json& scene, const std::vector<std::string>& overrides, const std::string& source);
 
 // Deepest nesting of arrays and objects accepted in a scene file or a --set value (a scene

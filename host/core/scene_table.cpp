@@ -19,10 +19,11 @@ constexpr Widget drag(float speed, double lo, double hi, const char* format) {
 constexpr Widget kCheckbox{.style = Widget::Checkbox};
 constexpr Widget kReadOnly{.style = Widget::ReadOnly};
 
-const char* normalise_normal(glm::dvec3& n) {
+// Unit length, or false for [0, 0, 0].
+bool normalise(glm::dvec3& n) {
   // Scale by the largest component first: |n| of a finite n such as [1e200, 0, 0] overflows.
   const double m = std::max({std::abs(n.x), std::abs(n.y), std::abs(n.z)});
-  if (m == 0) return "expected a non-zero normal vector, got [0, 0, 0]";
+  if (m == 0) return false;
   // A normal that is already unit to rounding is kept as written, so that normalising is
   // idempotent and scene_to_json's output loads back to the same normal, bit for bit.
   const double len2 = n.x * n.x + n.y * n.y + n.z * n.z;
@@ -30,17 +31,49 @@ const char* normalise_normal(glm::dvec3& n) {
     n /= m;
     n /= std::sqrt(n.x * n.x + n.y * n.y + n.z * n.z);
   }
-  return nullptr;
+  return true;
+}
+
+const char* normalise_normal(glm::dvec3& n) {
+  return normalise(n) ? nullptr : "expected a non-zero normal vector, got [0, 0, 0]";
+}
+const char* normalise_axis(glm::dvec3& n) {
+  return normalise(n) ? nullptr : "expected a non-zero rotation axis, got [0, 0, 0]";
+}
+
+// `cloth`: one object, or an array of them; the first is Scene::cloth, the rest extra_cloths.
+class ClothList final : public ListRef {
+ public:
+  explicit ClothList(Scene& s) : s_(s) {}
+  size_t size() const override { return 1 + s_.extra_cloths.size(); }
+  void resize(size_t n) override {
+    if (n == 0) s_.cloth = ClothParams{};  // never left so: the loader rejects an empty array
+    s_.extra_cloths.resize(n == 0 ? 0 : n - 1);
+  }
+  void visit(size_t i, ParamVisitor& v) override { visit_rows(i == 0 ? s_.cloth : s_.extra_cloths[i - 1], v); }
+  void visit_default(ParamVisitor& v) override { ClothParams d{}; visit_rows(d, v); }
+ private:
+  Scene& s_;
+};
+
+void visit_cloths(Scene& s, const ParamInfo& info, ParamVisitor& v) {
+  ClothList l(s);
+  v.list(info, l);
 }
 
 const char* const kSolvers[] = {"classic", "xpbd"};
+const char* const kMassLumpings[] = {"area", "uniform"};
 
 const ParamInfo kFriction{.key = "friction", .required = true, .lo = 0, .hi = 1,
                           .expected = "a friction coefficient in [0, 1]",
                           .meaning = "0: a touching mass keeps its motion, 1: it sticks"};
 
 const Param<Scene> kScene[] = {
-    row<&Scene::cloth>({.key = "cloth", .required = true, .meaning = "The cloth"}),
+    // Scene::cloth and Scene::extra_cloths; the panel shows the rows of every cloth.
+    {{.key = "cloth", .required = true,
+      .meaning = "The cloth: one object, or an array of them, each a grid or a mesh cloth with its own keys",
+      .widget = {.style = Widget::Drag}, .one_or_many = true, .single_as_object = true},
+     &visit_cloths},
     row<&Scene::spheres>({.key = "sphere", .meaning = "Sphere colliders, applied in order: one object or an array",
                           .one_or_many = true}),
     row<&Scene::planes>({.key = "plane", .meaning = "Plane colliders, applied after the spheres: one object or an array",
@@ -58,27 +91,36 @@ const Param<MotionParams> kMotion[] = {
 };
 
 // num_width_points..orientation need a new cloth: the viewer shows them read-only (Reload).
+constexpr Shape kGrid = Shape::Grid, kMesh = Shape::Mesh;
+constexpr const char* kSizeFromFile = "a mesh cloth takes its size from the file; remove one of the two";
+constexpr const char* kPinsOfGrid = "a grid cloth pins with {}pinned";
+constexpr const char* kPlacedByOrientation = "a grid cloth is placed by {}orientation";
 const Param<ClothParams> kCloth[] = {
     row<&ClothParams::width>({.key = "width", .required = true, .lo = 1e-9, .expected = "a size > 0 (metres)",
-                              .unit = "m", .meaning = "extent along x", .widget = kReadOnly}),
+                              .unit = "m", .meaning = "extent along x", .widget = kReadOnly, .shape = kGrid,
+                              .instead = kSizeFromFile}),
     row<&ClothParams::height>({.key = "height", .required = true, .lo = 1e-9, .expected = "a size > 0 (metres)",
                                .unit = "m", .meaning = "extent along z (horizontal) or y (vertical)",
-                               .widget = kReadOnly}),
+                               .widget = kReadOnly, .shape = kGrid, .instead = kSizeFromFile}),
     row<&ClothParams::num_width_points>({.key = "num_width_points", .required = true, .lo = 2, .hi = 1 << 20,
                                          .meaning = "point masses along the width (at most 4096² in all)",
-                                         .widget = kReadOnly}),
+                                         .widget = kReadOnly, .shape = kGrid, .instead = kSizeFromFile}),
     row<&ClothParams::num_height_points>({.key = "num_height_points", .required = true, .lo = 2, .hi = 1 << 20,
-                                          .meaning = "point masses along the height", .widget = kReadOnly}),
+                                          .meaning = "point masses along the height", .widget = kReadOnly,
+                                          .shape = kGrid, .instead = kSizeFromFile}),
     row<&ClothParams::thickness>({.key = "thickness", .required = true, .lo = 1e-9,
                                   .expected = "a thickness > 0 (metres)", .unit = "m",
                                   .meaning = "self-collision keeps masses 2 · thickness apart",
                                   .widget = drag(0.0005f, 1e-4, 1.0, "%.4f")}),
     row<&ClothParams::orientation>({.key = "orientation", .required = true, .lo = 0, .hi = 1,
                                     .meaning = "0: flat at y = 1 spanning x and z; 1: standing in the x–y plane",
-                                    .widget = kReadOnly}),
+                                    .widget = kReadOnly, .shape = kGrid, .instead = kSizeFromFile}),
     // Special case: a list of [x, y] grid indices, checked against the grid (and the grid
     // against memory) by the loader's grid_indices.
-    row<&ClothParams::pinned>({.key = "pinned", .meaning = "[x, y] grid indices of masses that never move"}),
+    row<&ClothParams::pinned>({.key = "pinned", .meaning = "[x, y] grid indices of masses that never move",
+                               .shape = kGrid,
+                               .instead = "a mesh cloth pins with {}pinned_vertices or {}pinned_box; remove one "
+                                          "of the two"}),
     row<&ClothParams::enable_structural>({.key = "enable_structural", .meaning = "x±1 and y±1 springs exert force",
                                           .widget = kCheckbox}),
     row<&ClothParams::enable_shearing>({.key = "enable_shearing", .meaning = "diagonal springs exert force",
@@ -99,6 +141,44 @@ const Param<ClothParams> kCloth[] = {
     row<&ClothParams::pinned_motion>({.key = "pinned_motion",
                                       .meaning = "moves every pinned mass: keys are offsets [dx, dy, dz] from "
                                                  "its start"}),
+    // A cloth from a mesh file instead of the grid (docs/model.md, "Mesh cloth"): with `mesh`
+    // the grid rows above must be absent, without it these.
+    row<&ClothParams::mesh>({.key = "mesh", .expected = "a path to a mesh file",
+                             .meaning = "a mesh file (OBJ, PLY, glTF, STL, ...), relative to the scene file: "
+                                        "its vertices are the masses, its edges the springs",
+                             .widget = kReadOnly, .shape = kMesh}),
+    row<&ClothParams::pinned_vertices>({.key = "pinned_vertices", .lo = 0,
+                                        .expected = "a vertex index >= 0",
+                                        .meaning = "0-based indices, in the file's vertex order, of masses that "
+                                                   "never move",
+                                        .widget = kReadOnly, .shape = kMesh, .instead = kPinsOfGrid}),
+    row<&ClothParams::pinned_box>({.key = "pinned_box",
+                                   .meaning = "every vertex inside the box (after scale, rotation, offset; "
+                                              "inclusive) is pinned too",
+                                   .shape = kMesh, .instead = kPinsOfGrid}),
+    row<&ClothParams::scale>({.key = "scale", .lo = 1e-9, .expected = "a scale > 0",
+                              .meaning = "the file's coordinates are multiplied by this (metres per unit)",
+                              .widget = kReadOnly, .shape = kMesh,
+                              .instead = "a grid cloth's size is {}width and {}height"}),
+    row<&ClothParams::offset>({.key = "offset", .unit = "m", .meaning = "added to every vertex, last",
+                               .widget = kReadOnly, .shape = kMesh, .instead = kPlacedByOrientation}),
+    row<&ClothParams::rotation_axis>({.key = "rotation_axis",
+                                      .meaning = "non-zero; made unit length on loading",
+                                      .widget = kReadOnly, .shape = kMesh, .instead = kPlacedByOrientation,
+                                      .after_read = normalise_axis}),
+    row<&ClothParams::rotation_degrees>({.key = "rotation_degrees", .unit = "°",
+                                         .meaning = "rotation about rotation_axis (right-handed), after the scale",
+                                         .widget = kReadOnly, .shape = kMesh, .instead = kPlacedByOrientation}),
+    row<&ClothParams::mass_lumping>({.key = "mass_lumping",
+                                     .meaning = "area: each vertex gets a share of the area of its faces; "
+                                                "uniform: every vertex the same mass",
+                                     .widget = kReadOnly, .choices = kMassLumpings, .shape = kMesh,
+                                     .instead = "a grid cloth's masses are all equal"}),
+};
+
+const Param<BoxParams> kBox[] = {
+    row<&BoxParams::min>({.key = "min", .required = true, .unit = "m", .meaning = "lowest corner (each of x, y, z <= max's)"}),
+    row<&BoxParams::max>({.key = "max", .required = true, .unit = "m", .meaning = "highest corner"}),
 };
 
 const Param<SphereParams> kSphere[] = {
@@ -189,5 +269,6 @@ template <> std::span<const Param<SimulationParams>> param_rows<SimulationParams
 template <> std::span<const Param<MotionParams>> param_rows<MotionParams>() { return kMotion; }
 template <> std::span<const Param<WindParams>> param_rows<WindParams>() { return kWind; }
 template <> std::span<const Param<GustParams>> param_rows<GustParams>() { return kGust; }
+template <> std::span<const Param<BoxParams>> param_rows<BoxParams>() { return kBox; }
 
 }  // namespace clothsim

@@ -46,6 +46,7 @@ class Program {
   // set(name, ...)), then set it by location with no string lookup.
   GLint location(std::string_view name);
   void set(GLint location, int value) { glProgramUniform1i(program_.get(), location, value); }
+  void set(GLint location, unsigned value) { glProgramUniform1ui(program_.get(), location, value); }
   void set(GLint location, const glm::ivec4* values, GLsizei count) {
     glProgramUniform4iv(program_.get(), location, count, &values->x);
   }

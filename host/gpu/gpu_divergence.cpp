@@ -64,7 +64,7 @@ GpuDivergenceGuard::GpuDivergenceGuard(const Scene& scene, const ClothModel& mod
   keep_last_good_.set("u_limit", limits_.limit);
   std::vector<glm::vec4> initial(count_);
   for (size_t i = 0; i < count_; ++i)
-    initial[i] = glm::vec4(glm::vec3(model.initial[i]), model.pinned[i] ? 0.f : float(1.0 / model.mass));
+    initial[i] = glm::vec4(glm::vec3(model.initial[i]), model.pinned[i] ? 0.f : float(1.0 / model.mass[i]));
   restart(initial, 0);
 }
 

@@ -45,22 +45,24 @@ void GpuSimulator::set_time(double t) {
 }
 
 void GpuSimulator::set_parameters(const Scene& scene) {
-  const float old_mass = constants_.mass;
+  const std::vector<float> old_mass = constants_.mass;
   const bool had_anchors = constants_.moving_pins(), had_wind = constants_.wind.enabled;
   constants_ = make_constants<float>(scene, model_);
+  masses_ = particle_masses(scene, model_);
   if (constants_.timeline.moves()) set_substep_time(constants_, time_);
   if (constants_.moving_pins() != had_anchors) upload_anchors();
   if (constants_.wind.enabled != had_wind)
     wind_forces_.allocate((constants_.wind.enabled ? model_.count() : 1) * sizeof(glm::vec4));
-  inverse_mass_ = float(1.0 / particle_mass(scene.cloth));
   params_ = make_step_params(constants_, model_);
   step_params_.upload(0, sizeof(params_), &params_);
   upload_colliders();
+  upload_materials();  // stiffness, damping, enabled springs and masses, all cheap
   if (constants_.mass != old_mass) {
     // Density changed: every free particle's inverse mass follows (an edit-time read-back).
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     auto pos = gl::download_vector<glm::vec4>(positions_);
-    for (auto& p : pos) if (p.w != 0.f) p.w = inverse_mass_;
+    const std::vector<float> inverse = inverse_masses();
+    for (size_t i = 0; i < pos.size(); ++i) if (pos[i].w != 0.f) pos[i].w = inverse[i];
     positions_.upload(0, pos.size() * sizeof(glm::vec4), pos.data());
   }
   if (scene.dt() != dt_) {
@@ -76,6 +78,13 @@ void GpuSimulator::set_parameters(const Scene& scene) {
   }
 }
 
+std::vector<float> GpuSimulator::inverse_masses() const {
+  // As initial_state forms them, from the masses in double, for the current densities.
+  std::vector<float> w;
+  for (double m : masses_) w.push_back(float(1.0 / m));
+  return w;
+}
+
 void GpuSimulator::hold_particle(int i, const glm::vec3& position) {
   const glm::vec4 p(position, 0.f), at_rest(0.f);
   // Both buffers, so the held particle has no velocity; shaders read them next substep.
@@ -87,14 +96,15 @@ void GpuSimulator::release_particle(int i) {
   glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
   glm::vec4 p;
   positions_.download(size_t(i) * sizeof(glm::vec4), sizeof(p), &p);
-  p.w = model_.pinned[i] ? 0.f : inverse_mass_;
+  p.w = model_.pinned[i] ? 0.f : inverse_masses()[size_t(i)];
   positions_.upload(size_t(i) * sizeof(glm::vec4), sizeof(p), &p);
 }
 
 void GpuSimulator::reset() {
   set_time(0);
   State<float> s = initial_state<float>(model_);
-  for (auto& p : s.pos) if (p.w != 0.f) p.w = inverse_mass_;
+  const std::vector<float> inverse = inverse_masses();
+  for (size_t i = 0; i < s.pos.size(); ++i) if (s.pos[i].w != 0.f) s.pos[i].w = inverse[i];
   upload(s);
   compute_normals();
   guard_.restart(s.pos, 0);

@@ -43,20 +43,22 @@ std::optional<GpuMemoryInfo> available_gpu_memory() {
 
 uint64_t simulator_bytes(const ClothModel& model) {
   const uint64_t n = uint64_t(model.count()), table = hash_table_size(uint32_t(n));
-  // pos, disp, forces, normals, the self-collision output and the kept copy; rest lengths;
-  // the hash's entries per particle and its count and start per bucket (scan sums are less
-  // than 1 % more).
-  return n * (6 * sizeof(glm::vec4) + sizeof(layout::RestLengths) + sizeof(uint32_t)) +
-         (2 * table + 1) * sizeof(uint32_t);
+  // pos, disp, forces, normals, the self-collision output, the kept copy, the tethers and the
+  // particles' mass and material; the springs, their gather entries (two per spring), the
+  // triangles and their corner entries (three per triangle); the hash's entries per particle and
+  // its count and start per bucket (scan sums are less than 1 % more).
+  const uint64_t springs = model.springs.size(), triangles = model.triangles.size();
+  return n * (8 * sizeof(glm::vec4) + 3 * sizeof(uint32_t)) + springs * (sizeof(layout::SpringTexel) + 2 * sizeof(glm::uvec2)) +
+         triangles * (sizeof(glm::uvec4) + 3 * sizeof(uint32_t)) + (2 * table + 1) * sizeof(uint32_t);
 }
 
 std::optional<std::string> memory_shortfall(const Scene& scene, const ClothModel& model, uint64_t needed,
                                             const std::optional<GpuMemoryInfo>& available) {
   if (!available || needed <= available->available_bytes) return std::nullopt;
-  return fmt::format("{}: cloth.num_width_points: a {}x{} grid needs about {:.0f} MiB of GPU memory, more than "
+  return fmt::format("{}: cloth: {} particles need about {:.0f} MiB of GPU memory, more than "
                      "the {:.0f} MiB this GPU has free ({}); use fewer points, close other programs using the "
                      "GPU, or run on the CPU: --backend cpu",
-                     scene.source, model.nw, model.nh, double(needed) / 1048576.0,
+                     scene.source, model.count(), double(needed) / 1048576.0,
                      double(available->available_bytes) / 1048576.0, available->source);
 }
 

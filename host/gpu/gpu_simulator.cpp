@@ -1,6 +1,7 @@
 // The simulator's buffers and bindings: construction, the GPU's limits, memory and counters.
 #include "gpu_simulator.hpp"
 
+#include <bit>
 #include <cstdlib>
 #include <unistd.h>
 
@@ -12,13 +13,8 @@ namespace clothsim {
 namespace {
 
 gl::Program load_pass(const std::filesystem::path& dir, const char* name) {
-  return gl::Program::compute(dir / fmt::format("{}.comp", name),
-                              {{"WORKGROUP_SIZE", std::to_string(WORKGROUP_SIZE)},
-                               {"GRID_WORKGROUP_X", std::to_string(GRID_WORKGROUP_X)},
-                               {"GRID_WORKGROUP_Y", std::to_string(GRID_WORKGROUP_Y)}});
+  return gl::Program::compute(dir / fmt::format("{}.comp", name), {{"WORKGROUP_SIZE", std::to_string(WORKGROUP_SIZE)}});
 }
-
-glm::ivec4 span_uniform(const AxisSpan& s) { return {s.first, s.period, s.shift, s.count}; }
 
 // Too large a cloth is bad input, reported before any allocation rather than as a driver
 // failure: every per-particle buffer must fit one storage block, every dispatch the group count.
@@ -28,10 +24,13 @@ void check_gpu_limits(const Scene& scene, const ClothModel& m) {
   glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
   glGetIntegeri_v(GL_MAX_COMPUTE_WORK_GROUP_COUNT, 0, &max_groups);
   glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &max_texels);
-  const uint64_t texels = 2 * uint64_t(m.count());  // the rest-length view, two texels a particle
-  const uint64_t largest = uint64_t(m.count()) * sizeof(layout::RestLengths);
-  const uint64_t groups = (uint64_t(hash_table_size(uint32_t(m.count()))) + WORKGROUP_SIZE - 1) / WORKGROUP_SIZE;
-  const std::string grid = fmt::format("a {}x{} grid", m.nw, m.nh);
+  // The largest view and buffer: the gather list (an entry per spring end) or the springs.
+  const uint64_t texels = std::max<uint64_t>(m.gather.size(), m.count());
+  const uint64_t largest = std::max<uint64_t>(m.springs.size() * sizeof(layout::SpringTexel), m.count() * sizeof(glm::vec4));
+  const uint64_t groups = std::max<uint64_t>((uint64_t(hash_table_size(uint32_t(m.count()))) + WORKGROUP_SIZE - 1) / WORKGROUP_SIZE,
+                                             (m.springs.size() + WORKGROUP_SIZE - 1) / WORKGROUP_SIZE);
+  const std::string grid = m.is_grid() ? fmt::format("a {}x{} grid", m.nw, m.nh)
+                                       : fmt::format("a cloth of {} particles and {} springs", m.count(), m.springs.size());
   if (max_block > 0 && largest > uint64_t(max_block))
     throw SceneError(fmt::format("{}: cloth.num_width_points: {} needs {} bytes in one storage buffer, more than "
                                  "this GPU's GL_MAX_SHADER_STORAGE_BLOCK_SIZE ({} bytes)",
@@ -52,25 +51,14 @@ void check_gpu_limits(const Scene& scene, const ClothModel& m) {
 layout::StepParams make_step_params(const Constants<float>& c, const ClothModel& m) {
   layout::StepParams p{};
   p.gravity = glm::vec3(c.gravity.x, c.gravity.y, c.gravity.z);
-  p.mass = c.mass;
-  p.ks = c.ks;
-  p.ks_bending = c.ks_bending;
-  p.keep_velocity = c.keep_velocity;
   p.dt2 = c.dt2;
   p.stretch_limit = c.stretch_limit;
   p.contact_distance = c.contact_distance;
   p.inv_cell = c.inv_cell;
   p.steps = c.steps;
-  p.alpha = c.alpha;
-  p.alpha_bending = c.alpha_bending;
   p.tether_limit = c.tether_limit;
-  p.width = uint32_t(m.nw);
-  p.height = uint32_t(m.nh);
   p.count = uint32_t(m.count());
   p.table_size = hash_table_size(uint32_t(m.count()));
-  p.structural_enabled = c.enabled[int(SpringType::Structural)];
-  p.shearing_enabled = c.enabled[int(SpringType::Shearing)];
-  p.bending_enabled = c.enabled[int(SpringType::Bending)];
   p.sphere_count = uint32_t(c.spheres.size());
   p.plane_count = uint32_t(c.planes.size());
   const WindC<float>& w = c.wind;
@@ -94,7 +82,7 @@ GpuSimulator::GpuSimulator(const Scene& scene, const ClothModel& model, const st
       dir_(dir),
       constants_(make_constants<float>(scene, model)),
       params_(make_step_params(constants_, model)),
-      inverse_mass_(float(1.0 / model.mass)),
+      masses_(particle_masses(scene, model)),
       dt_(scene.dt()),
       groups_(gl::workgroups_for(model.count(), WORKGROUP_SIZE)),
       compute_wind_forces_(load_pass(dir, "compute_wind_forces")),
@@ -115,25 +103,14 @@ GpuSimulator::GpuSimulator(const Scene& scene, const ClothModel& model, const st
   advance_collide_objects_ = advance_.location("u_collide_objects");
   resolve_collide_objects_ = resolve_self_contacts_.location("u_collide_objects");
   predict_collide_objects_ = predict_.location("u_collide_objects");
-  length_colour_ = solve_length_constraints_.location("u_colour");
-  distance_colour_ = solve_distance_constraints_.location("u_colour");
-  set_colour_spans(solve_length_constraints_);
-  set_colour_spans(solve_distance_constraints_);
+  length_colour_ = {solve_length_constraints_.location("u_first"), solve_length_constraints_.location("u_count")};
+  distance_colour_ = {solve_distance_constraints_.location("u_first"), solve_distance_constraints_.location("u_count")};
   const size_t n = model.count();
-  std::vector<layout::RestLengths> rest(n);
-  for (size_t i = 0; i < n; ++i) {
-    const auto& r = model.rest[i];
-    // Rounded to float once here, exactly as the float reference rounds them.
-    rest[i].near = glm::vec4(float(r[0]), float(r[1]), float(r[2]), float(r[3]));
-    rest[i].far = glm::vec4(float(r[4]), float(r[5]), 0.f, 0.f);
-  }
-  gl::upload_vector(rest_, rest, GL_STATIC_DRAW);
-  std::vector<glm::vec4> tethers(n);
-  for (size_t i = 0; i < n; ++i)  // a pin index is exact in a float: at most 2^24 particles
-    tethers[i] = glm::vec4(float(model.tether_pin[i]), float(model.tether_rest[i]), 0.f, 0.f);
-  gl::upload_vector(tethers_, tethers, GL_STATIC_DRAW);
+  upload_model();
+
   upload_colliders();
   upload_anchors();
+  upload_materials();
   step_params_.allocate(sizeof(params_), &params_, GL_DYNAMIC_DRAW);
   forces_.allocate(n * sizeof(glm::vec4));
   // A storage buffer may not be empty when bound: one dummy element without wind.
@@ -151,15 +128,49 @@ GpuSimulator::GpuSimulator(const Scene& scene, const ClothModel& model, const st
   compute_normals();
 }
 
-void GpuSimulator::set_colour_spans(gl::Program& program) {
-  // The colour spans depend only on the grid: set once, picked per dispatch by u_colour.
-  std::vector<glm::ivec4> spans;
-  for (int colour = 0; colour < NUM_COLOURS; ++colour) {
-    const ColourSpan span = colour_span(colour, model_.nw, model_.nh);
-    spans.push_back(span_uniform(span.x));
-    spans.push_back(span_uniform(span.y));
+void GpuSimulator::upload_model() {
+  const ClothModel& m = model_;
+  // Rest lengths are rounded to float once here, exactly as the float reference rounds them.
+  std::vector<layout::SpringTexel> springs;
+  for (const Spring& s : m.springs)
+    springs.push_back({{s.i, s.j, std::bit_cast<uint32_t>(float(s.rest)), uint32_t(s.type) | (s.material << 2)}});
+  std::vector<glm::uvec2> gather;
+  for (uint32_t g : m.gather) {
+    // The other end is filled in per particle below; every particle index fits in 30 bits.
+    gather.push_back({0u, std::bit_cast<uint32_t>(float(m.springs[g].rest))});
   }
-  program.set(program.location("u_spans[0]"), spans.data(), GLsizei(spans.size()));
+  for (uint32_t i = 0; i < uint32_t(m.count()); ++i)
+    for (uint32_t g = m.gather_start[i]; g < m.gather_start[i + 1]; ++g) {
+      const Spring& s = m.springs[m.gather[g]];
+      gather[g].x = (s.i == i ? s.j : s.i) | (uint32_t(s.type) << 30);
+    }
+  std::vector<glm::uvec4> triangles;
+  for (auto& t : m.triangles) triangles.push_back({t[0], t[1], t[2], 0u});
+  std::vector<glm::vec4> tethers(m.count());
+  for (size_t i = 0; i < tethers.size(); ++i)  // a pin index is exact in a float: at most 2^24 particles
+    tethers[i] = glm::vec4(float(m.tether_pin[i]), float(m.tether_rest[i]), 0.f, 0.f);
+  // A storage buffer or view may not be empty: one dummy element for a cloth without springs.
+  auto nonempty = [](auto v) { if (v.empty()) v.resize(1); return v; };
+  gl::upload_vector(springs_, nonempty(springs), GL_STATIC_DRAW);
+  gl::upload_vector(gather_, nonempty(gather), GL_STATIC_DRAW);
+  gl::upload_vector(gather_start_, m.gather_start, GL_STATIC_DRAW);
+  gl::upload_vector(triangles_, nonempty(triangles), GL_STATIC_DRAW);
+  gl::upload_vector(corner_start_, m.corner_start, GL_STATIC_DRAW);
+  gl::upload_vector(corner_triangles_, nonempty(m.corner_triangles), GL_STATIC_DRAW);
+  gl::upload_vector(tethers_, tethers, GL_STATIC_DRAW);
+}
+
+void GpuSimulator::upload_materials() {
+  std::vector<layout::MaterialTexels> materials;
+  for (const MaterialC<float>& mat : constants_.materials)
+    materials.push_back({glm::vec4(mat.ks, mat.ks_bending, mat.alpha, mat.alpha_bending),
+                         glm::vec4(mat.keep_velocity, float(mat.enabled[0]), float(mat.enabled[1]), float(mat.enabled[2]))});
+  std::vector<glm::vec4> particles;
+  for (size_t i = 0; i < constants_.mass.size(); ++i) particles.push_back({constants_.mass[i], float(model_.material[i]), 0.f, 0.f});
+  gl::upload_vector(materials_, materials, GL_DYNAMIC_DRAW);
+  gl::upload_vector(particles_, particles, GL_DYNAMIC_DRAW);
+  materials_view_.attach(materials_, GL_RGBA32F);
+  particles_view_.attach(particles_, GL_RGBA32F);
 }
 
 void GpuSimulator::barrier(GLbitfield bits) {
@@ -174,9 +185,10 @@ GpuCounters GpuSimulator::counters() const {
 
 size_t GpuSimulator::memory_bytes() const {
   size_t total = 0;
-  for (const gl::Buffer* b : {&positions_, &displacement_, &forces_, &normals_, &rest_, &spheres_, &planes_,
+  for (const gl::Buffer* b : {&positions_, &displacement_, &forces_, &normals_, &springs_, &spheres_, &planes_,
                               &step_params_, &positions_out_, &cell_count_, &cell_start_, &cell_entries_,
-                              &sorted_positions_, &tethers_, &wind_forces_, &anchors_})
+                              &sorted_positions_, &tethers_, &wind_forces_, &anchors_, &gather_start_, &gather_,
+                              &particles_, &materials_, &corner_start_, &corner_triangles_, &triangles_})
     total += b->size();
   return total + scan_.memory_bytes() + guard_.memory_bytes();
 }
@@ -198,7 +210,14 @@ void GpuSimulator::bind_all() const {
   anchors_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_ANCHORS);
   positions_view_.bind(TEXTURE_POSITIONS);
   displacement_view_.bind(TEXTURE_DISPLACEMENT);
-  rest_view_.bind(TEXTURE_REST);
+  springs_view_.bind(TEXTURE_SPRINGS);
+  gather_start_view_.bind(TEXTURE_GATHER_START);
+  gather_view_.bind(TEXTURE_GATHER);
+  particles_view_.bind(TEXTURE_PARTICLES);
+  materials_view_.bind(TEXTURE_MATERIALS);
+  corner_start_view_.bind(TEXTURE_CORNER_START);
+  corner_triangles_view_.bind(TEXTURE_CORNER_TRIANGLES);
+  triangles_view_.bind(TEXTURE_TRIANGLES);
   spheres_view_.bind(TEXTURE_SPHERES);
   planes_view_.bind(TEXTURE_PLANES);
   cell_start_view_.bind(TEXTURE_CELL_START);
@@ -210,7 +229,14 @@ void GpuSimulator::attach_views() {
   positions_view_.attach(positions_, GL_RGBA32F);
   positions_out_view_.attach(positions_out_, GL_RGBA32F);
   displacement_view_.attach(displacement_, GL_RGBA32F);
-  rest_view_.attach(rest_, GL_RGBA32F);
+  springs_view_.attach(springs_, GL_RGBA32UI);
+  gather_start_view_.attach(gather_start_, GL_R32UI);
+  gather_view_.attach(gather_, GL_RG32UI);
+  particles_view_.attach(particles_, GL_RGBA32F);
+  materials_view_.attach(materials_, GL_RGBA32F);
+  corner_start_view_.attach(corner_start_, GL_R32UI);
+  corner_triangles_view_.attach(corner_triangles_, GL_R32UI);
+  triangles_view_.attach(triangles_, GL_RGBA32UI);
   spheres_view_.attach(spheres_, GL_RGBA32F);
   planes_view_.attach(planes_, GL_RGBA32F);
   cell_start_view_.attach(cell_start_, GL_R32UI);

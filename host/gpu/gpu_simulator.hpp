@@ -96,35 +96,43 @@ class GpuSimulator {
   void bind_all() const;
   void bind_for_pass() const { if (!in_step_) bind_all(); }
   void attach_views();  // after any buffer is (re)allocated
-  void dispatch_grid(gl::Program& program);  // 2-D, one invocation per grid point
   void swap_positions();  // the Jacobi/ping-pong output becomes the positions (rebinds the two)
   void upload_colliders();  // from constants_
   void upload_anchors();    // from constants_ (one dummy element without pinned_motion)
+  void upload_model();      // the cloth model's lists (springs, gather, triangles, corners, tethers)
+  void upload_materials();  // from constants_: the materials and every particle's mass and material
+  std::vector<float> inverse_masses() const;  // of every particle for the current densities
   void apply_substep_time();  // the moving parts of constants_ for the substep at time_, uploaded
   void barrier(GLbitfield bits);  // glMemoryBarrier, counted
   void dispatch(gl::Program& program);
   // One colour of a constraint pass (solve_length_constraints or solve_distance_constraints),
-  // bindings already set.
-  void dispatch_colour(gl::Program& program, GLint colour_location, int colour);
-  void set_colour_spans(gl::Program& program);
+  // bindings already set: its springs' first index and count go to `where` (u_first, u_count).
+  struct ColourUniforms { GLint first = -1, count = -1; };
+  void dispatch_colour(gl::Program& program, ColourUniforms where, int colour);
 
   const ClothModel& model_;
   const std::filesystem::path dir_;
   Constants<float> constants_;
   layout::StepParams params_{};
-  float inverse_mass_;
+  std::vector<double> masses_;  // kg, for the current densities (particle_masses)
   double dt_;  // the substep length the displacements are per
   double time_ = 0;  // simulated seconds at the start of the next substep
   GpuCounters counters_;  // of a free particle, for the current density
   GLuint groups_ = 0;
   gl::Buffer positions_{"positions"}, displacement_{"displacement"}, forces_{"forces"}, normals_{"normals"};
-  gl::Buffer rest_{"rest lengths"}, spheres_{"spheres"}, planes_{"planes"}, step_params_{"step params"};
+  gl::Buffer springs_{"springs"}, spheres_{"spheres"}, planes_{"planes"}, step_params_{"step params"};
   gl::Buffer positions_out_{"positions out"}, cell_count_{"cell count"}, cell_start_{"cell start"};
   gl::Buffer cell_entries_{"cell entries"}, sorted_positions_{"sorted positions"}, tethers_{"tethers"};
   gl::Buffer wind_forces_{"wind forces"}, anchors_{"anchors"};
+  gl::Buffer gather_start_{"gather start"}, gather_{"gather"}, particles_{"particles"}, materials_{"materials"};
+  gl::Buffer corner_start_{"corner start"}, corner_triangles_{"corner triangles"}, triangles_{"triangles"};
   // Read-only views of the buffers above (compute/particle_views.glsl).
   gl::BufferTexture positions_view_{"positions view"}, positions_out_view_{"positions out view"};
-  gl::BufferTexture displacement_view_{"displacement view"}, rest_view_{"rest view"}, spheres_view_{"spheres view"};
+  gl::BufferTexture displacement_view_{"displacement view"}, springs_view_{"springs view"}, spheres_view_{"spheres view"};
+  gl::BufferTexture gather_start_view_{"gather start view"}, gather_view_{"gather view"};
+  gl::BufferTexture particles_view_{"particles view"}, materials_view_{"materials view"};
+  gl::BufferTexture corner_start_view_{"corner start view"}, corner_triangles_view_{"corner triangles view"};
+  gl::BufferTexture triangles_view_{"triangles view"};
   gl::BufferTexture planes_view_{"planes view"}, cell_start_view_{"cell start view"};
   gl::BufferTexture sorted_positions_view_{"sorted positions view"}, tethers_view_{"tethers view"};
   uint32_t table_size_ = 0;
@@ -134,7 +142,7 @@ class GpuSimulator {
   gl::Program predict_, solve_distance_constraints_;
   // Uniforms set before a dispatch, looked up once.
   GLint advance_collide_objects_ = -1, resolve_collide_objects_ = -1, predict_collide_objects_ = -1;
-  GLint length_colour_ = -1, distance_colour_ = -1;
+  ColourUniforms length_colour_, distance_colour_;
   PrefixScan scan_;
   GpuDivergenceGuard guard_;
 };

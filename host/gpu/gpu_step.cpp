@@ -20,12 +20,6 @@ void GpuSimulator::swap_positions() {
   positions_view_.bind(TEXTURE_POSITIONS);
 }
 
-void GpuSimulator::dispatch_grid(gl::Program& program) {
-  bind_for_pass();
-  program.dispatch(gl::workgroups_for(model_.nw, GRID_WORKGROUP_X), gl::workgroups_for(model_.nh, GRID_WORKGROUP_Y));
-  ++counters_.dispatches;
-}
-
 void GpuSimulator::dispatch(gl::Program& program) {
   bind_for_pass();
   program.dispatch(groups_);
@@ -33,13 +27,13 @@ void GpuSimulator::dispatch(gl::Program& program) {
 }
 
 void GpuSimulator::compute_wind_forces() {
-  dispatch_grid(compute_wind_forces_);
+  dispatch(compute_wind_forces_);
   // advance (or accumulate_forces) reads the wind forces next.
   barrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }
 
 void GpuSimulator::accumulate_forces() {
-  dispatch_grid(accumulate_forces_);
+  dispatch(accumulate_forces_);
   // integrate reads the forces next.
   barrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }
@@ -52,7 +46,7 @@ void GpuSimulator::integrate() {
 
 void GpuSimulator::advance(bool then_collide_objects) {
   advance_.set(advance_collide_objects_, int(then_collide_objects));
-  dispatch_grid(advance_);
+  dispatch(advance_);
   swap_positions();
   // The hash passes or the constraints read the new positions next; the next advance
   // writes the old ones (now the output buffer) after this pass read them.
@@ -116,11 +110,12 @@ void GpuSimulator::solve_length_constraint_colour(int colour) {
   dispatch_colour(solve_length_constraints_, length_colour_, colour);
 }
 
-void GpuSimulator::dispatch_colour(gl::Program& program, GLint colour_location, int colour) {
-  const ColourSpan span = colour_span(colour, model_.nw, model_.nh);
-  if (span.x.count == 0 || span.y.count == 0) return;  // a grid too narrow for this colour
-  program.set(colour_location, colour);  // the spans were set once
-  program.dispatch(gl::workgroups_for(span.x.count, GRID_WORKGROUP_X), gl::workgroups_for(span.y.count, GRID_WORKGROUP_Y));
+void GpuSimulator::dispatch_colour(gl::Program& program, ColourUniforms where, int colour) {
+  const uint32_t first = model_.colour_start[colour], count = model_.colour_start[colour + 1] - first;
+  if (count == 0) return;  // a grid too narrow for this colour
+  program.set(where.first, first);
+  program.set(where.count, count);
+  program.dispatch(gl::workgroups_for(count, WORKGROUP_SIZE));
   ++counters_.dispatches;
   // The next colour (or the next substep's first pass) reads these positions and displacements.
   barrier(kComputeReads);
@@ -129,8 +124,8 @@ void GpuSimulator::dispatch_colour(gl::Program& program, GLint colour_location, 
 void GpuSimulator::solve_length_constraints() {
   bind_for_pass();
   for (int it = 0; it < constants_.iterations; ++it)
-    for (int colour = 0; colour < NUM_COLOURS; ++colour) {
-      if (!constants_.enabled[int(kDirections[colour / 2].type)]) continue;
+    for (int colour = 0; colour < model_.colours(); ++colour) {
+      if (!constants_.colour_enabled(model_, colour)) continue;
       dispatch_colour(solve_length_constraints_, length_colour_, colour);
     }
 }
@@ -149,8 +144,8 @@ void GpuSimulator::solve_distance_constraint_colour(int colour) {
 
 void GpuSimulator::solve_distance_constraints() {
   bind_for_pass();
-  for (int colour = 0; colour < NUM_COLOURS; ++colour) {
-    if (!constants_.enabled[int(kDirections[colour / 2].type)]) continue;
+  for (int colour = 0; colour < model_.colours(); ++colour) {
+    if (!constants_.colour_enabled(model_, colour)) continue;
     dispatch_colour(solve_distance_constraints_, distance_colour_, colour);
   }
 }
@@ -192,8 +187,10 @@ void GpuSimulator::step_frame() {
 
 int GpuSimulator::dispatches_per_substep() const {
   int enabled_colours = 0;
-  for (int colour = 0; colour < NUM_COLOURS; ++colour)
-    enabled_colours += constants_.enabled[int(kDirections[colour / 2].type)];
+  for (int colour = 0; colour < model_.colours(); ++colour) {
+    const uint32_t springs = model_.colour_start[colour + 1] - model_.colour_start[colour];
+    enabled_colours += springs > 0 && constants_.colour_enabled(model_, colour);
+  }
   const int self = constants_.self_collision ? 4 + scan_.dispatches(table_size_) : 0;  // count, fill, sort, collide + scan
   // xpbd: predict, then one solve of every enabled colour; classic: advance, then the colours
   // once per constraint iteration; with wind, its pass first.

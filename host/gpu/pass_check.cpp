@@ -125,7 +125,7 @@ std::vector<PassError> check_passes(const Scene& scene, const ClothModel& model,
   }
   const State<float> start = s;
   check("accumulate_forces", [&] { accumulate_forces(model, c, s); }, [&] { gpu.accumulate_forces(); }, displacement);
-  check("integrate", [&] { integrate(c, s); }, [&] { gpu.integrate(); }, both);
+  check("integrate", [&] { integrate(model, c, s); }, [&] { gpu.integrate(); }, both);
   s = start;
   const bool colliders = c.has_colliders();
   const bool objects_in_advance = colliders && !c.self_collision;

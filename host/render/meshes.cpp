@@ -52,14 +52,8 @@ std::vector<uint32_t> cloth_triangle_indices(const ClothModel& model) {
 
 std::vector<uint32_t> cloth_spring_indices(const ClothModel& m, SpringType type) {
   std::vector<uint32_t> out;
-  for (int y = 0; y < m.nh; ++y)
-    for (int x = 0; x < m.nw; ++x)
-      for (int d = 0; d < NUM_DIRECTIONS; ++d) {
-        const Direction& dir = kDirections[d];
-        if (dir.type != type || !in_grid(x + dir.dx, y + dir.dy, m.nw, m.nh)) continue;
-        out.push_back(uint32_t(m.index(x, y)));
-        out.push_back(uint32_t(m.index(x + dir.dx, y + dir.dy)));
-      }
+  for (const Spring& s : m.springs)
+    if (s.type == type) out.insert(out.end(), {s.i, s.j});
   return out;
 }
 

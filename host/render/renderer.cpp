@@ -52,6 +52,14 @@ std::unique_ptr<Renderer::Mesh> make_indexed(const std::vector<uint32_t>& idx) {
   return m;
 }
 
+// The larger side of the cloths' bounding box at rest: how big the scene is.
+float cloth_extent(const ClothModel& m) {
+  glm::dvec3 lo(1e300), hi(-1e300);
+  for (auto& p : m.initial) lo = glm::min(lo, p), hi = glm::max(hi, p);
+  const glm::dvec3 size = hi - lo;
+  return float(std::max({size.x, size.y, size.z, 1e-6}));
+}
+
 std::unique_ptr<Renderer::Mesh> make_mesh(const MeshData& d) {
   auto m = make_indexed(d.indices);
   m->positions.emplace("collider positions");
@@ -71,8 +79,16 @@ Renderer::Renderer(const std::filesystem::path& root, const Scene& scene, const 
       weave_height_(gl::Texture::load_2d(root / "textures" / "height_weave.png", options.filtering)),
       bumps_height_(gl::Texture::load_2d(root / "textures" / "height_bumps.png", options.filtering)),
       sky_(load_cube(root / "textures", options.filtering)),
-      scene_size_(float(std::max(scene.cloth.width, scene.cloth.height))) {
+      scene_size_(cloth_extent(model)) {
   cloth_ = make_indexed(cloth_triangle_indices(model));
+  // The cloth's static per-vertex extras: uv, and in zw the particles whose difference is the
+  // tangent along +u (ClothModel::tangent_ends), as floats (exact below 2^24).
+  std::vector<layout::MeshVertex> extras;
+  for (int i = 0; i < model.count(); ++i)
+    extras.push_back({glm::vec4(float(model.uv[i].x), float(model.uv[i].y), float(model.tangent_ends[i][0]),
+                                float(model.tangent_ends[i][1])),
+                      glm::vec4(0.f)});
+  gl::upload_vector(cloth_extras_, extras, GL_STATIC_DRAW);
   for (int t = 0; t < 3; ++t) springs_[t] = make_indexed(cloth_spring_indices(model, SpringType(t)));
   for (auto& s : scene.spheres) {
     sphere_built_.emplace_back(s.origin);
@@ -155,9 +171,8 @@ void Renderer::draw(const gl::Buffer& positions, const gl::Buffer& normals, cons
   // The cloth: the simulation's own buffers, read in place by the vertex shader.
   positions.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_DRAW_POSITIONS);
   normals.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_DRAW_NORMALS);
-  no_extras_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_DRAW_EXTRAS);
+  cloth_extras_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_DRAW_EXTRAS);
   prog.set("u_is_cloth", 1);
-  prog.set("u_grid", glm::ivec2(model_.nw, model_.nh));
   const bool wire = look.shader == ShaderKind::Wireframe;
   prog.set("u_color", wire ? glm::vec4(0.95f, 0.95f, 0.95f, 1.f) : look.color);
   if (wire) {

@@ -82,6 +82,7 @@ class Renderer {
   std::vector<glm::vec3> sphere_built_, plane_built_, sphere_now_, plane_now_;
   gl::Texture fabric_, weave_height_, bumps_height_, sky_;
   gl::Buffer no_extras_{"no mesh extras"};
+  gl::Buffer cloth_extras_{"cloth extras"};  // uv and tangent ends of every particle
   float scene_size_;
 };
 

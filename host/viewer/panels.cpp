@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <fmt/format.h>
@@ -16,6 +17,26 @@
 namespace clothsim {
 namespace {
 
+// Whether the rows visited hold a non-empty kMeshKey (a mesh cloth): the panel then skips the
+// grid rows, else the mesh rows (param_table.hpp, Shape).
+class MeshProbe final : public ParamVisitor {
+ public:
+  bool mesh = false;
+  void text(const ParamInfo& p, std::string& v) override {
+    if (std::string_view(p.key) == kMeshKey) mesh = !v.empty();
+  }
+  void number(const ParamInfo&, double&) override {}
+  void integer(const ParamInfo&, int&) override {}
+  void boolean(const ParamInfo&, bool&) override {}
+  void vec3(const ParamInfo&, glm::dvec3&) override {}
+  void choice(const ParamInfo&, int&) override {}
+  void indices(const ParamInfo&, std::vector<int>&) override {}
+  void grid_indices(const ParamInfo&, GridIndices&, int, int) override {}
+  void keyframes(const ParamInfo&, Keyframes&) override {}
+  void object(const ParamInfo&, ObjectRef&) override {}
+  void list(const ParamInfo&, ListRef&) override {}
+};
+
 // The Simulation panel's widgets, one per row of the parameter table that has a widget:
 // the labels are the JSON keys, values are shown in the row's display unit.
 class PanelRows final : public ParamVisitor {
@@ -24,6 +45,7 @@ class PanelRows final : public ParamVisitor {
   std::vector<std::string> fixed;  // the read-only rows, listed together under the widgets
 
   void number(const ParamInfo& p, double& v) override {
+    if (!shown(p)) return;
     const Widget& w = p.widget;
     if (w.style == Widget::ReadOnly) fixed.push_back(fmt::format("{} = {}", label(p), v));
     if (w.style != Widget::Drag) return;
@@ -34,6 +56,7 @@ class PanelRows final : public ParamVisitor {
     }
   }
   void integer(const ParamInfo& p, int& v) override {
+    if (!shown(p)) return;
     const Widget& w = p.widget;
     if (w.style == Widget::ReadOnly) fixed.push_back(fmt::format("{} = {}", label(p), v));
     if (w.style != Widget::Drag) return;
@@ -43,9 +66,11 @@ class PanelRows final : public ParamVisitor {
     }
   }
   void boolean(const ParamInfo& p, bool& v) override {
-    if (p.widget.style == Widget::Checkbox) changed |= ImGui::Checkbox(p.key, &v);
+    if (shown(p) && p.widget.style == Widget::Checkbox) changed |= ImGui::Checkbox(p.key, &v);
   }
   void vec3(const ParamInfo& p, glm::dvec3& v) override {
+    if (!shown(p)) return;
+    if (p.widget.style == Widget::ReadOnly) fixed.push_back(fmt::format("{} = [{}, {}, {}]", label(p), v.x, v.y, v.z));
     if (p.widget.style != Widget::Drag) return;
     float f[3] = {float(v.x), float(v.y), float(v.z)};
     if (ImGui::DragFloat3(label(p).c_str(), f, p.widget.speed, float(p.widget.lo), float(p.widget.hi), p.widget.format)) {
@@ -54,8 +79,18 @@ class PanelRows final : public ParamVisitor {
     }
   }
   void choice(const ParamInfo& p, int& v) override {
-    if (p.widget.style != Widget::Hidden)
+    if (!shown(p)) return;
+    if (p.widget.style == Widget::ReadOnly) fixed.push_back(fmt::format("{} = {}", label(p), p.choices[size_t(v)]));
+    else if (p.widget.style != Widget::Hidden)
       changed |= ImGui::Combo(p.key, &v, p.choices.data(), int(p.choices.size()));
+  }
+  // The mesh file and its pins: shown, never edited (a new mesh is a new cloth: Reload).
+  void text(const ParamInfo& p, std::string& v) override {
+    if (shown(p) && p.widget.style == Widget::ReadOnly) fixed.push_back(fmt::format("{} = {}", label(p), v));
+  }
+  void indices(const ParamInfo& p, std::vector<int>& v) override {
+    if (shown(p) && p.widget.style == Widget::ReadOnly)
+      fixed.push_back(fmt::format("{} = {} {}", label(p), v.size(), v.size() == 1 ? "vertex" : "vertices"));
   }
   void grid_indices(const ParamInfo&, GridIndices&, int, int) override {}  // pins: edit the file
   void keyframes(const ParamInfo&, Keyframes&) override {}  // motions: edit the file
@@ -68,18 +103,42 @@ class PanelRows final : public ParamVisitor {
         changed = true;
       }
     }
-    if (!o.present()) return;
+    if (!shown(p) || !o.present()) return;
     ImGui::PushID(p.key);  // the same key may appear in two objects
     o.visit(*this);
     ImGui::PopID();
   }
-  void list(const ParamInfo&, ListRef&) override {}  // colliders: edit the file
+  // Colliders (Hidden): edit the file. The cloths: the first as a single cloth always was, each
+  // further one under a tree node of its own, its read-only rows labelled with its key path.
+  void list(const ParamInfo& p, ListRef& l) override {
+    if (p.widget.style == Widget::Hidden) return;
+    for (size_t i = 0; i < l.size(); ++i) {
+      const std::string name = fmt::format("{}[{}]", p.key, i);
+      if (i > 0 && !ImGui::TreeNode(name.c_str())) continue;
+      MeshProbe probe;
+      l.visit(i, probe);
+      PanelRows sub(probe.mesh, i == 0 ? prefix_ : prefix_ + name + ".");
+      ImGui::PushID(i == 0 ? p.key : name.c_str());  // cloth is the ID of the one cloth, as before
+      l.visit(i, sub);
+      ImGui::PopID();
+      changed |= sub.changed;
+      fixed.insert(fixed.end(), sub.fixed.begin(), sub.fixed.end());
+      if (i > 0) ImGui::TreePop();
+    }
+  }
+
+  PanelRows() = default;
 
  private:
-  static std::string label(const ParamInfo& p) {
+  PanelRows(bool mesh, std::string prefix) : mesh_(mesh), prefix_(std::move(prefix)) {}
+  // A row of the other kind of cloth holds only its default: not shown.
+  bool shown(const ParamInfo& p) const { return p.shape == Shape::Any || (p.shape == Shape::Mesh) == mesh_; }
+  std::string label(const ParamInfo& p) const {
     const char* unit = p.widget.unit ? p.widget.unit : p.unit;
-    return *unit ? fmt::format("{} ({})", p.key, unit) : std::string(p.key);
+    return prefix_ + (*unit ? fmt::format("{} ({})", p.key, unit) : std::string(p.key));
   }
+  bool mesh_ = false;
+  std::string prefix_;  // of the read-only rows' labels: "" for the first cloth, "cloth[1]." after
 };
 
 void simulation_panel(ViewerState& st) {

@@ -52,14 +52,14 @@ class Viewer {
   void load(const Scene& scene) {
     session_ = {};
     st_.scene = scene;
-    session_.model = std::make_unique<ClothModel>(build_cloth(scene.cloth));
+    session_.model = std::make_unique<ClothModel>(build_cloth(scene));
     session_.sim = std::make_unique<GpuSimulator>(scene, *session_.model, opts_.root / "compute");
     session_.renderer = std::make_unique<Renderer>(opts_.root, scene, *session_.model,
                                                    RendererOptions{opts_.sphere_lat, opts_.sphere_lon});
     reset_camera();
     st_.divergence.clear();
     st_.stats.particles = session_.model->count();
-    st_.stats.springs = session_.model->springs();
+    st_.stats.springs = int(session_.model->springs.size());
     if (st_.path_field.empty()) st_.path_field = scene.source;
     glfwSetWindowTitle(window_->handle(), fmt::format("clothsim - {}", scene.name()).c_str());
   }

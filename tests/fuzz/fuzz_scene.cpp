@@ -6,8 +6,9 @@
 // clothsim::parse_scene(json, "<fuzz>", overrides).
 //
 // Property: parse_scene either returns a Scene that is fully valid (every value inside the
-// range of its row in the parameter table, host/core/scene_table.cpp; unit plane normals, pins
-// inside the grid, at most kMaxParticles particles) and that scene_to_json writes out and
+// range of its row in the parameter table, host/core/scene_table.cpp; unit plane normals and
+// rotation axes, pins inside the grid, pinned boxes with min <= max, a grid cloth without mesh
+// values, at most kMaxParticles grid particles in all) and that scene_to_json writes out and
 // loads back bit for bit, value by value, or throws clothsim::SceneError naming
 // the source. Anything else (another exception, a violated property) calls abort(), which
 // libFuzzer reports as a crash; ASan/UBSan reports, hangs (-timeout) and OOMs are crashes too.
@@ -21,6 +22,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
+#include <filesystem>
 #include <string>
 #include <typeinfo>
 #include <utility>
@@ -64,6 +66,12 @@ class InRange final : public ParamVisitor {
   void choice(const ParamInfo& p, int& v) override {
     expect(v >= 0 && size_t(v) < p.choices.size(), join(prefix_, p.key) + " one of its row's choices");
   }
+  void text(const ParamInfo& p, std::string& v) override {
+    expect(v.find('\0') == std::string::npos, join(prefix_, p.key) + " holds no NUL");
+  }
+  void indices(const ParamInfo& p, std::vector<int>& v) override {
+    for (int i : v) expect(i >= p.lo && i <= p.hi, join(prefix_, p.key) + " each in its row's range");
+  }
   void grid_indices(const ParamInfo& p, GridIndices& pins, int nw, int nh) override {
     for (const auto& q : pins)
       expect(q[0] >= 0 && q[1] >= 0 && q[0] < nw && q[1] < nh, join(prefix_, p.key) + " inside the grid");
@@ -101,6 +109,12 @@ class Flatten final : public ParamVisitor {
   void boolean(const ParamInfo& p, bool& v) override { add(p, v ? "true" : "false"); }
   void vec3(const ParamInfo& p, glm::dvec3& v) override { add(p, fmt::format("{:a} {:a} {:a}", v.x, v.y, v.z)); }
   void choice(const ParamInfo& p, int& v) override { add(p, fmt::format("{}", v)); }
+  void text(const ParamInfo& p, std::string& v) override { add(p, v); }
+  void indices(const ParamInfo& p, std::vector<int>& v) override {
+    std::string s;
+    for (int i : v) s += fmt::format("{} ", i);
+    add(p, s);
+  }
   void grid_indices(const ParamInfo& p, GridIndices& pins, int, int) override {
     std::string s;
     for (const auto& q : pins) s += fmt::format("[{}, {}]", q[0], q[1]);
@@ -137,18 +151,36 @@ Flatten::Values flatten(Scene s) {
   return out;
 }
 
+bool unit(const glm::dvec3& v) { return std::abs(std::sqrt(v.x * v.x + v.y * v.y + v.z * v.z) - 1) <= 1e-12; }
+
 void check_valid(Scene s) {
-  const ClothParams& c = s.cloth;
   expect(s.source == "<fuzz>", "Scene::source is the source given");
   InRange rows;
   visit_rows(s, rows);
   // What the rows' ranges cannot say:
-  const long long n = (long long)c.num_width_points * c.num_height_points;
+  long long n = 0;
+  for (const ClothParams* c : s.cloths()) {
+    if (c->is_mesh()) {
+      expect(c->mesh_path == std::filesystem::path(c->mesh).lexically_normal(), "cloth.mesh_path is cloth.mesh");
+      expect(unit(c->rotation_axis), "cloth.rotation_axis unit length");
+      if (c->pinned_box)
+        expect(c->pinned_box->min.x <= c->pinned_box->max.x && c->pinned_box->min.y <= c->pinned_box->max.y &&
+                   c->pinned_box->min.z <= c->pinned_box->max.z,
+               "cloth.pinned_box min <= max");
+    } else {
+      // A grid cloth's mesh rows stay at their defaults (the loader rejects them).
+      ClothParams grid;
+      expect(c->mesh_path.empty() && c->pinned_vertices.empty() && !c->pinned_box && c->scale == grid.scale &&
+                 c->offset == grid.offset && c->rotation_axis == grid.rotation_axis &&
+                 c->rotation_degrees == grid.rotation_degrees && c->mass_lumping == grid.mass_lumping,
+             "a grid cloth has no mesh values");
+      n += (long long)c->num_width_points * c->num_height_points;
+    }
+  }
   expect(n <= kMaxParticles, "particle count <= kMaxParticles");
   expect((long long)s.particle_count() == n, "particle_count() does not overflow");
   for (const PlaneParams& pl : s.planes) {
-    const double len = std::sqrt(pl.normal.x * pl.normal.x + pl.normal.y * pl.normal.y + pl.normal.z * pl.normal.z);
-    expect(std::abs(len - 1) <= 1e-12, "plane.normal unit length");
+    expect(unit(pl.normal), "plane.normal unit length");
   }
   expect(std::isfinite(s.dt()) && s.dt() > 0, "dt() finite and > 0");
 }
@@ -169,6 +201,7 @@ void check_round_trip(const Scene& a) {
   expect(va.size() == vb.size(), "round trip: the same number of values");
   // And every member, in case one has no row (the structs' operator== is defaulted).
   expect(a.cloth == b.cloth, "round trip: cloth");
+  expect(a.extra_cloths == b.extra_cloths, "round trip: extra_cloths");
   expect(a.spheres == b.spheres, "round trip: spheres");
   expect(a.planes == b.planes, "round trip: planes");
   expect(a.simulation == b.simulation, "round trip: simulation");

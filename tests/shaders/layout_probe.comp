@@ -1,4 +1,4 @@
-// Reads the step parameters, rest lengths and colliders; writes positions and probe_uints.
+// Reads the step parameters, materials and colliders; writes positions and probe_uints.
 // One invocation does the work. Test fixture for tests/test_gpu_layout.cpp: it declares the
 // buffers exactly as the passes do (the parameter block comes from common.glsl itself) and
 // copies every member of every struct out, so the compiler keeps them all and the test can
@@ -11,7 +11,7 @@
 
 layout(local_size_x = WORKGROUP_SIZE) in;
 layout(std430, binding = BINDING_POSITIONS) writeonly buffer Positions { vec4 pos[]; };
-layout(std430, binding = BINDING_REST) readonly buffer Rest { RestLengths rest[]; };
+layout(std430, binding = BINDING_MATERIALS) readonly buffer Materials { MaterialTexels materials[]; };
 layout(std430, binding = BINDING_SPHERES) readonly buffer Spheres { SphereCollider spheres[]; };
 layout(std430, binding = BINDING_PLANES) readonly buffer Planes { PlaneCollider planes[]; };
 layout(std430, binding = BINDING_PROBE_UINTS) writeonly buffer ProbeUints { uint probe_uints[]; };
@@ -28,8 +28,8 @@ void main() {
   if (gl_GlobalInvocationID.x != 0u) return;
   STEP_PARAMS_FIELDS(PUT_FIELD)
   // Element 1 of each array, so a wrong stride shows as well as a wrong offset.
-  pos[0] = rest[1].near;
-  pos[1] = rest[1].far;
+  pos[0] = materials[1].stiffness;
+  pos[1] = materials[1].keep;
   pos[2] = spheres[1].origin_radius;
   pos[3] = spheres[1].keep;
   pos[4] = planes[1].point;
