@@ -94,7 +94,7 @@ int run_render(const Opts& o) {
   look.exposure = o.exposure;
   FrameSink sink(o.out, w, h, fps);
 
-  fmt::print("{}: {}x{} cloth, {} shader, {}x{}, {} samples/pixel, backend {}\n", scene.source, model.nw, model.nh,
+  fmt::print("{}: {}, {} shader, {}x{}, {} samples/pixel, backend {}\n", scene.source, describe_cloth(model),
              kShaderNames[size_t(*shader)], w, h, o.samples, o.backend);
   Progress progress("render frame", o.frames);
   for (int f = 1; f <= o.frames; ++f) {

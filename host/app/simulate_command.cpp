@@ -1,5 +1,6 @@
 // `clothsim simulate SCENE --frames N [--backend gpu|cpu] [--export FILE.obj|FILE.pc2|DIR/]
 //  [--export-every K] [--load-state FILE] [--save-state FILE] [--stats]`
+#include <algorithm>
 #include <unistd.h>
 
 #include <chrono>
@@ -21,8 +22,15 @@ void print_stats(const Scene& scene, const ClothStats& st, int frames, double wa
   fmt::print("wall time         {:.3f} s ({:.2f} ms/frame)\n", wall, frames ? 1e3 * wall / frames : 0.0);
   fmt::print("max stretch       {:.4f} x rest length\n", st.max_stretch_ratio);
   fmt::print("kinetic energy    {:.6g} J (max speed {:.4g} m/s)\n", st.kinetic, st.max_speed);
-  for (size_t k = 0; k < st.sphere_clearance.size(); ++k)
-    fmt::print("sphere[{}] clearance {:.6f} m\n", k, st.sphere_clearance[k]);
+  if (st.sphere_clearance.size() > 8) {
+    // A collider built of many spheres (a round table): the closest one says what matters.
+    const auto least = std::min_element(st.sphere_clearance.begin(), st.sphere_clearance.end());
+    fmt::print("spheres ({}) least clearance {:.6f} m (sphere[{}])\n", st.sphere_clearance.size(), *least,
+               least - st.sphere_clearance.begin());
+  } else {
+    for (size_t k = 0; k < st.sphere_clearance.size(); ++k)
+      fmt::print("sphere[{}] clearance {:.6f} m\n", k, st.sphere_clearance[k]);
+  }
   for (size_t k = 0; k < st.plane_clearance.size(); ++k)
     fmt::print("plane[{}] clearance  {:.6f} m\n", k, st.plane_clearance[k]);
   fmt::print("finite            {}\n", st.finite ? "yes" : "NO (a value became NaN/Inf)");
@@ -109,7 +117,7 @@ void add_simulate_command(CLI::App& app, std::function<int()>& run) {
       const Scene scene = o->scene.load();
       const ClothModel model = build_cloth(scene);
       std::unique_ptr<Backend> backend = make_backend(parse_backend(o->backend), scene, model);
-      fmt::print("{}: {}x{} cloth, {} substeps/frame, backend {}\n", scene.source, model.nw, model.nh,
+      fmt::print("{}: {}, {} substeps/frame, backend {}\n", scene.source, describe_cloth(model),
                  scene.simulation.simulation_steps, backend->name());
       const int64_t start = o->load_path.empty() ? 0 : load_state(o->load_path, scene, model, *backend);
       auto export_obj = [&](const ClothSnapshot& snap, const std::string& what) {

@@ -28,7 +28,7 @@ int run_validate(const Opts& o) {
   const ClothModel model = build_cloth(scene);
   auto context = require_headless_context();
   GpuSimulator gpu(scene, model, find_project_root() / "compute");
-  fmt::print("{}: {}x{} cloth, {} substeps/frame, {}\n", scene.source, model.nw, model.nh,
+  fmt::print("{}: {}, {} substeps/frame, {}\n", scene.source, describe_cloth(model),
              scene.simulation.simulation_steps, gl::gl_renderer_string());
 
   // llvmpipe rounds exactly like the reference (no FMA, IEEE sqrt and division), so there

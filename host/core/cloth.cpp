@@ -131,6 +131,14 @@ void finish_model(ClothModel& m, const std::vector<PartSprings>& parts) {
   build_tethers(m);
 }
 
+std::string describe_cloth(const ClothModel& m) {
+  if (m.is_grid()) return fmt::format("{}x{} cloth", m.nw, m.nh);
+  if (m.parts.size() == 1)
+    return fmt::format("mesh cloth of {} particles, {} springs, {} colours", m.count(), m.springs.size(), m.colours());
+  return fmt::format("{} cloths, {} particles, {} springs, {} colours", m.parts.size(), m.count(), m.springs.size(),
+                     m.colours());
+}
+
 ClothModel build_cloth(const Scene& scene) {
   ClothModel m;
   std::vector<PartSprings> parts;

@@ -55,10 +55,13 @@ uint64_t simulator_bytes(const ClothModel& model) {
 std::optional<std::string> memory_shortfall(const Scene& scene, const ClothModel& model, uint64_t needed,
                                             const std::optional<GpuMemoryInfo>& available) {
   if (!available || needed <= available->available_bytes) return std::nullopt;
-  return fmt::format("{}: cloth: {} particles need about {:.0f} MiB of GPU memory, more than "
+  const std::string what = model.is_grid()
+                               ? fmt::format("cloth.num_width_points: a {}x{} grid needs", model.nw, model.nh)
+                               : fmt::format("cloth: {} particles need", model.count());
+  return fmt::format("{}: {} about {:.0f} MiB of GPU memory, more than "
                      "the {:.0f} MiB this GPU has free ({}); use fewer points, close other programs using the "
                      "GPU, or run on the CPU: --backend cpu",
-                     scene.source, model.count(), double(needed) / 1048576.0,
+                     scene.source, what, double(needed) / 1048576.0,
                      double(available->available_bytes) / 1048576.0, available->source);
 }
 

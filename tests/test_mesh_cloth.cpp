@@ -1,0 +1,163 @@
+// Mesh cloths (docs/model.md, "Mesh cloth"): a grid written as an OBJ of quads moves as the
+// grid does, a triangulated disc with a hole hangs from its pinned box, several cloths make
+// one model, every colouring is valid, and a bad mesh is a clear SceneError.
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+#include <fstream>
+#include <set>
+
+#include <fmt/format.h>
+
+#include "backend.hpp"
+#include "cloth.hpp"
+#include "scene.hpp"
+#include "test_helpers.hpp"
+
+namespace fs = std::filesystem;
+using namespace clothsim;
+
+namespace {
+
+fs::path scratch_dir() {
+  const fs::path d = fs::temp_directory_path() / fmt::format("clothsim_mesh_cloth_{}", ::getpid());
+  fs::create_directories(d);
+  return d;
+}
+
+// The quads of the CS184 horizontal grid, in its vertex order, positions exactly the grid's.
+void write_grid_obj(const fs::path& file, int nw, int nh, double width, double height) {
+  std::ofstream out(file);
+  const double sx = width / (nw - 1), sy = height / (nh - 1);
+  for (int y = 0; y < nh; ++y)
+    for (int x = 0; x < nw; ++x) out << fmt::format("v {:.17g} {:.17g} {:.17g}\n", x * sx, 1.0, y * sy);
+  for (int y = 0; y + 1 < nh; ++y)
+    for (int x = 0; x + 1 < nw; ++x) {
+      const int a = y * nw + x + 1, b = a + 1, c = a + nw, d = c + 1;  // 1-based
+      out << fmt::format("f {} {} {} {}\n", a, b, d, c);
+    }
+}
+
+// Every colour's springs share no particle and are of one type.
+void check_colouring(const ClothModel& m) {
+  for (int c = 0; c < m.colours(); ++c) {
+    std::set<uint32_t> used;
+    for (uint32_t k = m.colour_start[c]; k < m.colour_start[c + 1]; ++k) {
+      CHECK(used.insert(m.springs[k].i).second);
+      CHECK(used.insert(m.springs[k].j).second);
+      CHECK(m.springs[k].type == m.colour_type(c));
+    }
+  }
+  CHECK(m.colour_start.back() == m.springs.size());
+}
+
+}  // namespace
+
+TEST_CASE("a grid loaded from an OBJ of quads moves as the grid built from num_width_points", "[mesh]") {
+  const fs::path dir = scratch_dir();
+  const int nw = 7, nh = 5;
+  write_grid_obj(dir / "grid.obj", nw, nh, 1.0, 1.0);
+  const Scene grid = test::make_scene(nw, nh, 0, {"cloth.pinned=[[0,0],[6,0]]"});
+  const std::string mesh_json = fmt::format(
+      R"({{"cloth": {{"mesh": "{}", "thickness": 0.0095, "pinned_vertices": [0, 6], "mass_lumping": "uniform"}}}})",
+      (dir / "grid.obj").string());
+  const Scene mesh = parse_scene(mesh_json, (dir / "scene.json").string());
+  const ClothModel gm = build_cloth(grid), mm = build_cloth(mesh);
+  REQUIRE(mm.count() == gm.count());
+  CHECK(mm.springs.size() == gm.springs.size());
+  CHECK(mm.structural_springs() == gm.structural_springs());
+  CHECK(mm.shearing_springs() == gm.shearing_springs());
+  CHECK(mm.bending_springs() == gm.bending_springs());
+  for (int i = 0; i < gm.count(); ++i) {
+    CHECK(mm.initial[i] == gm.initial[i]);  // the file's vertex order is the particle order
+    CHECK(mm.mass[i] == Approx(gm.mass[i]).epsilon(1e-12));
+    CHECK(mm.pinned[i] == gm.pinned[i]);
+  }
+  check_colouring(mm);
+  CpuBackend<double> a(grid, gm), b(mesh, mm);
+  double worst = 0;
+  for (int f = 0; f < 100; ++f) {
+    a.step_frame();
+    b.step_frame();
+    worst = std::max(worst, test::max_abs_diff(a.snapshot().pos, b.snapshot().pos));
+  }
+  INFO("largest difference over 100 frames " << worst << " m");
+  CHECK(worst <= 1e-6);
+  // And they really moved: the comparison is not of two resting cloths.
+  CHECK(test::max_abs_diff(a.snapshot().pos, CpuBackend<double>(grid, gm).snapshot().pos) > 0.1);
+  fs::remove_all(dir);
+}
+
+TEST_CASE("a triangulated disc with a hole, pinned by pinned_box, hangs from its pins", "[mesh]") {
+  const Scene s = load_scene(fs::path(CLOTHSIM_SOURCE_DIR) / "scenes/disc_hole.json");
+  const ClothModel m = build_cloth(s);
+  CHECK(m.count() == 421);
+  CHECK(m.triangles.size() == 748);
+  const int pins = int(std::count(m.pinned.begin(), m.pinned.end(), 1));
+  CHECK(pins >= 2);
+  CHECK(pins < 20);
+  for (int i = 0; i < m.count(); ++i)
+    if (m.pinned[i]) CHECK(m.initial[i].x >= 0.44);
+  check_colouring(m);
+  CpuBackend<double> cpu(s, m);
+  for (int f = 0; f < 90; ++f) cpu.step_frame();
+  const ClothSnapshot snap = cpu.snapshot();
+  const ClothStats st = measure(s, m, snap);
+  CHECK(st.finite);
+  double lowest = 1e9;
+  for (int i = 0; i < m.count(); ++i) {
+    lowest = std::min(lowest, snap.pos[i].y);
+    if (m.pinned[i]) CHECK(glm::dvec3(snap.pos[i]) == m.initial[i]);
+  }
+  // A 1 m disc hanging from one edge: its far side falls most of a metre.
+  CHECK(lowest < 0.3);
+  CHECK(st.max_stretch_ratio < 1.1 + 1e-6);
+}
+
+TEST_CASE("the mesh scenes' colourings are valid: no two springs of a colour share a particle", "[mesh]") {
+  for (const char* name : {"tablecloth", "two_cloths", "disc_hole"}) {
+    INFO(name);
+    const Scene s = load_scene(fs::path(CLOTHSIM_SOURCE_DIR) / "scenes" / (std::string(name) + ".json"));
+    const ClothModel m = build_cloth(s);
+    check_colouring(m);
+    CHECK(m.colours() <= 20);
+    // Deterministic: the same model twice.
+    const ClothModel again = build_cloth(s);
+    REQUIRE(again.springs.size() == m.springs.size());
+    for (size_t k = 0; k < m.springs.size(); ++k) CHECK((again.springs[k].i == m.springs[k].i && again.springs[k].j == m.springs[k].j));
+  }
+}
+
+TEST_CASE("a mesh cloth is placed by scale, rotation and offset, its mass from density x area", "[mesh]") {
+  const fs::path dir = scratch_dir();
+  {
+    std::ofstream out(dir / "tri.obj");
+    out << "v 0 0 0\nv 1 0 0\nv 0 0 1\nv 1 0 1\nf 1 3 2\nf 2 3 4\n";
+  }
+  const Scene s = parse_scene(
+      R"({"cloth": {"mesh": "tri.obj", "thickness": 0.01, "density": 2, "scale": 2, "offset": [0, 1, 0],
+          "rotation_axis": [0, 1, 0], "rotation_degrees": 90}})",
+      (dir / "scene.json").string());
+  const ClothModel m = build_cloth(s);
+  REQUIRE(m.count() == 4);
+  // (1, 0, 0) scaled to (2, 0, 0), turned 90 degrees about +y to (0, 0, -2), lifted by 1.
+  CHECK(m.initial[1].x == Approx(0).margin(1e-12));
+  CHECK(m.initial[1].y == Approx(1));
+  CHECK(m.initial[1].z == Approx(-2));
+  double total = 0;
+  for (double mass : m.mass) total += mass;
+  CHECK(total == Approx(2.0 * 4.0));  // density 2 x area (2 m)^2
+  // Area lumping: the two corners of both triangles stand for more of the cloth.
+  CHECK(m.mass[1] == Approx(2 * m.mass[0]));
+  // Two triangles: five edges, one bending spring across the shared one.
+  CHECK(m.structural_springs() == 5);
+  CHECK(m.bending_springs() == 1);
+  fs::remove_all(dir);
+}
+
+TEST_CASE("a pinned vertex outside the mesh is bad input naming the key and the range", "[mesh]") {
+  const fs::path root = CLOTHSIM_SOURCE_DIR;
+  const Scene s = load_scene(root / "scenes/disc_hole.json", {"cloth.pinned_vertices=[3, 421]"});
+  CHECK_THROWS_WITH(build_cloth(s), Catch::Contains("cloth.pinned_vertices[1]") && Catch::Contains("vertex 421") &&
+                                        Catch::Contains("421 vertices"));
+}
