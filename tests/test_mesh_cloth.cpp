@@ -10,6 +10,8 @@
 #include <fmt/format.h>
 
 #include "backend.hpp"
+#include "checkpoint.hpp"
+#include "diagnostics.hpp"
 #include "cloth.hpp"
 #include "scene.hpp"
 #include "test_helpers.hpp"
@@ -160,4 +162,69 @@ TEST_CASE("a pinned vertex outside the mesh is bad input naming the key and the 
   const Scene s = load_scene(root / "scenes/disc_hole.json", {"cloth.pinned_vertices=[3, 421]"});
   CHECK_THROWS_WITH(build_cloth(s), Catch::Contains("cloth.pinned_vertices[1]") && Catch::Contains("vertex 421") &&
                                         Catch::Contains("421 vertices"));
+}
+
+TEST_CASE("two cloths (a grid and a mesh) save, load and continue bit for bit; a state fits only its cloth",
+          "[mesh][checkpoint]") {
+  const fs::path root = CLOTHSIM_SOURCE_DIR, dir = scratch_dir();
+  const Scene s = load_scene(root / "scenes/two_cloths.json");
+  const ClothModel m = build_cloth(s);
+  const int n = 6;
+  CpuBackend<double> whole(s, m);
+  for (int f = 0; f < 2 * n; ++f) whole.step_frame();
+  {
+    CpuBackend<double> first(s, m);
+    for (int f = 0; f < n; ++f) first.step_frame();
+    write_checkpoint((dir / "half.state").string(),
+                     {cloth_hash(m), m.nw, m.nh, pinned_count(m), s.source, first.name(), first.save_state()});
+  }
+  const Checkpoint c = read_checkpoint((dir / "half.state").string());
+  CHECK(c.nw * c.nh == m.count());  // a model of several cloths is stored as count x 1
+  CpuBackend<double> second(s, m);
+  check_fits(c, (dir / "half.state").string(), s, m, second.scalar_bytes(), second.name());
+  second.load_state(c.state);
+  for (int f = 0; f < n; ++f) second.step_frame();
+  CHECK(whole.save_state().positions == second.save_state().positions);
+  CHECK(whole.save_state().displacement == second.save_state().displacement);
+  // The same particle count with other triangles is another cloth: the hash covers the mesh.
+  ClothModel other = m;
+  std::swap(other.triangles[0][0], other.triangles[0][1]);
+  CHECK(cloth_hash(other) != cloth_hash(m));
+  const Scene disc = load_scene(root / "scenes/disc_hole.json");
+  CHECK_THROWS_WITH(check_fits(c, "half.state", disc, build_cloth(disc), 8, "cpu (double)"),
+                    Catch::Contains("different cloth"));
+  fs::remove_all(dir);
+}
+
+TEST_CASE("a mesh cloth exports as OBJ in its file's vertex order", "[mesh][export]") {
+  const fs::path root = CLOTHSIM_SOURCE_DIR, dir = scratch_dir();
+  const Scene s = load_scene(root / "scenes/disc_hole.json");
+  const ClothModel m = build_cloth(s);
+  CpuBackend<double> cpu(s, m);
+  for (int f = 0; f < 3; ++f) cpu.step_frame();
+  write_obj((dir / "out.obj").string(), m, cpu.snapshot());
+  // The file's own vertices, placed as the scene places them (offset [0, 1, 0]).
+  std::ifstream mesh(root / "scenes/meshes/disc_hole.obj"), out(dir / "out.obj");
+  std::vector<glm::dvec3> file, exported;
+  for (std::string line; std::getline(mesh, line);)
+    if (line.rfind("v ", 0) == 0) {
+      glm::dvec3 v;
+      std::sscanf(line.c_str(), "v %lf %lf %lf", &v.x, &v.y, &v.z);
+      file.push_back(v + glm::dvec3(0, 1, 0));
+    }
+  for (std::string line; std::getline(out, line);)
+    if (line.rfind("v ", 0) == 0) {
+      glm::dvec3 v;
+      std::sscanf(line.c_str(), "v %lf %lf %lf", &v.x, &v.y, &v.z);
+      exported.push_back(v);
+    }
+  REQUIRE(exported.size() == file.size());
+  int pinned = 0;
+  for (size_t i = 0; i < file.size(); ++i)
+    if (m.pinned[i]) {  // pins have not moved: vertex i of the export is vertex i of the file
+      ++pinned;
+      CHECK(glm::length(exported[i] - file[i]) < 1e-6);
+    }
+  CHECK(pinned > 0);
+  fs::remove_all(dir);
 }

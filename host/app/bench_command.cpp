@@ -33,8 +33,8 @@ int run_bench(const Opts& o) {
   BenchRunner runner(o.root, o.frames);
   nlohmann::json out = {{"gl_renderer", runner.renderer()}, {"frames", o.frames}, {"results", nlohmann::json::array()},
                         {"skipped", nlohmann::json::array()}};
-  fmt::print("{:>7} {:>7} {:>5} {:>4} {:>9} {:>10} {:>14} {:>6} {:>6} {:>9}\n", "backend", "solver", "size", "self",
-             "particles", "ms/frame", "p-substeps/s", "disp", "barr", "GPU MiB");
+  fmt::print("{:>7} {:>7} {:>5} {:>4} {:>9} {:>7} {:>10} {:>14} {:>6} {:>6} {:>9}\n", "backend", "solver", "size", "self",
+             "particles", "colours", "ms/frame", "p-substeps/s", "disp", "barr", "GPU MiB");
   int done = 0;
   const int total = int(o.sizes.size() * o.backends.size() * sc_modes.size() * o.solvers.size());
   Progress progress("bench configuration", total);
@@ -58,8 +58,8 @@ int run_bench(const Opts& o) {
         }
         const BenchResult r = backend == "gpu" ? runner.run_gpu(scene) : runner.run_cpu(scene);
         progress.finish();
-        fmt::print("{:>7} {:>7} {:>5} {:>4} {:>9} {:>10.3f} {:>14.3e} {:>6} {:>6} {:>9.1f}\n", backend, solver, n,
-                   sc ? "on" : "off", r.particles, r.ms_per_frame, r.particle_substeps_per_s, r.dispatches_per_frame, r.barriers_per_frame,
+        fmt::print("{:>7} {:>7} {:>5} {:>4} {:>9} {:>7} {:>10.3f} {:>14.3e} {:>6} {:>6} {:>9.1f}\n", backend, solver, n,
+                   sc ? "on" : "off", r.particles, r.colours, r.ms_per_frame, r.particle_substeps_per_s, r.dispatches_per_frame, r.barriers_per_frame,
                    r.gpu_memory_bytes / 1048576.0);
         out["results"].push_back(to_json(r, backend, solver, n, sc));
         ++done;

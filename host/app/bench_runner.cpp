@@ -131,6 +131,8 @@ BenchResult BenchRunner::run_gpu(const Scene& scene) {
     r.pass_timing = "glFinish + steady clock around each pass, separate frame (no GPU timer)";
   }
   r.particles = model.count();
+  r.springs = int(model.springs.size());
+  r.colours = model.colours();
   r.substeps_per_frame = scene.simulation.simulation_steps;
   r.particle_substeps_per_s = double(r.particles) * r.substeps_per_frame / (r.ms_per_frame * 1e-3);
   return r;
@@ -159,6 +161,8 @@ BenchResult BenchRunner::run_cpu(const Scene& scene) {
   r.pass_ms = time_passes(scene.simulation.simulation_steps, passes, [] {});
   r.pass_timing = "steady clock around each pass (CPU reference, float)";
   r.particles = model.count();
+  r.springs = int(model.springs.size());
+  r.colours = model.colours();
   r.substeps_per_frame = scene.simulation.simulation_steps;
   r.particle_substeps_per_s = double(r.particles) * r.substeps_per_frame / (r.ms_per_frame * 1e-3);
   cpu_rate_[scene.simulation.self_collision] = r.particle_substeps_per_s;
@@ -177,6 +181,8 @@ nlohmann::json to_json(const BenchResult& r, const std::string& backend, const s
           {"solver", solver},
           {"size", size},
           {"particles", r.particles},
+          {"springs", r.springs},
+          {"colours", r.colours},
           {"self_collision", sc},
           {"substeps_per_frame", r.substeps_per_frame},
           {"ms_per_frame", r.ms_per_frame},

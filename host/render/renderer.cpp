@@ -130,10 +130,11 @@ gl::Program& Renderer::program(ShaderKind kind) {
   return *slot;
 }
 
-void Renderer::draw_mesh(const Mesh& mesh, gl::Program& prog, bool lines) const {
+void Renderer::draw_mesh(const Mesh& mesh, gl::Program& prog, bool lines, GLsizei first, GLsizei count) const {
   prog.use();
   mesh.vao.bind();
-  glDrawElements(lines ? GL_LINES : GL_TRIANGLES, mesh.count, GL_UNSIGNED_INT, nullptr);
+  glDrawElements(lines ? GL_LINES : GL_TRIANGLES, count < 0 ? mesh.count : count, GL_UNSIGNED_INT,
+                 reinterpret_cast<const void*>(uintptr_t(first) * sizeof(uint32_t)));
   glBindVertexArray(0);
 }
 
@@ -179,7 +180,14 @@ void Renderer::draw(const gl::Buffer& positions, const gl::Buffer& normals, cons
     for (int t = 0; t < 3; ++t)
       if (look.wire_springs[t]) draw_mesh(*springs_[t], prog, true);
   } else {
-    draw_mesh(*cloth_, prog, false);
+    // Each cloth of the scene in its own colour (the first in the appearance's), so two cloths
+    // lying on each other can be told apart.
+    static const glm::vec4 kOthers[] = {{0.85f, 0.42f, 0.30f, 1.f}, {0.35f, 0.62f, 0.45f, 1.f}, {0.55f, 0.45f, 0.75f, 1.f}};
+    for (size_t k = 0; k < model_.parts.size(); ++k) {
+      const ClothPart& part = model_.parts[k];
+      prog.set("u_color", k == 0 ? look.color : kOthers[(k - 1) % 3]);
+      draw_mesh(*cloth_, prog, false, GLsizei(3 * part.first_triangle), GLsizei(3 * part.triangle_count));
+    }
   }
 
   // Colliders: their own buffers at the same bindings, shaded with the same program.

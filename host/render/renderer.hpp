@@ -69,7 +69,8 @@ class Renderer {
   struct Mesh;  // an index buffer in a VAO, plus vertex buffers for colliders (renderer.cpp)
 
  private:
-  void draw_mesh(const Mesh& mesh, gl::Program& program, bool lines) const;
+  // Indices [first, first + count) of the mesh (count < 0: all of them).
+  void draw_mesh(const Mesh& mesh, gl::Program& program, bool lines, GLsizei first = 0, GLsizei count = -1) const;
   gl::Program& program(ShaderKind kind);
 
   const ClothModel& model_;

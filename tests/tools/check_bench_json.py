@@ -9,7 +9,8 @@ import sys
 
 FIELDS = {"backend": str, "solver": str, "size": int, "particles": int, "self_collision": bool, "substeps_per_frame": int,
           "ms_per_frame": float, "particle_substeps_per_s": float, "pass_ms": dict, "pass_timing": str,
-          "dispatches_per_frame": (int, float), "barriers_per_frame": (int, float), "gpu_memory_bytes": int}
+          "dispatches_per_frame": (int, float), "barriers_per_frame": (int, float), "gpu_memory_bytes": int,
+          "springs": int, "colours": int}
 # The passes each backend's step runs (the GPU fuses collide_objects into advance or
 # resolve_self_contacts, and times the five stages of collide_self one by one).
 PASSES = {"gpu": {"advance", "count_cells", "scan_cells", "fill_cells", "sort_cells", "resolve_self_contacts",
@@ -35,6 +36,10 @@ def main():
             else:
                 assert isinstance(value, kind), f"{key} has type {type(value).__name__}"
         assert r["particles"] == r["size"] ** 2
+        n = r["size"]
+        # The grid's springs and its own twelve colours (docs/model.md, "The cloth model").
+        assert r["springs"] == 2 * (n - 1) * n + 2 * (n - 1) ** 2 + 2 * (n - 2) * n, r["springs"]
+        assert r["colours"] == 12, r["colours"]
         assert r["solver"] in ("classic", "xpbd"), r["solver"]
         passes = PASSES[r["backend"]]
         if r["solver"] == "xpbd":
