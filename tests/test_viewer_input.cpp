@@ -67,6 +67,29 @@ TEST_CASE("the pick ray through a particle's pixel hits that particle on a known
   CHECK_FALSE(pick_particle(pick_ray(cam, {1.f, 1.f}, viewport), pos, m).has_value());
 }
 
+TEST_CASE("picking works on a mesh cloth: the ray through a vertex's pixel picks that vertex", "[viewer][mesh]") {
+  const Scene s = load_scene(std::string(CLOTHSIM_SOURCE_DIR) + "/scenes/disc_hole.json");
+  const ClothModel m = build_cloth(s);
+  std::vector<glm::vec4> pos;
+  for (auto& p : m.initial) pos.emplace_back(glm::vec3(p), 1.f);
+  OrbitCamera cam = default_camera(s, m, 800.f / 600.f);
+  const glm::vec2 viewport(800, 600);
+  int tried = 0;
+  for (int i = 60; i < m.count(); i += 53) {  // inner rings' vertices, away from the rims
+    const glm::dvec3 p = m.initial[i];
+    const double r = std::hypot(p.x, p.z);
+    if (r < 0.22 || r > 0.43) continue;
+    ++tried;
+    const Ray ray = pick_ray(cam, project(cam, glm::vec3(pos[i]), viewport), viewport);
+    auto picked = pick_particle(ray, pos, m);
+    REQUIRE(picked.has_value());
+    CHECK(*picked == i);
+  }
+  CHECK(tried >= 3);
+  // The hole picks nothing: a ray through the disc's centre.
+  CHECK_FALSE(pick_particle(pick_ray(cam, project(cam, glm::vec3(0, 1, 0), viewport), viewport), pos, m).has_value());
+}
+
 TEST_CASE("a grabbed particle follows the mouse in the plane facing the camera", "[viewer]") {
   OrbitCamera cam;
   const glm::vec3 grabbed(0.5f, 1.f, 0.5f);
