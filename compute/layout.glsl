@@ -115,7 +115,8 @@ struct PlaneCollider {
   vec4 motion;  // xyz m over this substep
 };
 
-// Per-vertex extras of a collider mesh (the cloth derives them from its grid instead).
+// Per-vertex extras of a drawn mesh: a collider's uv and tangent; the cloth's uv, and in uv.zw the particles
+// whose difference is its tangent (ClothModel::tangent_ends; the cloth's tangent moves with it).
 struct MeshVertex {
   vec4 uv;       // xy texture coordinates
   vec4 tangent;  // xyz unit tangent along +u

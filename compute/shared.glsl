@@ -1,4 +1,4 @@
-// What lets one file be compiled as GLSL and as C++ (spring_grid.glsl, spatial_hash.glsl):
+// What lets one file be compiled as GLSL and as C++ (spatial_hash.glsl):
 // GLSL's scalar type names and a function qualifier that makes a C++ definition inline and
 // constexpr. Write shared functions with `SHARED` in front, GLSL constructor casts (uint(x),
 // int(x)), and only what both languages mean the same by (32-bit wrap-around uint arithmetic,

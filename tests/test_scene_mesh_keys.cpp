@@ -238,7 +238,8 @@ TEST_CASE("two cloths round-trip through scene_to_json to an equal scene", "[sce
   require_equal(default_scene(), parse_scene(scene_to_json(default_scene()), "<built-in pinned2>"));
 }
 
-TEST_CASE("--set edits the first cloth, cloth[i] any, and cloth.mesh turns a grid into a mesh", "[scene][mesh_keys]") {
+TEST_CASE("overrides edit the first cloth with cloth.KEY, any with cloth[i].KEY, and cloth.mesh makes a grid a mesh",
+          "[scene][mesh_keys]") {
   const std::string two = std::string(R"({"cloth": [)") + kGrid + ", " + kMesh + "]}";
   const Scene a = parse_scene(two, "scenes/two.json", {"cloth.ks=77", "cloth[1].ks=88", "cloth[1].scale=0.5"});
   CHECK(a.cloth.ks == 77);
