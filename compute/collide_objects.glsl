@@ -42,6 +42,55 @@ vec3 moving_sphere_push(vec3 e, float dist, float r, vec3 d, vec3 m) {
   return out_along_e;
 }
 
+// A mass outside a sphere at the end of the substep (e = x - o, dist = |e| > r) that moved by
+// rel = d - m relative to it: true if its path went into the sphere deeper than 0.1 mm, with
+// t - x the push back to where the path entered the surface (passed_through_sphere in
+// host/core/reference_collisions.cpp).
+bool passed_through_sphere(vec3 e, float dist, float r, vec3 rel, out vec3 t_minus_x) {
+  t_minus_x = vec3(0.0);
+  precise float gap = dist - r;
+  float a = dot3(rel, rel);
+  precise float gap2 = gap * gap;
+  if (!(a > gap2)) return false;
+  precise vec3 e_prev = e - rel;
+  float b = dot3(e_prev, rel);
+  if (!(b < 0.0)) return false;
+  precise float inv_a = 1.0 / a;
+  precise float s_closest = min(1.0, -b * inv_a);
+  precise vec3 closest = e_prev + rel * s_closest;
+  precise float depth = r - length3(closest);
+  if (!(depth > 1e-4)) return false;
+  precise float c = dot3(e_prev, e_prev) - r * r;
+  if (c > 0.0) {
+    precise float disc = b * b - a * c;
+    precise float s_in = (-b - sqrt(disc)) * inv_a;
+    precise vec3 entry = (e_prev + rel * s_in) - e;
+    t_minus_x = entry;
+  } else {
+    float prev_dist = length3(e_prev);
+    precise float inv_prev = 1.0 / prev_dist;
+    precise vec3 back = e_prev * (r * inv_prev) - e;
+    precise vec3 up = vec3(0.0, r, 0.0) - e;
+    t_minus_x = prev_dist > 0.0 ? back : up;
+  }
+  return true;
+}
+
+// After the friction blend (whose chord from x_prev can run inside the sphere), a mass deeper
+// than 0.1 mm goes back to the surface along e, without friction (keep_out_of_sphere in
+// host/core/reference_collisions.cpp).
+void keep_out_of_sphere(vec3 o, float r, inout vec3 x, inout vec3 d) {
+  vec3 e = x - o;
+  float dist = length3(e);
+  precise float depth = r - dist;
+  if (!(depth > 1e-4) || !(dist > 0.0)) return;
+  precise float scale = depth * (1.0 / dist);
+  precise vec3 out_along_e = e * scale;
+  precise vec3 nx = x + out_along_e, nd = d + out_along_e;
+  x = nx;
+  d = nd;
+}
+
 // With `friction` false every contact keeps all of its tangential motion (keep = 1): the pure
 // push-out that xpbd's constraint pass applies after each correction (docs/model.md); applying
 // it twice changes nothing.
@@ -53,48 +102,63 @@ void collide_with_objects_friction(inout vec3 x, inout vec3 d, bool friction) {
     float r = origin_radius.w;
     vec3 e = x - origin_radius.xyz;
     float dist = length3(e);
-    if (dist > r) continue;
-    if (any(notEqual(m, vec3(0.0)))) {
-      blend_to_moving(moving_sphere_push(e, dist, r, d, m), keep, m, x, d);
+    if (dist > r) {
+      // Outside at the end: caught if it went through the sphere during the substep.
+      vec3 through;
+      if (!passed_through_sphere(e, dist, r, d - m, through)) continue;
+      if (any(notEqual(m, vec3(0.0)))) blend_to_moving(through, keep, m, x, d);
+      else blend_to(through, keep, x, d);
+      keep_out_of_sphere(origin_radius.xyz, r, x, d);
       continue;
     }
+    if (any(notEqual(m, vec3(0.0)))) {
+      blend_to_moving(moving_sphere_push(e, dist, r, d, m), keep, m, x, d);
+      keep_out_of_sphere(origin_radius.xyz, r, x, d);
+      continue;
+    }
+    // The push out along e, unless the mass passed the centre this substep: then back out on
+    // its own side, along e_prev = e - d (a mass exactly at the centre goes up).
+    precise vec3 e_prev = e - d;
+    float prev_dist = length3(e_prev);
     precise vec3 t_minus_x;
-    if (dist > 0.0) {
+    if (dot3(e, e_prev) < 0.0 && prev_dist > 0.0) {
+      precise float inv_prev = 1.0 / prev_dist;
+      t_minus_x = e_prev * (r * inv_prev) - e;
+    } else if (dist > 0.0) {
       precise float scale = (r - dist) * (1.0 / dist);
       t_minus_x = e * scale;
     } else {
-      t_minus_x = vec3(0.0, r, 0.0);  // at the centre there is no outward direction: push up
+      t_minus_x = vec3(0.0, r, 0.0);
     }
     blend_to(t_minus_x, keep, x, d);
+    keep_out_of_sphere(origin_radius.xyz, r, x, d);
   }
   for (int k = 0; k < int(params.plane_count); ++k) {
-    vec3 q = texelFetch(planes_view, PLANE_TEXELS * k).xyz;
+    vec4 point_front = texelFetch(planes_view, PLANE_TEXELS * k);
     vec4 normal_keep = texelFetch(planes_view, PLANE_TEXELS * k + 1);
     vec3 m = texelFetch(planes_view, PLANE_TEXELS * k + 2).xyz;
     vec3 n = normal_keep.xyz;
+    float front = point_front.w;
     if (!friction) normal_keep.w = 1.0;
-    if (any(notEqual(m, vec3(0.0)))) {
-      // The side test in the plane's frame, x_prev - p_prev = (x - p) - (d - m): it sees a
-      // plane that swept over a mass at any speed.
-      float dist = dot3(x - q, n);
-      precise vec3 rel_d = d - m;
-      precise float dist_prev = dist - dot3(rel_d, n);
-      precise float crossing = dist * dist_prev;
-      if (crossing > 0.0) continue;
-      float side = dist_prev > 0.0 ? 1.0 : (dist_prev < 0.0 ? -1.0 : 0.0);
-      precise float along = 1e-4 * side - dist;
-      precise vec3 t_minus_x = n * along;
-      blend_to_moving(t_minus_x, normal_keep.w, m, x, d);
-      continue;
-    }
-    float dist = dot3(x - q, n);
-    precise float dist_prev = dist - dot3(d, n);
+    // The classic crossing test (in the plane's frame, x_prev - p_prev = (x - p) - (d - m), so a
+    // sweep is seen at any speed), and a mass found behind the front at both ends of the
+    // substep is lifted to the front (docs/model.md).
+    float dist = dot3(x - point_front.xyz, n);
+    precise vec3 rel_d = d - m;
+    precise float dist_prev = dist - dot3(rel_d, n);
     precise float crossing = dist * dist_prev;
-    if (crossing > 0.0) continue;
-    float side = dist_prev > 0.0 ? 1.0 : (dist_prev < 0.0 ? -1.0 : 0.0);
+    float side;
+    if (crossing > 0.0) {
+      precise float ahead = dist * front;
+      if (!(ahead < 0.0)) continue;
+      side = front;
+    } else {
+      side = dist_prev > 0.0 ? 1.0 : (dist_prev < 0.0 ? -1.0 : 0.0);
+    }
     precise float along = 1e-4 * side - dist;
     precise vec3 t_minus_x = n * along;
-    blend_to(t_minus_x, normal_keep.w, x, d);
+    if (any(notEqual(m, vec3(0.0)))) blend_to_moving(t_minus_x, normal_keep.w, m, x, d);
+    else blend_to(t_minus_x, normal_keep.w, x, d);
   }
 }
 

@@ -110,7 +110,7 @@ struct SphereCollider {
 };
 
 struct PlaneCollider {
-  vec4 point;   // xyz a point on the plane (at the substep's end)
+  vec4 point;   // xyz a point on the plane (at the substep's end), w its front: +1 or -1, the cloth's side
   vec4 normal;  // xyz unit normal, w = 1 - friction
   vec4 motion;  // xyz m over this substep
 };

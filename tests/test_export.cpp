@@ -22,19 +22,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// A scratch directory unique to this process and test, removed at the end.
-struct TempDir {
-  fs::path path;
-  explicit TempDir(const std::string& name)
-      : path(fs::temp_directory_path() / fmt::format("clothsim_test_export_{}_{}", getpid(), name)) {
-    fs::remove_all(path);
-    fs::create_directories(path);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
-  std::string operator/(const std::string& f) const { return (path / f).string(); }
+struct TempDir : test::TempDir {
+  explicit TempDir(const std::string& name) : test::TempDir("export", name) {}
 };
 
 std::vector<glm::dvec3> read_obj_vertices(const std::string& path) {

@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <cstring>
+#include <filesystem>
+#include <unistd.h>
 #include <string>
 #include <vector>
 
@@ -12,6 +14,23 @@
 #include "scene.hpp"
 
 namespace clothsim::test {
+
+// A scratch directory unique to this process, suite and test, removed at the end.
+struct TempDir {
+  std::filesystem::path path;
+  TempDir(const std::string& suite, const std::string& name)
+      : path(std::filesystem::temp_directory_path() / fmt::format("clothsim_test_{}_{}_{}", suite, getpid(), name)) {
+    std::filesystem::remove_all(path);
+    std::filesystem::create_directories(path);
+  }
+  ~TempDir() {
+    std::error_code ec;
+    std::filesystem::remove_all(path, ec);
+  }
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+  std::string operator/(const std::string& f) const { return (path / f).string(); }
+};
 
 // A classic-style scene with the given grid and JSON fragments merged in by --set overrides.
 inline Scene make_scene(int nw, int nh, int orientation, std::vector<std::string> sets = {},

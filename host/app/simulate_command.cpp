@@ -1,5 +1,6 @@
 // `clothsim simulate SCENE --frames N [--backend gpu|cpu] [--export FILE.obj|FILE.pc2|DIR/]
-//  [--export-every K] [--load-state FILE] [--save-state FILE] [--stats]`
+//  [--export-every K] [--export-mesh FILE.obj] [--load-state FILE] [--save-state FILE] [--stats]`
+// Every output replaces the file it names only once complete (docs/export.md).
 #include <algorithm>
 #include <unistd.h>
 
@@ -11,6 +12,7 @@
 #include "cli_common.hpp"
 #include "commands.hpp"
 #include "frame_export.hpp"
+#include "intersections.hpp"
 
 namespace clothsim {
 namespace {
@@ -57,6 +59,14 @@ int64_t load_state(const std::string& path, const Scene& scene, const ClothModel
     backend.load_state(c.state);
     fmt::print("loaded {}: frame {} ({:.4g} s simulated), saved by backend {} from {}\n", path, c.state.frame,
                c.state.time, c.backend, c.scene);
+    // The displacements are per substep: another substep length rescales them (the cloth keeps
+    // its velocity); a version-1 file did not record its length, so it is taken as this one.
+    if (c.state.dt == 0)
+      fmt::print("  (a version-1 state, which does not record its substep length: taken as this scene's {:.6g} s)\n",
+                 scene.dt());
+    else if (c.state.dt != scene.dt())
+      fmt::print("  saved with substeps of {:.6g} s, this scene's are {:.6g} s: displacements scaled by {:.6g}\n",
+                 c.state.dt, scene.dt(), scene.dt() / c.state.dt);
     return c.state.frame;
   } catch (const CheckpointError& e) {
     throw ExitError(kExitBadInput, fmt::format("--load-state {}", e.what()));
@@ -87,7 +97,7 @@ void add_simulate_command(CLI::App& app, std::function<int()>& run) {
     SceneOptions scene;
     int frames = 90;
     std::string backend = "gpu";
-    std::string export_path, load_path, save_path;
+    std::string export_path, export_mesh, load_path, save_path;
     int export_every = 1;
     bool stats = false;
   };
@@ -101,18 +111,24 @@ void add_simulate_command(CLI::App& app, std::function<int()>& run) {
   cmd->add_option("--export", o->export_path,
                   "FILE.obj: the final cloth; FILE.pc2: a point cache of every frame plus FILE.obj, the mesh; "
                   "DIR/: DIR/frame_0000.obj, one OBJ per frame");
+  cmd->add_option("--export-mesh", o->export_mesh,
+                  "with --export FILE.pc2: where the mesh goes (default FILE.obj beside it, which is written only "
+                  "if absent or already that mesh)");
   cmd->add_option("--export-every", o->export_every, "with a .pc2 or DIR/ export: write every K-th frame")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--load-state", o->load_path, "continue from a state saved by --save-state");
   cmd->add_option("--save-state", o->save_path, "save the final state (positions, displacements, time)");
-  cmd->add_flag("--stats", o->stats, "print frames, timing, stretch, energy, clearances");
+  cmd->add_flag("--stats", o->stats, "print frames, timing, stretch, energy, clearances, self-intersections");
   cmd->callback([o, &run] {
     run = [o]() -> int {
       const ExportKind kind = export_kind(o->export_path);
       const bool sequence = kind == ExportKind::PointCache || kind == ExportKind::ObjSequence;
       if (o->export_every != 1 && !sequence)
         throw ExitError(kExitBadInput, "--export-every: needs --export FILE.pc2 or --export DIR/ (an OBJ holds one frame)");
+      if (!o->export_mesh.empty() && kind != ExportKind::PointCache)
+        throw ExitError(kExitBadInput, "--export-mesh: needs --export FILE.pc2 (the mesh the point cache deforms)");
       if (kind == ExportKind::Obj || kind == ExportKind::PointCache) check_writable("--export", o->export_path);
+      if (!o->export_mesh.empty()) check_writable("--export-mesh", o->export_mesh);
       if (!o->save_path.empty()) check_writable("--save-state", o->save_path);
       const Scene scene = o->scene.load();
       const ClothModel model = build_cloth(scene);
@@ -139,7 +155,8 @@ void add_simulate_command(CLI::App& app, std::function<int()>& run) {
       };
       if (sequence)
         export_guarded([&] {
-          frames = open_frame_export(kind, o->export_path, model, start, o->export_every, backend->snapshot());
+          frames = open_frame_export(kind, o->export_path, model, start, o->export_every, backend->snapshot(),
+                                     o->export_mesh);
         });
       Progress progress(frames ? "export frame" : "frame", o->frames);
       // A diverged run stops with the message. A sequence keeps the frames written so far (all
@@ -150,8 +167,10 @@ void add_simulate_command(CLI::App& app, std::function<int()>& run) {
           if (!message) continue;
           progress.finish();
           if (frames) {
-            export_guarded([&] { frames->finish(); });
-            fmt::print("wrote {} (the frames before the divergence)\n", frames->summary());
+            // A sequence keeps its OBJs; a PC2 stays PATH.partial and PATH is left as it was.
+            std::string said;
+            export_guarded([&] { said = frames->finish_incomplete("the divergence"); });
+            fmt::print("{}\n", said);
           } else if (kind == ExportKind::Obj) {
             int kept = 0;
             const ClothSnapshot good = backend->last_good(&kept);
@@ -183,6 +202,8 @@ void add_simulate_command(CLI::App& app, std::function<int()>& run) {
       if (o->stats || kind == ExportKind::Obj) {
         const ClothSnapshot snap = backend->snapshot();
         if (o->stats) print_stats(scene, measure(scene, model, snap), o->frames, wall);
+        if (o->stats)  // exact, on the CPU: only asked for here
+          fmt::print("self-intersections {} (pairs of non-adjacent triangles)\n", count_self_intersections(model, snap));
         if (kind == ExportKind::Obj) export_obj(snap, "");
       }
       if (!o->save_path.empty()) save_state(o->save_path, scene, model, *backend);

@@ -75,9 +75,10 @@ template <class R> class CpuBackend final : public Backend {
     return s;
   }
   std::string name() const override { return sizeof(R) == 4 ? "cpu (float)" : "cpu (double)"; }
-  SavedState save_state() override { return save_streams(state_, frame_, time_); }
+  SavedState save_state() override { return save_streams(state_, frame_, time_, dt_); }
+  // A state saved with another substep length has its displacements rescaled to this one's.
   void load_state(const SavedState& saved) override {
-    load_streams(saved, state_);
+    load_streams(saved, state_, dt_);
     compute_normals(model_, state_);
     frame_ = int(saved.frame);
     time_ = saved.time;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -9,18 +10,23 @@
 
 #include <fmt/format.h>
 
+#include "output_file.hpp"
+
 namespace clothsim {
 namespace {
 
-// State file, little endian (README "Checkpoints"):
+// State file, little endian (README "Checkpoints", docs/export.md):
 //   char[16] "clothsim state\n\0", u32 version, u32 scalar bytes, u32 nw, u32 nh, u64 cloth hash,
 //   i64 frame, f64 time, u32 scene name length, u32 backend name length, u32 pinned particles,
-//   u32 zero (reserved), the two names,
+//   u32 zero (reserved), [version 2: f64 dt, the substep length the displacements are per],
+//   the two names,
 //   positions (nw*nh*4 scalars), displacements (nw*nh*4 scalars), u64 FNV-1a of all before.
+// Version 1 (72-byte header, no dt) is still read: its dt is unknown (SavedState::dt = 0) and
+// taken as the loading scene's, i.e. its displacements load unscaled, as they always did.
 static_assert(std::endian::native == std::endian::little, "state files are written in host byte order");
 constexpr char kMagic[16] = "clothsim state\n";
-constexpr uint32_t kVersion = 1;
-constexpr size_t kHeaderBytes = 72;
+constexpr uint32_t kVersion = 2;
+constexpr size_t kHeaderBytesV1 = 72, kHeaderBytes = 80;  // by version
 constexpr uint32_t kMaxName = 4096;
 
 constexpr uint64_t kFnvOffset = 0xcbf29ce484222325ull, kFnvPrime = 0x100000001b3ull;
@@ -58,17 +64,18 @@ int pinned_count(const ClothModel& model) {
   return n;
 }
 
-template <class R> SavedState save_streams(const State<R>& s, int64_t frame, double time) {
+template <class R> SavedState save_streams(const State<R>& s, int64_t frame, double time, double dt) {
   SavedState out;
   out.scalar_bytes = int(sizeof(R));
   out.frame = frame;
   out.time = time;
+  out.dt = dt;
   out.positions = bytes_of(s.pos);
   out.displacement = bytes_of(s.disp);
   return out;
 }
 
-template <class R> void load_streams(const SavedState& saved, State<R>& s) {
+template <class R> void load_streams(const SavedState& saved, State<R>& s, double dt) {
   // check_fits refuses these for users; this guards callers that skip it.
   if (saved.scalar_bytes != int(sizeof(R)) || saved.particles() != s.pos.size() ||
       saved.displacement.size() != saved.positions.size())
@@ -81,6 +88,10 @@ template <class R> void load_streams(const SavedState& saved, State<R>& s) {
   }
   s.disp.resize(s.pos.size());
   std::memcpy(s.disp.data(), saved.displacement.data(), saved.displacement.size());
+  // Saved per substep of another length: the same velocity in this one (as a live edit of the
+  // substeps does, with the same function on both backends, so they round alike). Equal
+  // lengths, or an unknown one (a version-1 file), leave the bits as they are.
+  if (saved.dt > 0 && dt > 0 && saved.dt != dt) rescale_displacement(s, dt / saved.dt);
 }
 
 uint64_t cloth_hash(const ClothModel& m) {
@@ -117,10 +128,14 @@ void write_checkpoint(const std::string& path, const Checkpoint& c) {
   put<uint32_t>(head, uint32_t(c.backend.size()));
   put<uint32_t>(head, uint32_t(c.pins));
   put<uint32_t>(head, 0);
+  put<double>(head, s.dt);
   head.insert(head.end(), c.scene.begin(), c.scene.end());
   head.insert(head.end(), c.backend.begin(), c.backend.end());
 
-  const std::string tmp = path + ".tmp";
+  // Under a temporary name beside `path`, renamed once complete (output_file.hpp): an
+  // interrupted or failed save leaves the old file.
+  PendingFile out(path);
+  const std::string& tmp = out.temp();
   std::FILE* f = std::fopen(tmp.c_str(), "wb");
   if (!f) throw CheckpointError(fmt::format("{}: cannot open for writing ({})", tmp, std::strerror(errno)));
   uint64_t h = kFnvOffset;
@@ -132,11 +147,11 @@ void write_checkpoint(const std::string& path, const Checkpoint& c) {
   }
   ok = ok && std::fwrite(&h, sizeof h, 1, f) == 1;
   ok = std::fclose(f) == 0 && ok;
-  std::error_code ec;
-  if (ok) std::filesystem::rename(tmp, path, ec);
-  if (!ok || ec) {
-    std::filesystem::remove(tmp, ec);
-    throw CheckpointError(fmt::format("{}: writing the state failed", path));
+  if (!ok) throw CheckpointError(fmt::format("{}: writing the state failed", path));
+  try {
+    out.commit();
+  } catch (const std::runtime_error& e) {
+    throw CheckpointError(e.what());
   }
 }
 
@@ -150,9 +165,14 @@ Checkpoint read_checkpoint(const std::string& path) {
   in.read(reinterpret_cast<char*>(head), std::streamsize(std::min<uintmax_t>(size, kHeaderBytes)));
   if (size < sizeof kMagic || std::memcmp(head, kMagic, sizeof kMagic) != 0)
     throw fail("not a clothsim state file (no 'clothsim state' header)");
-  if (size < kHeaderBytes) throw fail(fmt::format("truncated ({} bytes, shorter than the header)", size));
-  if (const uint32_t v = get<uint32_t>(head + 16); v != kVersion)
-    throw fail(fmt::format("state file version {}, this clothsim reads version {}", v, kVersion));
+  if (size < sizeof kMagic + 4) throw fail(fmt::format("truncated ({} bytes, shorter than the header)", size));
+  const uint32_t version = get<uint32_t>(head + 16);
+  if (version != 1 && version != kVersion)
+    throw fail(fmt::format("state file version {}, this clothsim reads versions 1 and {}", version, kVersion));
+  const size_t header = version == 1 ? kHeaderBytesV1 : kHeaderBytes;
+  if (size < header) throw fail(fmt::format("truncated ({} bytes, shorter than the header)", size));
+  in.clear();
+  in.seekg(std::streamoff(header));  // a version-1 header is shorter than what was read
 
   Checkpoint c;
   SavedState& s = c.state;
@@ -163,7 +183,7 @@ Checkpoint read_checkpoint(const std::string& path) {
     throw fail(fmt::format("grid {}x{} is out of range", nw, nh));
   if (scene_len > kMaxName || backend_len > kMaxName) throw fail("corrupted header (name lengths out of range)");
   const uint64_t stream = uint64_t(nw) * nh * 4 * scalar;
-  const uint64_t expected = kHeaderBytes + scene_len + backend_len + 2 * stream + sizeof(uint64_t);
+  const uint64_t expected = header + scene_len + backend_len + 2 * stream + sizeof(uint64_t);
   if (size != expected)
     throw fail(fmt::format("{} ({} bytes, a {}x{} cloth of {}-byte scalars needs {})",
                            size < expected ? "truncated" : "has trailing bytes", size, nw, nh, scalar, expected));
@@ -174,6 +194,9 @@ Checkpoint read_checkpoint(const std::string& path) {
   c.pins = int(get<uint32_t>(head + 64));
   s.frame = get<int64_t>(head + 40);
   s.time = get<double>(head + 48);
+  s.dt = version == 1 ? 0.0 : get<double>(head + 72);
+  c.version = int(version);
+  // Every size is checked against the file's above, so nothing below allocates more than it holds.
   c.scene.resize(scene_len);
   c.backend.resize(backend_len);
   s.positions.resize(stream);
@@ -186,12 +209,29 @@ Checkpoint read_checkpoint(const std::string& path) {
   in.read(reinterpret_cast<char*>(&stored), sizeof stored);
   if (!in) throw fail("read failed");
   uint64_t h = kFnvOffset;
-  fnv(h, head, kHeaderBytes);
+  fnv(h, head, header);
   fnv(h, c.scene.data(), scene_len);
   fnv(h, c.backend.data(), backend_len);
   fnv(h, s.positions.data(), stream);
   fnv(h, s.displacement.data(), stream);
   if (h != stored) throw fail("corrupted (checksum mismatch)");
+  // A state that passed its checksum may still hold what no run can continue from (written
+  // by hand, or by a foreign tool): every number is checked before a backend sees it.
+  if (!std::isfinite(s.time) || s.time < 0) throw fail(fmt::format("the simulated time is {} (expected a finite time >= 0)", s.time));
+  if (s.frame < 0) throw fail(fmt::format("the frame is {} (expected >= 0)", s.frame));
+  if (version != 1 && !(std::isfinite(s.dt) && s.dt > 0))
+    throw fail(fmt::format("the substep length is {} s (expected a finite length > 0)", s.dt));
+  const char* streams[2] = {"position", "displacement"};
+  for (int k = 0; k < 2; ++k) {
+    const std::vector<uint8_t>& bytes = k == 0 ? s.positions : s.displacement;
+    const size_t n = bytes.size() / scalar;
+    for (size_t i = 0; i < n; ++i) {
+      const double v = scalar == 8 ? get<double>(bytes.data() + 8 * i) : double(get<float>(bytes.data() + 4 * i));
+      if (!std::isfinite(v))
+        throw fail(fmt::format("the {} of particle {} has {} = {} (a state holds finite numbers only)", streams[k],
+                               i / 4, "xyzw"[i % 4], v));
+    }
+  }
   return c;
 }
 
@@ -213,8 +253,8 @@ void check_fits(const Checkpoint& c, const std::string& path, const Scene& scene
 }
 
 #define CLOTHSIM_INSTANTIATE(R)                                                  \
-  template SavedState save_streams<R>(const State<R>&, int64_t, double);        \
-  template void load_streams<R>(const SavedState&, State<R>&);
+  template SavedState save_streams<R>(const State<R>&, int64_t, double, double); \
+  template void load_streams<R>(const SavedState&, State<R>&, double);
 CLOTHSIM_INSTANTIATE(float)
 CLOTHSIM_INSTANTIATE(double)
 

@@ -20,6 +20,8 @@ struct SavedState {
   int scalar_bytes = 0;     // 4 (float) or 8 (double)
   int64_t frame = 0;        // frames simulated since the initial state
   double time = 0;          // simulated seconds
+  double dt = 0;            // the substep length the displacements are per (s); 0 = unknown
+                            // (a version-1 file): taken as the loading scene's
   std::vector<uint8_t> positions;       // 4 scalars per particle: x, y, z, inverse mass
   std::vector<uint8_t> displacement;  // 4 scalars per particle: what the integrator carries
                                         // besides the positions (see velocity_stream)
@@ -28,10 +30,14 @@ struct SavedState {
 
 // The one place that knows which State members are saved (positions and State::disp);
 // everything else goes through these two.
-template <class R> SavedState save_streams(const State<R>& s, int64_t frame, double time);
+// `dt`: the substep length the state's displacements are per (the scene's dt()).
+template <class R> SavedState save_streams(const State<R>& s, int64_t frame, double time, double dt);
 // Into a state of the same cloth: xyz and the displacements bit for bit; the inverse masses
 // (w) stay those of `s`, i.e. of the scene being run, so a changed density takes effect.
-template <class R> void load_streams(const SavedState& saved, State<R>& s);
+// `dt` is the substep length of the scene being run: a state saved with another one has its
+// displacements rescaled by dt / saved.dt (rescale_displacement), so the cloth keeps its
+// velocity; with the same length (or an unknown one, saved.dt = 0) they load bit for bit.
+template <class R> void load_streams(const SavedState& saved, State<R>& s, double dt);
 
 // Identifies "the same cloth": the grid, its start positions (width, height, orientation)
 // and its pins, the things that decide which particle is which and which springs exist.
@@ -48,6 +54,7 @@ struct Checkpoint {
   std::string scene;       // the scene it was saved from, for messages
   std::string backend;     // the backend's name, for messages
   SavedState state;
+  int version = 2;         // of the file it was read from (1: no dt recorded)
 };
 
 // A state file that cannot be read or does not fit: the message names the file and why.
@@ -55,9 +62,12 @@ struct CheckpointError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// Written to PATH.tmp and renamed, so an interrupted save never leaves half a file.
+// Written to a temporary beside PATH (output_file.hpp) and renamed, so an interrupted save
+// never leaves half a file and a failed one leaves the old file.
 void write_checkpoint(const std::string& path, const Checkpoint& c);
-// Checks magic, version, sizes and the checksum: a truncated or foreign file throws.
+// Checks magic, version (1 or 2), sizes (against the file's, before allocating) and the
+// checksum, then that the time, dt and every position and displacement are finite: a
+// truncated, foreign or non-finite file throws, naming the file.
 Checkpoint read_checkpoint(const std::string& path);
 // Throws unless `c` is of this cloth (cloth_hash) and of a backend with `scalar_bytes`
 // scalars; the message names both sides.

@@ -2,12 +2,17 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <limits>
 #include <stdexcept>
+#include <utility>
 
 #include <fmt/format.h>
 #include <fmt/os.h>
+
+#include "output_file.hpp"
 
 
 namespace clothsim {
@@ -63,8 +68,16 @@ ClothStats measure(const Scene& scene, const ClothModel& m, const ClothSnapshot&
 }
 
 void write_obj(const std::string& path, const ClothModel& m, const ClothSnapshot& s) {
-  std::FILE* f = std::fopen(path.c_str(), "w");
-  if (!f) throw std::runtime_error(fmt::format("{}: cannot open for writing", path));
+  // Written under a temporary name beside `path` and renamed once complete (output_file.hpp),
+  // so `path` holds the old file or the whole new one, never a part.
+  PendingFile out(path);
+  std::FILE* f = std::fopen(out.temp().c_str(), "w");
+  if (!f) throw std::runtime_error(fmt::format("{}: cannot open for writing ({})", path, std::strerror(errno)));
+  // Closed on every path: fmt::print throws when a write fails (a full disk).
+  struct Closer {
+    std::FILE*& f;
+    ~Closer() { if (f) std::fclose(f); }
+  } closer{f};
   if (m.is_grid())
     fmt::print(f, "# clothsim cloth, {}x{} particles, row-major\n", m.nw, m.nh);
   else
@@ -78,7 +91,10 @@ void write_obj(const std::string& path, const ClothModel& m, const ClothSnapshot
   }
   for (auto& t : m.triangles)
     fmt::print(f, "f {0}/{0}/{0} {1}/{1}/{1} {2}/{2}/{2}\n", t[0] + 1, t[1] + 1, t[2] + 1);
-  if (std::fclose(f) != 0) throw std::runtime_error(fmt::format("{}: write failed", path));
+  const bool ok = !std::ferror(f);
+  const bool closed = std::fclose(std::exchange(f, nullptr)) == 0;
+  if (!ok || !closed) throw std::runtime_error(fmt::format("{}: write failed", path));
+  out.commit();
 }
 
 }  // namespace clothsim

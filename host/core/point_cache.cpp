@@ -3,6 +3,8 @@
 #include <bit>
 #include <cerrno>
 #include <cstring>
+#include <filesystem>
+#include <memory>
 #include <stdexcept>
 
 #include <fmt/format.h>
@@ -68,12 +70,16 @@ void Pc2Writer::close() {
   if (rc != 0) throw std::runtime_error(fmt::format("{}: write failed", path_));
 }
 
-Pc2Header read_pc2_header(const std::string& path) {
-  std::FILE* f = std::fopen(path.c_str(), "rb");
-  if (!f) throw std::runtime_error(fmt::format("{}: cannot open", path));
+namespace {
+
+// The header, checked against the file's size before anything is allocated from it: a header
+// claiming more points or samples than the file holds (truncated, or corrupted) throws.
+Pc2Header read_checked_header(const std::string& path, std::FILE* f) {
+  std::error_code ec;
+  const uintmax_t size = std::filesystem::file_size(path, ec);
+  if (ec) throw std::runtime_error(fmt::format("{}: cannot open ({})", path, ec.message()));
   uint8_t head[kHeaderBytes];
   const bool ok = std::fread(head, 1, sizeof head, f) == sizeof head;
-  std::fclose(f);
   if (!ok || std::memcmp(head, kMagic, 12) != 0) throw std::runtime_error(fmt::format("{}: not a PC2 file", path));
   Pc2Header h;
   std::memcpy(&h.version, head + 12, 4);
@@ -81,20 +87,44 @@ Pc2Header read_pc2_header(const std::string& path) {
   std::memcpy(&h.start_frame, head + 20, 4);
   std::memcpy(&h.sample_rate, head + 24, 4);
   std::memcpy(&h.samples, head + 28, 4);
+  if (h.points < 0 || h.samples < 0)
+    throw std::runtime_error(fmt::format("{}: corrupted header ({} points, {} samples)", path, h.points, h.samples));
+  // At most 2^31 x 2^31 x 12 bytes: no overflow in 64 bits. A cache being written may hold
+  // part of a sample past the count, so more bytes than needed are fine; fewer are not.
+  const uint64_t needed = uint64_t(kHeaderBytes) + uint64_t(h.points) * uint64_t(h.samples) * 12u;
+  if (size < needed)
+    throw std::runtime_error(fmt::format("{}: truncated: the header claims {} points x {} samples ({} bytes), "
+                                         "the file has {} bytes", path, h.points, h.samples, needed, size));
   return h;
 }
 
+struct FileCloser {
+  void operator()(std::FILE* f) const { std::fclose(f); }
+};
+using File = std::unique_ptr<std::FILE, FileCloser>;
+
+File open_for_reading(const std::string& path) {
+  File f(std::fopen(path.c_str(), "rb"));
+  if (!f) throw std::runtime_error(fmt::format("{}: cannot open ({})", path, std::strerror(errno)));
+  return f;
+}
+
+}  // namespace
+
+Pc2Header read_pc2_header(const std::string& path) {
+  const File f = open_for_reading(path);
+  return read_checked_header(path, f.get());
+}
+
 std::vector<glm::vec3> read_pc2_sample(const std::string& path, int sample) {
-  const Pc2Header h = read_pc2_header(path);
-  if (sample < 0 || sample >= h.samples || h.points < 0)
+  const File f = open_for_reading(path);
+  const Pc2Header h = read_checked_header(path, f.get());  // the size covers every counted sample
+  if (sample < 0 || sample >= h.samples)
     throw std::runtime_error(fmt::format("{}: no sample {} (the cache has {})", path, sample, h.samples));
   std::vector<glm::vec3> out(size_t(h.points));
-  std::FILE* f = std::fopen(path.c_str(), "rb");
-  if (!f) throw std::runtime_error(fmt::format("{}: cannot open", path));
   const long offset = kHeaderBytes + long(sample) * h.points * long(sizeof(glm::vec3));
-  const bool ok = std::fseek(f, offset, SEEK_SET) == 0 &&
-                  std::fread(out.data(), sizeof(glm::vec3), out.size(), f) == out.size();
-  std::fclose(f);
+  const bool ok = std::fseek(f.get(), offset, SEEK_SET) == 0 &&
+                  std::fread(out.data(), sizeof(glm::vec3), out.size(), f.get()) == out.size();
   if (!ok) throw std::runtime_error(fmt::format("{}: sample {} is truncated", path, sample));
   return out;
 }

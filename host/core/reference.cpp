@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <numeric>
 
+#include <glm/geometric.hpp>
+
 #include "motion.hpp"
 
 namespace clothsim {
@@ -112,6 +114,14 @@ template <class R> Constants<R> make_constants(const Scene& scene, const ClothMo
   for (auto& p : scene.planes) c.planes.push_back({Vec3<R>(p.point), Vec3<R>(p.normal), R(1.0 - p.friction)});
   make_wind(scene, c);
   make_timeline(scene, model, c);
+  // Each plane's front: the side the cloth's rest centre is on, where the plane is at t = 0.
+  glm::dvec3 centre(0.0);
+  for (auto& p : model.initial) centre += p;
+  centre /= double(std::max(1, model.count()));
+  for (size_t k = 0; k < c.planes.size(); ++k) {
+    const glm::dvec3 at = c.timeline.planes[k] ? interpolate(*c.timeline.planes[k], 0.0) : scene.planes[k].point;
+    c.planes[k].front = glm::dot(centre - at, scene.planes[k].normal) < 0 ? R(-1) : R(1);
+  }
   return c;
 }
 

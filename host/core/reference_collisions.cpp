@@ -63,41 +63,98 @@ template <class R> Vec3<R> moving_sphere_push(const Vec3<R>& e, R dist, R r, con
   return dist > R(0) ? e * ((r - dist) * (R(1) / dist)) : Vec3<R>(0, r, 0);
 }
 
+// A mass outside a sphere at the end of the substep, e = x - o (|e| = dist > r), that moved by
+// rel = d - m relative to it: true if its path e - rel .. e went into the sphere deeper than
+// 0.1 mm (a fast mass, or a fast sphere, passing through within the substep), with t - x the
+// push back to where the path entered the surface. A mass that moved less than its distance
+// to the surface cannot have entered: the common case costs one comparison.
+template <class R> bool passed_through_sphere(const Vec3<R>& e, R dist, R r, const Vec3<R>& rel, Vec3<R>& t_minus_x) {
+  const R gap = dist - r;
+  const R a = dot3(rel, rel);
+  if (!(a > gap * gap)) return false;
+  const Vec3<R> e_prev = e - rel;
+  const R b = dot3(e_prev, rel);  // the path is e_prev + s rel, s in [0, 1]
+  if (!(b < R(0))) return false;  // moving away from the centre: leaving, not passing through
+  const R s_closest = std::min(R(1), -b * (R(1) / a));
+  const Vec3<R> closest = e_prev + rel * s_closest;
+  const R depth = r - length3(closest);
+  if (!(depth > R(1e-4))) return false;
+  const R c = dot3(e_prev, e_prev) - r * r;
+  if (c > R(0)) {
+    const R s_in = (-b - std::sqrt(b * b - a * c)) * (R(1) / a);  // b^2 - ac > 0: the path meets it
+    t_minus_x = (e_prev + rel * s_in) - e;
+  } else {
+    // It started on the surface (where the last contact put it) or inside: back out on its own side.
+    const R prev_dist = length3(e_prev);
+    t_minus_x = prev_dist > R(0) ? e_prev * (r * (R(1) / prev_dist)) - e : Vec3<R>(0, r, 0) - e;
+  }
+  return true;
+}
+
+// The friction blend moves a mass from x_prev towards the surface point t, and a chord between
+// two points of a sphere runs inside it: a fast mass sliding over a sphere can end the blend
+// deep inside. Deeper than 0.1 mm it is put back on the surface along e, without friction (the
+// classic scenes never come near: their chords sink by under a micrometre).
+template <class R> void keep_out_of_sphere(const SphereC<R>& sp, Vec3<R>& x, Vec3<R>& d) {
+  const Vec3<R> e = x - sp.origin;
+  const R dist = length3(e);
+  if (!(sp.radius - dist > R(1e-4)) || !(dist > R(0))) return;
+  const Vec3<R> out = e * ((sp.radius - dist) * (R(1) / dist));
+  x = x + out;
+  d = d + out;
+}
+
 // One particle against every sphere, then every plane. With `friction` false every contact
 // keeps all of its tangential motion (keep = 1): the pure push-out of xpbd's constraint pass.
 template <class R> void collide_particle(const Constants<R>& c, Vec3<R>& x, Vec3<R>& d, bool friction) {
   for (const SphereC<R>& sp : c.spheres) {
     const Vec3<R> e = x - sp.origin;
     const R dist = length3(e);
-    if (dist > sp.radius) continue;
     const R keep = friction ? sp.keep : R(1);
-    if (sp.motion != Vec3<R>(0)) {
-      blend_to_moving(moving_sphere_push(e, dist, sp.radius, d, sp.motion), keep, sp.motion, x, d);
+    if (dist > sp.radius) {
+      // Outside at the end: caught if it went through the sphere during the substep.
+      Vec3<R> t_minus_x;
+      if (!passed_through_sphere(e, dist, sp.radius, d - sp.motion, t_minus_x)) continue;
+      if (sp.motion != Vec3<R>(0)) blend_to_moving(t_minus_x, keep, sp.motion, x, d);
+      else blend_to(t_minus_x, keep, x, d);
+      keep_out_of_sphere(sp, x, d);
       continue;
     }
-    // t - x = e (r / |e| - 1): the push out to the surface. A mass exactly at the centre
-    // has no outward direction: it goes up.
-    const Vec3<R> t_minus_x = dist > R(0) ? e * ((sp.radius - dist) * (R(1) / dist)) : Vec3<R>(0, sp.radius, 0);
+    if (sp.motion != Vec3<R>(0)) {
+      blend_to_moving(moving_sphere_push(e, dist, sp.radius, d, sp.motion), keep, sp.motion, x, d);
+      keep_out_of_sphere(sp, x, d);
+      continue;
+    }
+    // t - x = e (r / |e| - 1): the push out to the surface (a mass exactly at the centre has no
+    // outward direction: it goes up), unless it passed the centre this substep (a mass faster
+    // than the sphere's radius per substep): then back out on its own side.
+    const Vec3<R> e_prev = e - d;
+    const R prev_dist = length3(e_prev);
+    const Vec3<R> t_minus_x = dot3(e, e_prev) < R(0) && prev_dist > R(0) ? e_prev * (sp.radius * (R(1) / prev_dist)) - e
+                              : dist > R(0) ? e * ((sp.radius - dist) * (R(1) / dist))
+                                            : Vec3<R>(0, sp.radius, 0);
     blend_to(t_minus_x, keep, x, d);
+    keep_out_of_sphere(sp, x, d);
   }
   for (const PlaneC<R>& pl : c.planes) {
     const R keep = friction ? pl.keep : R(1);
-    if (pl.motion != Vec3<R>(0)) {
-      // The side test in the plane's frame: x_prev - p_prev = (x - p) - (d - m). It sees a
-      // plane that swept over a mass at any speed.
-      const R dist = dot3(x - pl.point, pl.normal);
-      const R dist_prev = dist - dot3(d - pl.motion, pl.normal);
-      if (dist * dist_prev > R(0)) continue;
-      const R side = dist_prev > R(0) ? R(1) : (dist_prev < R(0) ? R(-1) : R(0));
-      blend_to_moving(pl.normal * (R(1e-4) * side - dist), keep, pl.motion, x, d);
-      continue;
-    }
+    // The classic test: a mass that crossed the plane this substep (dist * dist_prev <= 0; for
+    // a moving plane in its frame, x_prev - p_prev = (x - p) - (d - m), so a sweep is seen at
+    // any speed) goes back to the side it came from. And a mass found behind the plane's front
+    // at both ends of the substep (a correction put it there) is lifted to the front.
     const R dist = dot3(x - pl.point, pl.normal);
-    const R dist_prev = dist - dot3(d, pl.normal);  // (x_prev - p) . n
-    if (dist * dist_prev > R(0)) continue;
-    const R side = dist_prev > R(0) ? R(1) : (dist_prev < R(0) ? R(-1) : R(0));
+    const R dist_prev = dist - dot3(d - pl.motion, pl.normal);
+    R side;
+    if (dist * dist_prev > R(0)) {
+      if (!(dist * pl.front < R(0))) continue;
+      side = pl.front;
+    } else {
+      side = dist_prev > R(0) ? R(1) : (dist_prev < R(0) ? R(-1) : R(0));
+    }
     // t = x - dist n + SURFACE_OFFSET side n, so t - x is along n.
-    blend_to(pl.normal * (R(1e-4) * side - dist), keep, x, d);
+    const Vec3<R> t_minus_x = pl.normal * (R(1e-4) * side - dist);
+    if (pl.motion != Vec3<R>(0)) blend_to_moving(t_minus_x, keep, pl.motion, x, d);
+    else blend_to(t_minus_x, keep, x, d);
   }
 }
 

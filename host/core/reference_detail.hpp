@@ -10,4 +10,5 @@ namespace clothsim {
 // push-out of xpbd's constraint pass.
 template <class R> void collide_particle(const Constants<R>& c, Vec3<R>& x, Vec3<R>& d, bool friction);
 
+
 }  // namespace clothsim

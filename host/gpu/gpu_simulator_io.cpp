@@ -48,13 +48,15 @@ void GpuSimulator::download(State<float>& s) {
 SavedState GpuBackend::save_state() {
   State<float> s;
   sim_->download(s);
-  return save_streams(s, sim_->divergence().frame(), sim_->time());
+  return save_streams(s, sim_->divergence().frame(), sim_->time(), sim_->constants().timeline.dt);
 }
 
 void GpuBackend::load_state(const SavedState& saved) {
   State<float> s;
   sim_->download(s);  // for the inverse masses of this scene
-  load_streams(saved, s);
+  // Rescaled on the host by the reference's function when the substep length differs, so both
+  // backends round alike.
+  load_streams(saved, s, sim_->constants().timeline.dt);
   sim_->upload(s);
   sim_->compute_normals();
   sim_->divergence().restart(s.pos, int(saved.frame));

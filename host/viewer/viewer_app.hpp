@@ -15,6 +15,7 @@
 #include <imgui.h>
 
 #include "contacts.hpp"
+#include "output_file.hpp"
 #include "frame_timer.hpp"
 #include "glfw_window.hpp"
 #include "gpu_simulator.hpp"
@@ -163,7 +164,14 @@ class Viewer {
       std::copy_n(rows.data() + size_t(h - 1 - y) * w * 4, size_t(w) * 4, flipped.data() + size_t(y) * w * 4);
     for (size_t i = 3; i < flipped.size(); i += 4) flipped[i] = 255;  // an opaque image whatever the alpha
     try {
-      write_png_file(path, w, h, flipped);
+      // Beside `path` first, renamed once complete: an old screenshot is never left half written.
+      write_replacing(path, [&](const std::string& temp) {
+        try {
+          write_png_file(temp, w, h, flipped);
+        } catch (const std::exception&) {
+          throw std::runtime_error(fmt::format("{}: cannot write the PNG", path));
+        }
+      });
     } catch (const std::exception& e) {
       fmt::print(stderr, "error: {}\n", e.what());
       return false;
