@@ -91,6 +91,27 @@ TEST_CASE("every malformed scene exits 2 naming the file and the key", "[cli]") 
   }
 }
 
+TEST_CASE("every bad mesh cloth exits 2 naming the scene, the mesh file and what is wrong", "[cli][mesh]") {
+  const fs::path dir = fs::path(CLOTHSIM_SOURCE_DIR) / "tests/meshes_bad";
+  std::ifstream manifest(dir / "expected.txt");
+  REQUIRE(manifest);
+  int cases = 0;
+  for (std::string line; std::getline(manifest, line);) {
+    if (line.empty() || line[0] == '#') continue;
+    const size_t tab1 = line.find('\t'), tab2 = line.find('\t', tab1 + 1);
+    REQUIRE(tab2 != std::string::npos);
+    const std::string scene = (dir / line.substr(0, tab1)).string();
+    const Result r = run({"simulate", scene, "--frames", "1", "--backend", "cpu"});
+    INFO(line << "\nstderr: " << r.err);
+    CHECK(r.code == 2);
+    CHECK_THAT(r.err, Catch::Contains(scene));
+    CHECK_THAT(r.err, Catch::Contains(line.substr(tab1 + 1, tab2 - tab1 - 1)));
+    CHECK_THAT(r.err, Catch::Contains(line.substr(tab2 + 1)));
+    ++cases;
+  }
+  CHECK(cases >= 6);
+}
+
 TEST_CASE("a missing scene file exits 2 naming the file", "[cli]") {
   const std::string path = (kBad / "there_is_no_such_scene.json").string();
   const Result r = run({"simulate", path, "--frames", "1", "--backend", "cpu"});

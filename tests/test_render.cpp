@@ -116,6 +116,30 @@ TEST_CASE("every shader compiles, links and draws the hanging cloth over the bac
   CHECK_NO_GL_ERRORS();
 }
 
+TEST_CASE("every shader draws a mesh cloth (uv from the file, tangents from its neighbours)", "[gpu][render][mesh]") {
+  REQUIRE_GL_CONTEXT();
+  Stage stage("disc_hole");
+  stage.run(3);
+  // A vertex on the disc's middle ring, away from the hole and the rim, is drawn in every shader.
+  int probe = -1;
+  for (int i = 0; i < stage.model.count() && probe < 0; ++i) {
+    const glm::dvec3 p = stage.model.initial[i];
+    if (std::abs(std::hypot(p.x, p.z) - 0.32) < 0.03 && p.x < -0.2) probe = i;
+  }
+  REQUIRE(probe >= 0);
+  const glm::vec2 c = stage.pixel_of(stage.position(probe));
+  for (size_t k = 0; k < kShaderNames.size(); ++k) {
+    INFO("shader " << kShaderNames[k]);
+    Image im;
+    REQUIRE_NOTHROW(im = stage.draw(ShaderKind(k)));
+    const int foreground = count_foreground(im);
+    INFO(foreground << " of " << kWidth * kHeight << " pixels differ from the background");
+    CHECK(foreground > kWidth * kHeight / 50);
+    if (ShaderKind(k) != ShaderKind::Wireframe) CHECK(!is_background(im.at(int(c.x), int(c.y))));
+  }
+  CHECK_NO_GL_ERRORS();
+}
+
 TEST_CASE("the Normal shader colours a pixel with the normal the simulation computed there", "[gpu][render]") {
   REQUIRE_GL_CONTEXT();
   // pinned4 sagging gently under gravity, seen from high above the front edge.
