@@ -108,6 +108,95 @@ TEST_CASE("the wind force has the formulas' magnitudes on a single flat triangle
   CHECK(std::abs(total.z) < 1e-12);
 }
 
+namespace {
+
+// The wind's total force on a still, flat, horizontal 7x5 cloth (1 m x 1 m, normal +-y) at rest,
+// with the air blowing at `degrees` to the cloth's plane in the x-y plane: the sum of
+// compute_wind_forces over all particles (every triangle's force is split into thirds at its
+// corners), on the double reference or on the GPU.
+struct WindCase {
+  double degrees, speed, drag, lift;
+};
+glm::dvec3 wind_direction(double degrees) {
+  const double a = degrees * M_PI / 180.0;
+  return {std::cos(a), std::sin(a), 0.0};
+}
+glm::dvec3 total_wind_force(const WindCase& w, bool gpu) {
+  const glm::dvec3 v = w.speed * wind_direction(w.degrees);
+  const Scene scene = test::make_scene(
+      7, 5, 0, {"simulation.gravity=[0,0,0]", "simulation.self_collision=false"},
+      fmt::format(R"(, "wind": {{"velocity": [{:.17g}, {:.17g}, 0], "drag_coefficient": {}, "lift_coefficient": {}}})",
+                  v.x, v.y, w.drag, w.lift));
+  const ClothModel model = build_cloth(scene);
+  glm::dvec3 total(0.0);
+  if (gpu) {
+    GpuSimulator sim(scene, model, compute_dir());
+    sim.compute_wind_forces();
+    State<float> s;
+    sim.download(s);
+    for (auto& f : s.wind) total += glm::dvec3(f);
+  } else {
+    const Constants<double> c = make_constants<double>(scene, model);
+    State<double> s = initial_state<double>(model);
+    compute_wind_forces(model, c, s);
+    for (auto& f : s.wind) total += glm::dvec3(f);
+  }
+  return total;
+}
+
+// The model (docs/model.md, "Wind"), with the cloth still: v = -v_air relative to the air, and
+// with theta the angle between v and the normal, cos(theta) = |v_hat . n| = sin(angle to the
+// plane). Drag -1/2 rho C_d A |v| (v.n) n lies along the normal: 1/2 rho C_d A |v|^2 cos^2(theta)
+// along the wind and 1/2 rho C_d A |v|^2 cos(theta) sin(theta) across it. Lift
+// -1/2 rho C_l A (v.n) (|v| n - (v.n)/|v| v) is across the wind only, of size
+// 1/2 rho C_l A |v|^2 cos(theta) sin(theta), on the side the normal leans to from the wind
+// (here +y: the air rising through the cloth lifts it). Neither depends on which way n points.
+void check_wind_components(bool gpu) {
+  const double rho = 1.225, area = 1.0;
+  // Relative tolerance: double rounding on the reference, float (35 corners summed) on the GPU.
+  const double tol = gpu ? 1e-4 : 1e-9;
+  for (const WindCase w : {WindCase{30, 5, 0.0, 0.7}, WindCase{30, 5, 1.2, 0.7}, WindCase{30, 5, 1.2, 0.0},
+                           WindCase{20, 8, 0.0, 0.4}, WindCase{20, 8, 0.9, 0.4}}) {
+    const glm::dvec3 along_dir = wind_direction(w.degrees);
+    const glm::dvec3 across_dir = wind_direction(w.degrees + 90);  // in the plane of v and n, +y side
+    const double cos_t = std::sin(w.degrees * M_PI / 180.0), sin_t = std::cos(w.degrees * M_PI / 180.0);
+    REQUIRE(cos_t * sin_t > 0.3);  // neither head on (sin 0) nor edge on (cos 0)
+    const double q = 0.5 * rho * area * w.speed * w.speed;
+    const double want_along = q * w.drag * cos_t * cos_t;
+    const double want_lift = q * w.lift * cos_t * sin_t;
+    const double want_drag_across = q * w.drag * cos_t * sin_t;
+
+    const glm::dvec3 f = total_wind_force(w, gpu);
+    const double along = glm::dot(f, along_dir), across = glm::dot(f, across_dir);
+    INFO((gpu ? "gpu" : "cpu") << ": wind at " << w.degrees << " deg to the cloth, " << w.speed << " m/s, C_d "
+                               << w.drag << ", C_l " << w.lift << ": force (" << f.x << ", " << f.y << ", " << f.z
+                               << "), along the wind " << along << " (want " << want_along << "), across "
+                               << across << " (want lift " << want_lift << " + drag " << want_drag_across << ")");
+    const double scale = q;  // the size of every force here
+    CHECK(std::abs(f.z) < tol * scale);  // nothing out of the plane of the wind and the normal
+    CHECK(along == Approx(want_along).margin(tol * scale));
+    CHECK(across - want_drag_across == Approx(want_lift).epsilon(tol).margin(tol * scale));
+    if (w.drag == 0) {
+      // Lift alone: all of it across the wind, the model's size within 1 % (here: to rounding).
+      CHECK(std::abs(along) < tol * scale);
+      CHECK(across == Approx(want_lift).epsilon(std::min(0.01, tol)));
+      CHECK(across > 0.1 * q);
+    }
+  }
+}
+
+}  // namespace
+
+TEST_CASE("a wind at an angle to a still flat cloth has the model's lift across it and drag along it") {
+  check_wind_components(false);
+}
+
+TEST_CASE("a wind at an angle to a still flat cloth has the model's lift and drag on the GPU", "[gpu]") {
+  REQUIRE_GL_CONTEXT();
+  check_wind_components(true);
+  CHECK_NO_GL_ERRORS();
+}
+
 TEST_CASE("gusts repeat every gust length along the wind and swing the other way half a length on") {
   CHECK(gust_phase(5.0, 2.0) == 0.5);
   // Two cloths a gust length apart along the wind see the same wind; half a length, the opposite swing.

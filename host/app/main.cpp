@@ -4,6 +4,7 @@
 
 #include "cli_common.hpp"
 #include "commands.hpp"
+#include "debug_output.hpp"
 #include "objects.hpp"
 
 int main(int argc, char** argv) {
@@ -44,6 +45,14 @@ int main(int argc, char** argv) {
                "on the CPU: --backend cpu\n",
                e.what());
     return kExitBadInput;
+  } catch (const gl::GlError& e) {
+    // glGetError reported an error during a GPU run (checked once per frame, in release builds
+    // too): the run's own check failed, so exit 1 like a divergence; 2 stays bad input.
+    fmt::print(stderr,
+               "error: {}\n  A GL call failed: a bug in clothsim or in the GPU driver, not in the scene. The CPU "
+               "reference computes the same model: --backend cpu\n",
+               e.what());
+    return kExitCheckFailed;
   } catch (const ExitError& e) {
     fmt::print(stderr, "error: {}\n", e.what());
     return e.code;

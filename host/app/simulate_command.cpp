@@ -1,5 +1,6 @@
 // `clothsim simulate SCENE --frames N [--backend gpu|cpu] [--export FILE.obj|FILE.pc2|DIR/]
-//  [--export-every K] [--export-mesh FILE.obj] [--load-state FILE] [--save-state FILE] [--stats]`
+//  [--export-every K] [--export-mesh FILE.obj] [--load-state FILE] [--save-state FILE] [--stats]
+//  [--intersections-every K]`
 // Every output replaces the file it names only once complete (docs/export.md).
 #include <algorithm>
 #include <unistd.h>
@@ -100,6 +101,7 @@ void add_simulate_command(CLI::App& app, std::function<int()>& run) {
     std::string export_path, export_mesh, load_path, save_path;
     int export_every = 1;
     bool stats = false;
+    int intersections_every = 0;
   };
   auto o = std::make_shared<Opts>();
   CLI::App* cmd = app.add_subcommand("simulate", "run a scene headless and report or export the result");
@@ -119,6 +121,9 @@ void add_simulate_command(CLI::App& app, std::function<int()>& run) {
   cmd->add_option("--load-state", o->load_path, "continue from a state saved by --save-state");
   cmd->add_option("--save-state", o->save_path, "save the final state (positions, displacements, time)");
   cmd->add_flag("--stats", o->stats, "print frames, timing, stretch, energy, clearances, self-intersections");
+  cmd->add_option("--intersections-every", o->intersections_every,
+                  "every K-th frame print the exact self-intersection count (CPU, reads the frame back)")
+      ->check(CLI::PositiveNumber);
   cmd->callback([o, &run] {
     run = [o]() -> int {
       const ExportKind kind = export_kind(o->export_path);
@@ -190,6 +195,11 @@ void add_simulate_command(CLI::App& app, std::function<int()>& run) {
         // written is read back anyway, so its check is waited for: no failed frame is exported.
         stop_if_diverged(backend->take_checks(write));
         if (write) export_guarded([&] { frames->add(frame, backend->snapshot()); });
+        if (o->intersections_every > 0 && f % o->intersections_every == 0) {
+          // A line of its own per frame, so a script can collect them (scripts/contact-check).
+          progress.finish();  // clears the progress line; update() redraws it
+          fmt::print("frame {} self-intersections {}\n", frame, count_self_intersections(model, backend->snapshot()));
+        }
         progress.update(f);
       }
       stop_if_diverged(backend->take_checks(true));
@@ -201,7 +211,7 @@ void add_simulate_command(CLI::App& app, std::function<int()>& run) {
       }
       if (o->stats || kind == ExportKind::Obj) {
         const ClothSnapshot snap = backend->snapshot();
-        if (o->stats) print_stats(scene, measure(scene, model, snap), o->frames, wall);
+        if (o->stats) print_stats(scene, measure(scene, model, snap, backend->time()), o->frames, wall);
         if (o->stats)  // exact, on the CPU: only asked for here
           fmt::print("self-intersections {} (pairs of non-adjacent triangles)\n", count_self_intersections(model, snap));
         if (kind == ExportKind::Obj) export_obj(snap, "");

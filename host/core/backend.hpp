@@ -39,6 +39,9 @@ class Backend {
   // and the divergence guard starts over with the loaded positions as its last good frame.
   virtual void load_state(const SavedState& saved) = 0;
   virtual int scalar_bytes() const = 0;  // 4 (float) or 8 (double)
+  // Simulated seconds so far: the time of the state snapshot() returns (the end of the last
+  // substep), where the keyframed colliders were for its collision passes.
+  virtual double time() const = 0;
 };
 
 // The CPU reference as a backend, in float (what the GPU computes) or double.
@@ -93,7 +96,7 @@ template <class R> class CpuBackend final : public Backend {
   void prepare_substep() {
     if (constants_.timeline.moves()) set_substep_time(constants_, time_);
   }
-  double time() const { return time_; }
+  double time() const override { return time_; }
 
  private:
   const ClothModel& model_;

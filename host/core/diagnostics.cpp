@@ -12,6 +12,7 @@
 #include <fmt/format.h>
 #include <fmt/os.h>
 
+#include "motion.hpp"
 #include "output_file.hpp"
 
 
@@ -28,7 +29,7 @@ glm::dvec3 initial_centre(const ClothModel& m) {
 
 }  // namespace
 
-ClothStats measure(const Scene& scene, const ClothModel& m, const ClothSnapshot& s) {
+ClothStats measure(const Scene& scene, const ClothModel& m, const ClothSnapshot& s, double time) {
   ClothStats st;
   const double dt = scene.dt();
   const auto cloths = scene.cloths();
@@ -52,16 +53,22 @@ ClothStats measure(const Scene& scene, const ClothModel& m, const ClothSnapshot&
     }
   }
   const glm::dvec3 centre = initial_centre(m);
+  // A keyframed collider is where its keys put it at `time`, as the collision passes of the
+  // snapshot's last substep saw it (docs/model.md, "Moving scenes").
   for (auto& sp : scene.spheres) {
+    const glm::dvec3 origin = sp.motion ? interpolate(sp.motion->keyframes, time) : sp.origin;
     double best = std::numeric_limits<double>::infinity();
-    for (auto& p : s.pos) best = std::min(best, glm::length(xyz(p) - sp.origin) - sp.radius);
+    for (auto& p : s.pos) best = std::min(best, glm::length(xyz(p) - origin) - sp.radius);
     st.sphere_clearance.push_back(best);
   }
   for (auto& pl : scene.planes) {
-    // The side the cloth started on counts as outside; a plane through the start centre uses +normal.
-    double side = glm::dot(centre - pl.point, pl.normal) < 0 ? -1.0 : 1.0;
+    // The plane's front (the side the cloth started on, where the plane is at t = 0) counts as
+    // outside; a plane through the start centre uses +normal.
+    const glm::dvec3 start = pl.motion ? interpolate(pl.motion->keyframes, 0.0) : pl.point;
+    const glm::dvec3 point = pl.motion ? interpolate(pl.motion->keyframes, time) : pl.point;
+    double side = glm::dot(centre - start, pl.normal) < 0 ? -1.0 : 1.0;
     double best = std::numeric_limits<double>::infinity();
-    for (auto& p : s.pos) best = std::min(best, side * glm::dot(xyz(p) - pl.point, pl.normal));
+    for (auto& p : s.pos) best = std::min(best, side * glm::dot(xyz(p) - point, pl.normal));
     st.plane_clearance.push_back(best);
   }
   return st;

@@ -26,14 +26,17 @@ struct ClothStats {
   double kinetic = 0;            // J, from the Verlet velocity d / dt, d = x - x_prev
   double gravitational = 0;      // J, -m g . x summed
   double spring = 0;             // J, 1/2 k (len - rest)^2 over enabled springs
+  // Where each collider is at the snapshot's time (a keyframed one at its keyframed position):
   std::vector<double> sphere_clearance;  // min |x - o| - r per sphere (negative: inside)
-  std::vector<double> plane_clearance;   // min signed distance on the cloth's starting side, per plane
+  std::vector<double> plane_clearance;   // min signed distance on the plane's front (the cloth's starting side), per plane
   double max_speed = 0;          // m/s
   bool finite = true;
   double total_energy() const { return kinetic + gravitational + spring; }
 };
 
-ClothStats measure(const Scene& scene, const ClothModel& model, const ClothSnapshot& s);
+// `time`: the simulated seconds of the snapshot (Backend::time()), where the keyframed colliders
+// (scene.spheres[k].motion, planes[k].motion) are measured from; the static ones ignore it.
+ClothStats measure(const Scene& scene, const ClothModel& model, const ClothSnapshot& s, double time = 0);
 
 // Wavefront OBJ: v in particle order, vt, vn, then the triangles of §1 (1-based).
 void write_obj(const std::string& path, const ClothModel& model, const ClothSnapshot& s);

@@ -4,8 +4,11 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <mutex>
+
+#include "objects.hpp"
 
 namespace clothsim::gl {
 namespace {
@@ -13,7 +16,9 @@ namespace {
 // The callback may run on any thread that has the context current, so the list is locked.
 std::mutex g_mutex;
 std::vector<std::string> g_errors;
-std::vector<GLenum> g_codes;  // drained from glGetError by poll_out_of_memory, not yet reported
+std::vector<GLenum> g_codes;  // drained from glGetError, not yet reported by gl_errors_since_last_check
+std::vector<GLenum> g_unraised;  // drained from glGetError, not yet thrown by check_gl_errors
+size_t g_errors_raised = 0;  // g_errors[0 .. this) were named by a check_gl_errors already
 DebugMode g_mode = DebugMode::Off;
 #ifdef NDEBUG
 constexpr bool kPrintErrors = false;
@@ -44,7 +49,25 @@ const char* type_name(GLenum type) {
   }
 }
 
-const char* error_code_name(GLenum code) {
+// Reads glGetError until it is clear, into both lists; returns the codes read now.
+std::vector<GLenum> drain() {
+  std::vector<GLenum> now;
+  if (!glGetError) return now;
+  // Bounded: a lost context may report GL_CONTEXT_LOST on every call.
+  for (int i = 0; i < 16; ++i) {
+    const GLenum code = glGetError();
+    if (code == GL_NO_ERROR) break;
+    now.push_back(code);
+  }
+  std::lock_guard lock(g_mutex);
+  g_codes.insert(g_codes.end(), now.begin(), now.end());
+  g_unraised.insert(g_unraised.end(), now.begin(), now.end());
+  return now;
+}
+
+}  // namespace
+
+const char* gl_error_name(unsigned code) {
   switch (code) {
     case GL_INVALID_ENUM: return "GL_INVALID_ENUM";
     case GL_INVALID_VALUE: return "GL_INVALID_VALUE";
@@ -56,6 +79,8 @@ const char* error_code_name(GLenum code) {
     default: return "unknown GL error";
   }
 }
+
+namespace {
 
 void GLAD_API_PTR on_debug_message(GLenum source, GLenum type, GLuint id, GLenum severity, GLsizei length,
                                    const GLchar* message, const void*) {
@@ -92,6 +117,7 @@ std::vector<std::string> gl_errors_since_last_check() {
   {
     std::lock_guard lock(g_mutex);
     errors.swap(g_errors);
+    g_errors_raised = 0;
   }
   // An error KHR_debug already reported also sets the glGetError flag: report the flag
   // only when the callback saw nothing (debug output off or unsupported).
@@ -102,22 +128,59 @@ std::vector<std::string> gl_errors_since_last_check() {
     codes.swap(g_codes);
   }
   if (errors.empty())
-    for (GLenum code : codes) errors.push_back(fmt::format("glGetError: {} (0x{:04x})", error_code_name(code), code));
+    for (GLenum code : codes) errors.push_back(fmt::format("glGetError: {} (0x{:04x})", gl_error_name(code), code));
+  {
+    // Reported here, so no later check_gl_errors throws for them (a test has looked).
+    std::lock_guard lock(g_mutex);
+    g_unraised.clear();
+  }
   return errors;
 }
 
 bool poll_out_of_memory() {
-  if (!glGetError) return false;
-  bool out_of_memory = false;
-  // Bounded: a lost context may report GL_CONTEXT_LOST on every call.
-  for (int i = 0; i < 16; ++i) {
-    const GLenum code = glGetError();
-    if (code == GL_NO_ERROR) break;
-    out_of_memory = out_of_memory || code == GL_OUT_OF_MEMORY;
+  const std::vector<GLenum> now = drain();
+  const bool out_of_memory = std::find(now.begin(), now.end(), GLenum(GL_OUT_OF_MEMORY)) != now.end();
+  if (out_of_memory) {
+    // The caller throws OutOfMemoryError for it: check_gl_errors does not raise it again.
     std::lock_guard lock(g_mutex);
-    g_codes.push_back(code);
+    std::erase(g_unraised, GLenum(GL_OUT_OF_MEMORY));
   }
   return out_of_memory;
+}
+
+bool gl_errors_pending() {
+  drain();
+  std::lock_guard lock(g_mutex);
+  return !g_unraised.empty();
+}
+
+void check_gl_errors(const std::string& where) {
+  drain();
+  std::vector<GLenum> codes;
+  std::string driver_said;
+  {
+    std::lock_guard lock(g_mutex);
+    codes.swap(g_unraised);
+    // KHR_debug's own words for the first failing call since the last check (debug builds,
+    // tests), left for the collector too.
+    if (!codes.empty() && g_errors_raised < g_errors.size()) {
+      driver_said = g_errors[g_errors_raised];
+      if (const size_t more = g_errors.size() - g_errors_raised - 1; more > 0)
+        driver_said += fmt::format(" (and {} more)", more);
+    }
+    if (!codes.empty()) g_errors_raised = g_errors.size();
+  }
+  if (codes.empty()) return;
+  std::string names;
+  for (GLenum code : codes) {
+    const std::string name = fmt::format("{} (0x{:04x})", gl_error_name(code), code);
+    if (names.find(name) == std::string::npos) names += (names.empty() ? "" : ", ") + name;
+  }
+  std::string message = fmt::format("{} {}", names, where);
+  if (!driver_said.empty()) message += fmt::format("; the driver said: {}", driver_said);
+  const bool out_of_memory = std::find(codes.begin(), codes.end(), GLenum(GL_OUT_OF_MEMORY)) != codes.end();
+  if (out_of_memory) throw OutOfMemoryError(message);
+  throw GlError(message, std::vector<unsigned>(codes.begin(), codes.end()));
 }
 
 }  // namespace clothsim::gl

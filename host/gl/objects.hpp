@@ -44,7 +44,8 @@ void delete_vertex_array(GLuint id);
 }  // namespace detail
 
 // The driver said GL_OUT_OF_MEMORY: when allocating a buffer (the message names it and the
-// size), or during a run (gpu_divergence.cpp checks once per frame).
+// size), or during a run (check_gl_errors, debug_output.hpp: the GPU simulator checks once per
+// frame; the divergence guard's read-back checks too).
 struct OutOfMemoryError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };

@@ -30,7 +30,8 @@ class GpuDivergenceGuard {
   // The results not yet taken, oldest first (see Backend::take_checks): every frame but the
   // newest is waited for, the newest taken only if already done, unless `all`. Results not
   // taken within two frames are dropped. Also drains glGetError once, so a GL_OUT_OF_MEMORY
-  // anywhere in the frame throws gl::OutOfMemoryError here.
+  // of the read-back throws gl::OutOfMemoryError here (any other code is thrown by the next
+  // GpuSimulator::step_frame, which checks every frame's passes itself).
   std::vector<FrameCheck> take(bool all);
   // The kept copy (a read-back, not for every frame): the newest frame that passed before
   // any failed; 0 is the initial state.

@@ -7,6 +7,7 @@
 
 #include <filesystem>
 #include <memory>
+#include <string>
 
 #include "backend.hpp"
 #include "context.hpp"
@@ -58,7 +59,11 @@ class GpuSimulator {
   PrefixScan& prefix_scan() { return scan_; }
 
   void step();        // one substep, the pass list of §1; then time() is one substep later
-  void step_frame();  // simulation_steps substeps, then normals, then the divergence guard's check
+  // simulation_steps substeps, then normals, then the divergence guard's check. Throws
+  // gl::GlError (gl::OutOfMemoryError for GL_OUT_OF_MEMORY) naming the GL error and the frame
+  // when glGetError reports one, before the frame's passes (raised since the last frame by
+  // another GL user) or after them (raised by a pass); debug builds also check after each pass.
+  void step_frame();
   GpuDivergenceGuard& divergence() { return guard_; }
 
   // Simulated seconds at the start of the next substep. set_time also sets the moving parts
@@ -105,6 +110,8 @@ class GpuSimulator {
   void apply_substep_time();  // the moving parts of constants_ for the substep at time_, uploaded
   void barrier(GLbitfield bits);  // glMemoryBarrier, counted
   void dispatch(gl::Program& program);
+  void dispatched(const gl::Program& program);  // counts a dispatch; debug builds check GL errors
+  std::string pass_list() const;  // a substep's passes, for messages
   // One colour of a constraint pass (solve_length_constraints or solve_distance_constraints),
   // bindings already set: its springs' first index and count go to `where` (u_first, u_count).
   struct ColourUniforms { GLint first = -1, count = -1; };
@@ -137,6 +144,8 @@ class GpuSimulator {
   gl::BufferTexture sorted_positions_view_{"sorted positions view"}, tethers_view_{"tethers view"};
   uint32_t table_size_ = 0;
   bool in_step_ = false;
+  bool in_frame_ = false;  // within step_frame's substeps
+  int substep_ = 0;        // of the frame, while in_frame_
   gl::Program compute_wind_forces_, accumulate_forces_, integrate_, advance_, collide_objects_, solve_length_constraints_, compute_normals_;
   gl::Program count_cells_, fill_cells_, sort_cells_, resolve_self_contacts_;
   gl::Program predict_, solve_distance_constraints_;
@@ -165,6 +174,7 @@ class GpuBackend final : public Backend {
   SavedState save_state() override;
   void load_state(const SavedState& saved) override;
   int scalar_bytes() const override { return int(sizeof(float)); }
+  double time() const override { return sim_->time(); }
   GpuSimulator& simulator() { return *sim_; }
 
  private:

@@ -2,8 +2,21 @@
 // reads next. Bindings are made once per step (bind_all); a pass called on its own binds first.
 #include "gpu_simulator.hpp"
 
+#include <fmt/format.h>
+
+#include "debug_output.hpp"
+
 namespace clothsim {
 namespace {
+
+// Sets a flag for a scope, cleared however the scope ends (a GL error throws out of a frame).
+struct ScopedFlag {
+  explicit ScopedFlag(bool& flag) : flag_(flag) { flag_ = true; }
+  ~ScopedFlag() { flag_ = false; }
+  ScopedFlag(const ScopedFlag&) = delete;
+  ScopedFlag& operator=(const ScopedFlag&) = delete;
+  bool& flag_;
+};
 
 // What a pass's readers need after it wrote: storage-buffer reads and texel fetches (the
 // passes read particle data through texel views, compute/particle_views.glsl).
@@ -23,7 +36,20 @@ void GpuSimulator::swap_positions() {
 void GpuSimulator::dispatch(gl::Program& program) {
   bind_for_pass();
   program.dispatch(groups_);
+  dispatched(program);
+}
+
+void GpuSimulator::dispatched([[maybe_unused]] const gl::Program& program) {
   ++counters_.dispatches;
+#ifndef NDEBUG
+  // Debug builds look after every pass, so a GL error names the pass that raised it (KHR_debug
+  // has printed the failing call already). Release builds look once per frame (step_frame).
+  gl::check_gl_errors_lazily([&] {
+    return in_frame_ ? fmt::format("after the pass {} (substep {} of frame {})", program.name(), substep_ + 1,
+                                   guard_.frame() + 1)
+                     : fmt::format("after the pass {}", program.name());
+  });
+#endif
 }
 
 void GpuSimulator::compute_wind_forces() {
@@ -75,7 +101,7 @@ void GpuSimulator::fill_cells() {
 void GpuSimulator::sort_cells() {
   bind_for_pass();
   sort_cells_.dispatch(gl::workgroups_for(table_size_, WORKGROUP_SIZE));
-  ++counters_.dispatches;
+  dispatched(sort_cells_);
   // collide_self reads the starts and the positions in cell order next.
   barrier(kComputeReads);
 }
@@ -116,7 +142,7 @@ void GpuSimulator::dispatch_colour(gl::Program& program, ColourUniforms where, i
   program.set(where.first, first);
   program.set(where.count, count);
   program.dispatch(gl::workgroups_for(count, WORKGROUP_SIZE));
-  ++counters_.dispatches;
+  dispatched(program);
   // The next colour (or the next substep's first pass) reads these positions and displacements.
   barrier(kComputeReads);
 }
@@ -163,7 +189,8 @@ void GpuSimulator::step() {
   // Moving colliders, pins and gusts: the small parameter upload of this substep's time.
   if (constants_.timeline.moves()) apply_substep_time();
   bind_all();  // once: nothing in the step binds over these (swap_positions rebinds its two)
-  in_step_ = true;
+  {
+  const ScopedFlag in_step(in_step_);
   const bool objects_first = colliders && !constants_.self_collision;
   if (constants_.wind.enabled) compute_wind_forces();  // advance or predict add them
   if (constants_.xpbd) {
@@ -175,14 +202,41 @@ void GpuSimulator::step() {
     if (constants_.self_collision) collide_self(colliders);
     solve_length_constraints();
   }
-  in_step_ = false;
+  }
   time_ += dt_;  // per substep, exactly as CpuBackend counts it
 }
 
+std::string GpuSimulator::pass_list() const {
+  std::string passes = constants_.wind.enabled ? "compute_wind_forces, " : "";
+  passes += constants_.xpbd ? "predict" : "advance";
+  if (constants_.self_collision) passes += ", collide_self (count_cells, scan_cells, fill_cells, sort_cells, resolve_self_contacts)";
+  passes += constants_.xpbd ? ", solve_distance_constraints" : ", solve_length_constraints";
+  return passes;
+}
+
 void GpuSimulator::step_frame() {
-  for (int k = 0; k < int(constants_.steps); ++k) step();
-  compute_normals();
+  const int frame = guard_.frame() + 1;
+  // GL errors, in release builds too: glGetError reads the context's error flags, with no wait
+  // for the GPU (unlike glFinish) and no read-back. First what was raised since the previous
+  // frame's check by someone else (the renderer, a read-back, an edit), so it is not blamed on
+  // the passes; then, after the passes, theirs.
+  gl::check_gl_errors_lazily([&] {
+    return fmt::format("before frame {} on the GPU: raised by a GL call outside the simulation since the previous "
+                       "frame's check (rendering, a read-back or an edit), not by its passes",
+                       frame);
+  });
+  {
+    const ScopedFlag in_frame(in_frame_);
+    for (substep_ = 0; substep_ < int(constants_.steps); ++substep_) step();
+    compute_normals();
+  }
   guard_.check(positions_);
+  gl::check_gl_errors_lazily([&] {
+    return fmt::format("in frame {} on the GPU: raised by one of the frame's passes ({} substeps of {}; then "
+                       "compute_normals, check_divergence, keep_last_good). A debug build (-DCMAKE_BUILD_TYPE=Debug) "
+                       "names the pass and the GL call",
+                       frame, int(constants_.steps), pass_list());
+  });
 }
 
 int GpuSimulator::dispatches_per_substep() const {

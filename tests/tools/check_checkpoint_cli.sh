@@ -3,14 +3,29 @@
 # then `--load-state B --frames N --save-state C` must give byte-identical A and C (the same
 # streams, frame and time, bit for bit). A truncated, foreign or mismatched state file is exit 2
 # with a message naming it, never a crash.
-# usage: check_checkpoint_cli.sh CLOTHSIM SCENE cpu|gpu OUTDIR
-# Without an OpenGL 4.3 context (exit 3) the GPU variant is skipped (exit 77), unless
-# CLOTHSIM_REQUIRE_GPU=1 makes that a failure.
+# A state is for the scalar it was saved in: loading one saved by the other backend (float on
+# the GPU, double with --backend cpu) is exit 2 naming the precision.
+# usage: check_checkpoint_cli.sh CLOTHSIM SCENE cpu|gpu|cpu-on-gpu OUTDIR
+#   cpu         everything on --backend cpu (needs no GPU); the CPU-tier test
+#   gpu         everything on --backend gpu, and a GPU state loaded on --backend cpu
+#   cpu-on-gpu  only the cross-precision check the cpu mode cannot make: a CPU state loaded
+#               on --backend gpu (a GPU-tier test: add_gpu_command_test)
+# Without an OpenGL 4.3 context (exit 3) the modes that need the GPU are skipped (exit 77),
+# unless CLOTHSIM_REQUIRE_GPU=1 makes that a failure; they never pass without having run.
 set -u
-bin=$1 scene=$2 backend=$3 dir=$4
+bin=$1 scene=$2 mode=$3 dir=$4
+case $mode in
+  cpu|gpu) backend=$mode ;;
+  cpu-on-gpu) backend=cpu ;;
+  *) echo "check_checkpoint_cli.sh: unknown mode $mode"; exit 2 ;;
+esac
 rm -rf "$dir"
 mkdir -p "$dir"
 fail() { echo "FAIL: $*"; exit 1; }
+no_context() {  # the GPU backend found no OpenGL 4.3 context (exit 3)
+  if [ "${CLOTHSIM_REQUIRE_GPU:-}" = 1 ]; then fail "no OpenGL 4.3 context (CLOTHSIM_REQUIRE_GPU=1)"; fi
+  echo "skipped: no OpenGL 4.3 context"; exit 77
+}
 small="--set cloth.num_width_points=33 --set cloth.num_height_points=17 --set cloth.pinned=[[0,0],[32,0]]"
 sim() {  # sim NAME ARGS...: runs simulate on the small cloth, output in NAME.out / NAME.err
   name=$1; shift
@@ -18,12 +33,29 @@ sim() {  # sim NAME ARGS...: runs simulate on the small cloth, output in NAME.ou
   "$bin" simulate "$scene" --backend "$backend" $small "$@" >"$dir/$name.out" 2>"$dir/$name.err"
   code=$?
   cat "$dir/$name.out" "$dir/$name.err"
-  if [ $code -eq 3 ]; then
-    if [ "${CLOTHSIM_REQUIRE_GPU:-}" = 1 ]; then fail "no OpenGL 4.3 context (CLOTHSIM_REQUIRE_GPU=1)"; fi
-    echo "skipped: no OpenGL 4.3 context"; exit 77
-  fi
+  [ $code -eq 3 ] && no_context
   return $code
 }
+# cross STATE OTHER: loading STATE (saved on $backend) on backend OTHER is exit 2 naming the
+# precision. On the GPU without a context that is a skip (or a failure), never a pass.
+cross() {
+  # shellcheck disable=SC2086 # the --set words split on purpose
+  "$bin" simulate "$scene" --backend "$2" $small --frames 1 --load-state "$1" >"$dir/other.out" 2>"$dir/other.err"
+  code=$?
+  cat "$dir/other.err"
+  if [ $code -eq 3 ]; then
+    [ "$2" = gpu ] || fail "--backend $2 exited 3"
+    no_context
+  fi
+  [ $code -eq 2 ] || fail "loading a $backend state on $2: exit $code, expected 2"
+  grep -q "byte (.*) scalars, saved by backend" "$dir/other.err" || fail "no precision message"
+  echo "ok: a $backend state on $2 is exit 2 naming the precision"
+}
+if [ "$mode" = cpu-on-gpu ]; then
+  sim saved --frames 2 --save-state "$dir/A.state" || fail "the CPU run failed"
+  cross "$dir/A.state" gpu
+  exit 0
+fi
 sim whole --frames 12 --save-state "$dir/A.state" || fail "the 12-frame run failed"
 sim first --frames 6 --save-state "$dir/B.state" || fail "the first 6 frames failed"
 sim second --frames 6 --load-state "$dir/B.state" --save-state "$dir/C.state" || fail "the resumed run failed"
@@ -51,14 +83,13 @@ refused "$dir/foreign.state" "not a clothsim state file"
 refused "$dir/missing.state" "cannot open"
 refused "$dir/A.state" "different cloth: .*33x17 cloth with 2 pinned.*but scene .* has a 33x19 cloth" --set cloth.num_height_points=19
 refused "$dir/A.state" "different cloth: .*33x17 cloth with 2 pinned.*but scene .* has a 33x17 cloth with 1" --set cloth.pinned=[[0,0]]
-# The other backend's scalar: the GPU and cpu float run in float, `--backend cpu` in double.
-other=gpu; [ "$backend" = gpu ] && other=cpu
-"$bin" simulate "$scene" --backend "$other" $small --frames 1 --load-state "$dir/A.state" >"$dir/other.out" 2>"$dir/other.err"
-code=$?
-cat "$dir/other.err"
-if [ $code -ne 3 ]; then
-  [ $code -eq 2 ] || fail "loading a $backend state on $other: exit $code, expected 2"
-  grep -q "byte (.*) scalars, saved by backend" "$dir/other.err" || fail "no precision message"
+# The other backend's scalar: the GPU runs in float, `--backend cpu` in double. A GPU state on
+# the CPU needs no context beyond the one this mode has; a CPU state on the GPU is the
+# cpu-on-gpu mode, a GPU-tier test of its own, so the CPU tier never needs a GPU.
+if [ "$backend" = gpu ]; then
+  cross "$dir/A.state" cpu
+else
+  echo "(a CPU state loaded on the GPU: the cpu-on-gpu mode, a GPU-tier test)"
 fi
 # What does not change the cloth still loads.
 sim stiffer --frames 1 --load-state "$dir/A.state" --set cloth.ks=800 --set cloth.density=200 \
