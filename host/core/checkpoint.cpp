@@ -160,7 +160,11 @@ Checkpoint read_checkpoint(const std::string& path) {
   const uintmax_t size = std::filesystem::file_size(path, ec);
   std::ifstream in(path, std::ios::binary);
   if (ec || !in) throw CheckpointError(fmt::format("{}: cannot open the state file", path));
-  auto fail = [&](const std::string& why) { return CheckpointError(fmt::format("{}: {}", path, why)); };
+  return read_checkpoint(in, size, path);
+}
+
+Checkpoint read_checkpoint(std::istream& in, uint64_t size, const std::string& name) {
+  auto fail = [&](const std::string& why) { return CheckpointError(fmt::format("{}: {}", name, why)); };
   uint8_t head[kHeaderBytes] = {};
   in.read(reinterpret_cast<char*>(head), std::streamsize(std::min<uintmax_t>(size, kHeaderBytes)));
   if (size < sizeof kMagic || std::memcmp(head, kMagic, sizeof kMagic) != 0)

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <iosfwd>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -69,6 +70,10 @@ void write_checkpoint(const std::string& path, const Checkpoint& c);
 // checksum, then that the time, dt and every position and displacement are finite: a
 // truncated, foreign or non-finite file throws, naming the file.
 Checkpoint read_checkpoint(const std::string& path);
+// The same from the `size` bytes of `in` (a file's whole contents, from position 0; what the
+// path version reads, and the fuzz target, tests/fuzz/fuzz_state.cpp, calls without a file).
+// `name` stands for the file in messages.
+Checkpoint read_checkpoint(std::istream& in, uint64_t size, const std::string& name);
 // Throws unless `c` is of this cloth (cloth_hash) and of a backend with `scalar_bytes`
 // scalars; the message names both sides.
 void check_fits(const Checkpoint& c, const std::string& path, const Scene& scene, const ClothModel& model,

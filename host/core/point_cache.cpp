@@ -2,9 +2,11 @@
 
 #include <bit>
 #include <cerrno>
+#include <cmath>
 #include <cstring>
 #include <filesystem>
-#include <memory>
+#include <fstream>
+#include <istream>
 #include <stdexcept>
 
 #include <fmt/format.h>
@@ -72,15 +74,13 @@ void Pc2Writer::close() {
 
 namespace {
 
-// The header, checked against the file's size before anything is allocated from it: a header
+// The header, checked against the stream's size before anything is allocated from it: a header
 // claiming more points or samples than the file holds (truncated, or corrupted) throws.
-Pc2Header read_checked_header(const std::string& path, std::FILE* f) {
-  std::error_code ec;
-  const uintmax_t size = std::filesystem::file_size(path, ec);
-  if (ec) throw std::runtime_error(fmt::format("{}: cannot open ({})", path, ec.message()));
+Pc2Header read_checked_header(std::istream& in, uint64_t size, const std::string& name) {
   uint8_t head[kHeaderBytes];
-  const bool ok = std::fread(head, 1, sizeof head, f) == sizeof head;
-  if (!ok || std::memcmp(head, kMagic, 12) != 0) throw std::runtime_error(fmt::format("{}: not a PC2 file", path));
+  in.seekg(0);
+  const bool ok = size >= uint64_t(kHeaderBytes) && in.read(reinterpret_cast<char*>(head), sizeof head);
+  if (!ok || std::memcmp(head, kMagic, 12) != 0) throw Pc2Error(fmt::format("{}: not a PC2 file", name));
   Pc2Header h;
   std::memcpy(&h.version, head + 12, 4);
   std::memcpy(&h.points, head + 16, 4);
@@ -88,44 +88,62 @@ Pc2Header read_checked_header(const std::string& path, std::FILE* f) {
   std::memcpy(&h.sample_rate, head + 24, 4);
   std::memcpy(&h.samples, head + 28, 4);
   if (h.points < 0 || h.samples < 0)
-    throw std::runtime_error(fmt::format("{}: corrupted header ({} points, {} samples)", path, h.points, h.samples));
+    throw Pc2Error(fmt::format("{}: corrupted header ({} points, {} samples)", name, h.points, h.samples));
+  // They place the samples on the DCC tool's timeline; a NaN or Inf places them nowhere.
+  if (!std::isfinite(h.start_frame) || !std::isfinite(h.sample_rate))
+    throw Pc2Error(fmt::format("{}: corrupted header (start frame {}, sample rate {}; expected finite numbers)", name,
+                               h.start_frame, h.sample_rate));
   // At most 2^31 x 2^31 x 12 bytes: no overflow in 64 bits. A cache being written may hold
   // part of a sample past the count, so more bytes than needed are fine; fewer are not.
   const uint64_t needed = uint64_t(kHeaderBytes) + uint64_t(h.points) * uint64_t(h.samples) * 12u;
   if (size < needed)
-    throw std::runtime_error(fmt::format("{}: truncated: the header claims {} points x {} samples ({} bytes), "
-                                         "the file has {} bytes", path, h.points, h.samples, needed, size));
+    throw Pc2Error(fmt::format("{}: truncated: the header claims {} points x {} samples ({} bytes), "
+                               "the file has {} bytes", name, h.points, h.samples, needed, size));
   return h;
 }
 
-struct FileCloser {
-  void operator()(std::FILE* f) const { std::fclose(f); }
-};
-using File = std::unique_ptr<std::FILE, FileCloser>;
-
-File open_for_reading(const std::string& path) {
-  File f(std::fopen(path.c_str(), "rb"));
-  if (!f) throw std::runtime_error(fmt::format("{}: cannot open ({})", path, std::strerror(errno)));
-  return f;
+// The file's size and an open stream on it.
+uint64_t open_for_reading(const std::string& path, std::ifstream& in) {
+  std::error_code ec;
+  const uintmax_t size = std::filesystem::file_size(path, ec);
+  if (ec) throw Pc2Error(fmt::format("{}: cannot open ({})", path, ec.message()));
+  in.open(path, std::ios::binary);
+  if (!in) throw Pc2Error(fmt::format("{}: cannot open", path));
+  return size;
 }
 
 }  // namespace
 
 Pc2Header read_pc2_header(const std::string& path) {
-  const File f = open_for_reading(path);
-  return read_checked_header(path, f.get());
+  std::ifstream in;
+  const uint64_t size = open_for_reading(path, in);
+  return read_pc2_header(in, size, path);
 }
 
 std::vector<glm::vec3> read_pc2_sample(const std::string& path, int sample) {
-  const File f = open_for_reading(path);
-  const Pc2Header h = read_checked_header(path, f.get());  // the size covers every counted sample
+  std::ifstream in;
+  const uint64_t size = open_for_reading(path, in);
+  return read_pc2_sample(in, size, path, sample);
+}
+
+Pc2Header read_pc2_header(std::istream& in, uint64_t size, const std::string& name) {
+  return read_checked_header(in, size, name);
+}
+
+std::vector<glm::vec3> read_pc2_sample(std::istream& in, uint64_t size, const std::string& name, int sample) {
+  const Pc2Header h = read_checked_header(in, size, name);  // the size covers every counted sample
   if (sample < 0 || sample >= h.samples)
-    throw std::runtime_error(fmt::format("{}: no sample {} (the cache has {})", path, sample, h.samples));
+    throw Pc2Error(fmt::format("{}: no sample {} (the cache has {})", name, sample, h.samples));
   std::vector<glm::vec3> out(size_t(h.points));
-  const long offset = kHeaderBytes + long(sample) * h.points * long(sizeof(glm::vec3));
-  const bool ok = std::fseek(f.get(), offset, SEEK_SET) == 0 &&
-                  std::fread(out.data(), sizeof(glm::vec3), out.size(), f.get()) == out.size();
-  if (!ok) throw std::runtime_error(fmt::format("{}: sample {} is truncated", path, sample));
+  const uint64_t offset = uint64_t(kHeaderBytes) + uint64_t(sample) * uint64_t(h.points) * sizeof(glm::vec3);
+  in.seekg(std::streamoff(offset));
+  if (!in.read(reinterpret_cast<char*>(out.data()), std::streamsize(out.size() * sizeof(glm::vec3))))
+    throw Pc2Error(fmt::format("{}: sample {} is truncated", name, sample));
+  for (size_t i = 0; i < out.size(); ++i)
+    for (int c = 0; c < 3; ++c)
+      if (!std::isfinite(out[i][c]))
+        throw Pc2Error(fmt::format("{}: sample {}: point {} has {} = {} (a cache holds finite numbers only)", name,
+                                   sample, i, "xyz"[c], out[i][c]));
   return out;
 }
 

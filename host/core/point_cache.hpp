@@ -5,6 +5,8 @@
 
 #include <cstdint>
 #include <cstdio>
+#include <iosfwd>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -43,8 +45,18 @@ class Pc2Writer {
   std::vector<float> buffer_;  // one sample, reused
 };
 
-// Reading back (tests, and checking a cache before handing it to a DCC tool).
+// Reading back (tests, and checking a cache before handing it to a DCC tool). The header's
+// counts are checked against the file's size before anything is allocated, and its start frame
+// and sample rate and every sample read must be finite; a cache that fails either throws
+// Pc2Error naming the file.
+struct Pc2Error : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
 Pc2Header read_pc2_header(const std::string& path);
 std::vector<glm::vec3> read_pc2_sample(const std::string& path, int sample);
+// The same from the `size` bytes of `in` (a file's whole contents, from position 0), for the
+// fuzz target (tests/fuzz/fuzz_pc2.cpp); `name` stands for the file in messages.
+Pc2Header read_pc2_header(std::istream& in, uint64_t size, const std::string& name);
+std::vector<glm::vec3> read_pc2_sample(std::istream& in, uint64_t size, const std::string& name, int sample);
 
 }  // namespace clothsim
