@@ -13,8 +13,9 @@
 // the source. Anything else (another exception, a violated property) calls abort(), which
 // libFuzzer reports as a crash; ASan/UBSan reports, hangs (-timeout) and OOMs are crashes too.
 //
-// The same code is built without libFuzzer into clothsim_fuzz_scene_replay (replay_main.cpp),
-// which ctest runs over tests/fuzz/regressions/ and the seed corpus in every build.
+// The same code is built without libFuzzer into clothsim_fuzz_replay (replay_main.cpp,
+// --target scene), which ctest runs over tests/fuzz/regressions/ and the seed corpus in every
+// build.
 #include "fuzz_scene.hpp"
 
 #include <algorithm>
@@ -229,7 +230,7 @@ Input split_input(const uint8_t* data, size_t size) {
   return in;
 }
 
-Outcome run_one(const uint8_t* data, size_t size) {
+Outcome run_scene(const uint8_t* data, size_t size) {
   const Input in = split_input(data, size);
   Outcome out;
   try {
@@ -253,7 +254,7 @@ Outcome run_one(const uint8_t* data, size_t size) {
 
 #ifdef CLOTHSIM_LIBFUZZER
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
-  clothsim::fuzz::run_one(data, size);
+  clothsim::fuzz::run_scene(data, size);
   return 0;
 }
 #endif

@@ -1,11 +1,13 @@
-// The scene-loader fuzz target's input format and property check (fuzz_scene.cpp), shared by
-// the libFuzzer binary and the replay runner.
+// The scene-loader fuzz target's input format (fuzz_scene.cpp); its entry point, run_scene, is
+// in fuzz_targets.hpp.
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
+
+#include "fuzz_targets.hpp"  // run_scene
 
 namespace clothsim::fuzz {
 
@@ -14,12 +16,5 @@ struct Input {
   std::vector<std::string> overrides;  // the lines after it ('\n' or NUL separated, empty skipped)
 };
 Input split_input(const uint8_t* data, size_t size);
-
-struct Outcome {
-  bool loaded = false;  // parse_scene returned a valid scene
-  std::string error;    // else the SceneError message
-};
-// Runs one input; aborts when the property is violated (see fuzz_scene.cpp).
-Outcome run_one(const uint8_t* data, size_t size);
 
 }  // namespace clothsim::fuzz

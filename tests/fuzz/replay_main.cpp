@@ -1,17 +1,19 @@
-// Replays fuzz inputs through the scene-loader fuzz target without libFuzzer, so that the
-// regression inputs and the seed corpus are checked by ctest in every build (also the
-// sanitizer build).
+// Replays fuzz inputs through a fuzz target without libFuzzer, so that the regression inputs
+// and the seed corpora are checked by ctest in every build (also the sanitizer build).
 //
-//   clothsim_fuzz_scene_replay [--expect MANIFEST] [--generated] [--load DIR] [--reject DIR] [FILE|DIR]...
+//   clothsim_fuzz_replay --target scene|state|pc2 [--expect MANIFEST] [--generated] [--load DIR]
+//                        [--reject DIR] [FILE|DIR]...
 //
-// Every input must satisfy the property of fuzz_scene.cpp (a violation aborts), and:
+// Every input must satisfy the property of the target's file (fuzz_scene.cpp, fuzz_state.cpp,
+// fuzz_pc2.cpp; a violation aborts), and:
 //   --expect MANIFEST  lists "file<TAB>loads" or "file<TAB>rejected<TAB>substring of the
-//                      SceneError message" for the files of its own directory ('#' starts a
-//                      comment); each must have that outcome, and every other file there (but
+//                      loader's error message" for the files of its own directory ('#' starts
+//                      a comment); each must have that outcome, and every other file there (but
 //                      *.md and the manifest) must be listed;
-//   --generated        the regression inputs too large to keep as files (generated_cases());
-//   --load DIR         every *.json directly inside DIR must load;
-//   --reject DIR       every *.json directly inside DIR must be rejected with a SceneError;
+//   --generated        the scene loader's regression inputs too large to keep as files
+//                      (replay_generated());
+//   --load DIR         every *.json directly inside DIR must load (scene);
+//   --reject DIR       every *.json directly inside DIR must be rejected with a SceneError (scene);
 //   FILE, DIR          a file, or every file directly inside DIR: the property only.
 // Exit 0 when every input had its outcome and there was at least one input.
 #include <algorithm>
@@ -28,14 +30,25 @@
 
 #include <unistd.h>
 
-#include "fuzz_scene.hpp"
+#include "fuzz_targets.hpp"
 
 namespace fs = std::filesystem;
 
 namespace {
 
-// The input being run, named when run_one aborts on a property violation.
+// The input being run, named when the target aborts on a property violation.
 std::string g_current;
+
+struct Target {
+  const char* name;
+  clothsim::fuzz::Outcome (*run)(const uint8_t*, size_t);
+  const char* error_type;  // what a rejection throws, for messages
+};
+constexpr Target kTargets[] = {
+    {"scene", clothsim::fuzz::run_scene, "SceneError"},
+    {"state", clothsim::fuzz::run_state, "CheckpointError"},
+    {"pc2", clothsim::fuzz::run_pc2, "Pc2Error"},
+};
 
 void name_the_input_on_abort(int) {
   const std::string msg = "replay: the input that aborted: " + g_current + "\n";
@@ -46,16 +59,17 @@ void name_the_input_on_abort(int) {
 // What an input must do: load, or be rejected with a message containing `message`.
 struct Want {
   bool load = false;
-  std::string message;  // for a rejection; empty matches any SceneError
+  std::string message;  // for a rejection; empty matches any error of the target's type
 };
 
 struct Tally {
+  const Target* target = nullptr;
   int inputs = 0, loaded = 0, failures = 0;
 
-  // Runs one input (run_one aborts on a property violation) and checks the outcome, if any.
+  // Runs one input (the target aborts on a property violation) and checks the outcome, if any.
   void run(const std::string& name, const std::string& bytes, const std::optional<Want>& want) {
     g_current = name;
-    const auto out = clothsim::fuzz::run_one(reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size());
+    const auto out = target->run(reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size());
     ++inputs;
     loaded += out.loaded;
     if (!want) return;
@@ -68,8 +82,8 @@ struct Tally {
     if (want->load)
       std::fprintf(stderr, "FAIL %s: expected to load, got: %.200s\n", name.c_str(), got.c_str());
     else
-      std::fprintf(stderr, "FAIL %s: expected a SceneError containing '%s', got: %.200s\n", name.c_str(),
-                   want->message.c_str(), got.c_str());
+      std::fprintf(stderr, "FAIL %s: expected a %s containing '%s', got: %.200s\n", name.c_str(),
+                   target->error_type, want->message.c_str(), got.c_str());
     ++failures;
   }
 };
@@ -146,31 +160,46 @@ void replay_generated(Tally& tally) {
             Want{false, "a key path of more than 32 parts"});
 }
 
+// The target named by "--target NAME" at the start of the arguments, or null.
+const Target* target_of(int argc, char** argv) {
+  if (argc < 3 || std::string(argv[1]) != "--target") return nullptr;
+  for (const Target& t : kTargets)
+    if (argv[2] == std::string(t.name)) return &t;
+  return nullptr;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   std::signal(SIGABRT, name_the_input_on_abort);
   Tally tally;
-  for (int a = 1; a < argc; ++a) {
+  tally.target = target_of(argc, argv);
+  if (!tally.target) {
+    std::fprintf(stderr, "replay: the first arguments must be --target scene, --target state or --target pc2\n");
+    return 2;
+  }
+  const bool scene = tally.target->run == clothsim::fuzz::run_scene;
+  for (int a = 3; a < argc; ++a) {
     const std::string arg = argv[a];
     const bool has_value = a + 1 < argc;
-    if (arg == "--generated") {
+    if (arg == "--generated" && scene) {
       replay_generated(tally);
     } else if (arg == "--expect" && has_value) {
       replay_manifest(argv[++a], tally);
-    } else if ((arg == "--load" || arg == "--reject") && has_value) {
+    } else if ((arg == "--load" || arg == "--reject") && has_value && scene) {
       const Want want{arg == "--load", ""};
       for (const fs::path& p : files_in(argv[++a], ".json")) tally.run(p.string(), read_bytes(p), want);
     } else if (arg.rfind("--", 0) == 0) {
-      std::fprintf(stderr, "replay: unknown option or missing value: %s\n", arg.c_str());
+      std::fprintf(stderr, "replay: unknown option, missing value or not for --target %s: %s\n", tally.target->name,
+                   arg.c_str());
       return 2;
     } else {
       const auto files = fs::is_directory(arg) ? files_in(arg) : std::vector<fs::path>{arg};
       for (const fs::path& p : files) tally.run(p.string(), read_bytes(p), std::nullopt);
     }
   }
-  std::printf("replay: %d inputs, %d loaded, %d rejected with a SceneError, %d failed\n", tally.inputs, tally.loaded,
-              tally.inputs - tally.loaded, tally.failures);
+  std::printf("replay: %d inputs, %d loaded, %d rejected with a %s, %d failed\n", tally.inputs, tally.loaded,
+              tally.inputs - tally.loaded, tally.target->error_type, tally.failures);
   if (tally.inputs == 0) std::fprintf(stderr, "replay: no inputs (a wrong path?)\n");
   return tally.failures == 0 && tally.inputs > 0 ? 0 : 1;
 }

@@ -1,0 +1,167 @@
+#!/usr/bin/env python3
+"""Writes the seed corpora of the state and PC2 fuzz targets: tests/fuzz/seeds_state/ and
+tests/fuzz/seeds_pc2/, each file with its expected outcome in the folder's expected.txt.
+
+    tests/fuzz/make_seeds.py build/clothsim-headless
+
+The valid files are written by clothsim itself (`simulate --save-state` on the CPU reference in
+double and on the GPU in float, `--export FILE.pc2`, and a run continued from a state) on a 3x2
+cloth, so they are a few hundred bytes; the others are copies of them with one thing broken
+(cut short, a field out of range, a NaN with its checksum made to match, ...); a header field
+out of range needs no more than the header. The GPU state
+needs an OpenGL 4.3 context (llvmpipe will do). Rerun it when a format changes, and commit what
+it writes; the files a format no longer reads are the ones whose line in expected.txt fails.
+"""
+import os
+import shutil
+import struct
+import subprocess
+import sys
+import tempfile
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+
+SCENE = ('{"cloth": {"width": 1, "height": 1, "num_width_points": 3, "num_height_points": 2,\n'
+         '           "thickness": 0.0095, "orientation": 0, "pinned": [[0, 0]]}}\n')
+
+
+def fnv1a(data):
+    h = 0xcbf29ce484222325
+    for b in data:
+        h = ((h ^ b) * 0x100000001b3) & 0xFFFFFFFFFFFFFFFF
+    return h
+
+
+def with_checksum(body):
+    """A state file's bytes but its last 8, then their FNV-1a: the checksum the reader expects."""
+    return body + struct.pack('<Q', fnv1a(body))
+
+
+def patch(data, offset, fmt, value):
+    return data[:offset] + struct.pack(fmt, value) + data[offset + struct.calcsize(fmt):]
+
+
+def state_stream_offset(state):
+    """Where a version-2 state's positions start: the header and the two names."""
+    scene_len, backend_len = struct.unpack_from('<II', state, 56)
+    return 80 + scene_len + backend_len
+
+
+def state_seeds(cpu, gpu, pc2):
+    """(file, bytes, outcome, why) for seeds_state/; outcome is 'loads' or 'rejected<TAB>message'."""
+    f_pos = state_stream_offset(gpu)   # float positions: 16 bytes per particle
+    d_pos = state_stream_offset(cpu)   # double positions: 32 bytes per particle
+    d_disp = d_pos + 6 * 32            # the 3x2 cloth's displacements follow its positions
+    # Version 1: the same header without its dt (72 bytes), checksummed again.
+    v1 = with_checksum(patch(gpu[:72], 16, '<I', 1) + gpu[80:-8])
+    nan = float('nan')
+    return [
+        ('v2_double_cpu.state', cpu, 'loads', 'simulate --backend cpu --frames 3 --save-state: 3x2, doubles'),
+        ('v2_float_gpu.state', gpu, 'loads', 'simulate --backend gpu --frames 3 --save-state: 3x2, floats'),
+        ('v1_float.state', v1, 'loads', 'the float state as version 1 (72-byte header, no dt): still read'),
+        ('empty.state', b'', 'rejected\tnot a clothsim state file', 'an empty file'),
+        ('foreign_pc2.state', pc2, 'rejected\tnot a clothsim state file', 'a PC2 cache given as a state'),
+        ('truncated_header.state', cpu[:60], 'rejected\ttruncated (60 bytes, shorter than the header)',
+         'cut inside the header'),
+        ('truncated_stream.state', cpu[:-40],
+         f'rejected\ttruncated ({len(cpu) - 40} bytes, a 3x2 cloth of 8-byte scalars needs {len(cpu)})',
+         'cut inside the displacements'),
+        ('trailing_byte.state', gpu + b'\0', 'rejected\thas trailing bytes', 'one byte too many'),
+        ('version_3.state', patch(gpu[:80], 16, '<I', 3), 'rejected\tstate file version 3', 'an unknown version'),
+        ('scalar_6.state', patch(gpu[:80], 20, '<I', 6), 'rejected\tscalar size 6 bytes', 'neither float nor double'),
+        ('grid_4096x4096.state', patch(patch(gpu, 24, '<I', 4096), 28, '<I', 4096),
+         f'rejected\ta 4096x4096 cloth of 4-byte scalars needs {f_pos + 2 * 4096 * 4096 * 16 + 8}',
+         'a legal grid the file is far too short for: refused before 512 MiB are allocated'),
+        ('grid_8192x4096.state', patch(patch(gpu[:80], 24, '<I', 8192), 28, '<I', 4096),
+         'rejected\tgrid 8192x4096 is out of range', 'more particles than kMaxParticles'),
+        ('scene_name_5000.state', patch(gpu[:80], 56, '<I', 5000), 'rejected\tname lengths out of range',
+         'a name longer than 4096 bytes'),
+        ('checksum_mismatch.state', gpu[:f_pos] + b'\x01' + gpu[f_pos + 1:], 'rejected\tchecksum mismatch',
+         'a position byte changed, the checksum not'),
+        ('nan_position.state', with_checksum(patch(gpu, f_pos + 16 + 4, '<f', nan)[:-8]),
+         'rejected\tthe position of particle 1 has y = nan', 'a NaN with a matching checksum'),
+        ('inf_displacement.state', with_checksum(patch(cpu, d_disp + 4 * 32 + 16, '<d', float('inf'))[:-8]),
+         'rejected\tthe displacement of particle 4 has z = inf', 'an Inf with a matching checksum'),
+        ('negative_time.state', with_checksum(patch(gpu, 48, '<d', -1.0)[:-8]),
+         'rejected\tthe simulated time is -1', 'a time < 0 with a matching checksum'),
+        ('negative_frame.state', with_checksum(patch(gpu, 40, '<q', -1)[:-8]),
+         'rejected\tthe frame is -1', 'a frame < 0 with a matching checksum'),
+        ('zero_dt.state', with_checksum(patch(gpu, 72, '<d', 0.0)[:-8]),
+         'rejected\tthe substep length is 0 s', 'a version-2 dt of 0 with a matching checksum'),
+    ]
+
+
+def pc2_seeds(cache, resumed, state):
+    """(file, bytes, outcome, why) for seeds_pc2/."""
+    points, samples = struct.unpack_from('<i', cache, 16)[0], struct.unpack_from('<i', cache, 28)[0]
+    last = 32 + (samples - 1) * points * 12
+    nan = float('nan')
+    return [
+        ('cpu_6_points_4_samples.pc2', cache, 'loads', 'simulate --backend cpu --frames 3 --export: frames 0-3'),
+        ('resumed_every_2.pc2', resumed, 'loads',
+         'simulate --load-state (frame 3) --frames 4 --export-every 2: start frame 3, sample rate 2'),
+        ('partial_sample_past_the_count.pc2', cache + cache[32:52], 'loads',
+         'part of a fifth sample past the count, as while a cache is written'),
+        ('no_samples.pc2', patch(cache[:32], 28, '<i', 0), 'loads', 'a header with no samples yet'),
+        ('empty.pc2', b'', 'rejected\tnot a PC2 file', 'an empty file'),
+        ('foreign_state.pc2', state, 'rejected\tnot a PC2 file', 'a state file given as a cache'),
+        ('truncated_header.pc2', cache[:20], 'rejected\tnot a PC2 file', 'cut inside the header'),
+        ('truncated_sample.pc2', cache[:-1], 'rejected\ttruncated: the header claims 6 points x 4 samples',
+         'one byte short of the last sample'),
+        ('points_2_30.pc2', patch(patch(cache[:100], 16, '<i', 1 << 30), 28, '<i', 1),
+         'rejected\ttruncated: the header claims 1073741824 points x 1 samples',
+         'a 12 GiB sample claimed by a 100-byte file: refused before allocating'),
+        ('negative_points.pc2', patch(cache[:32], 16, '<i', -5), 'rejected\tcorrupted header (-5 points',
+         'a negative count'),
+        ('nan_start_frame.pc2', patch(cache[:32], 20, '<f', nan), 'rejected\tcorrupted header (start frame nan',
+         'a start frame that is NaN'),
+        ('inf_sample_rate.pc2', patch(cache[:32], 24, '<f', float('inf')), 'rejected\tsample rate inf',
+         'a sample rate that is Inf'),
+        ('nan_in_last_sample.pc2', patch(cache, last + 5 * 12 + 8, '<f', nan),
+         'rejected\tsample 3: point 5 has z = nan', 'a NaN in the last sample'),
+    ]
+
+
+def write_corpus(folder, seeds, what):
+    os.makedirs(folder, exist_ok=True)
+    for name in os.listdir(folder):
+        os.remove(os.path.join(folder, name))
+    lines = [f'# Seeds of the {what} fuzz target, written by tests/fuzz/make_seeds.py (tests/fuzz/README.md):',
+             '# file<TAB>loads, or file<TAB>rejected<TAB>substring of the error message.']
+    for name, data, outcome, why in seeds:
+        with open(os.path.join(folder, name), 'wb') as f:
+            f.write(data)
+        lines += [f'# {why}', f'{name}\t{outcome}']
+    with open(os.path.join(folder, 'expected.txt'), 'w') as f:
+        f.write('\n'.join(lines) + '\n')
+
+
+def main():
+    if len(sys.argv) != 2:
+        sys.exit(__doc__)
+    clothsim = os.path.abspath(sys.argv[1])
+    tmp = tempfile.mkdtemp()
+    try:
+        def run(*args):
+            subprocess.run([clothsim, 'simulate', 'seed_cloth.json', *args], cwd=tmp, check=True,
+                           stdout=subprocess.DEVNULL)
+
+        def read(name):
+            with open(os.path.join(tmp, name), 'rb') as f:
+                return f.read()
+
+        with open(os.path.join(tmp, 'seed_cloth.json'), 'w') as f:
+            f.write(SCENE)
+        run('--backend', 'cpu', '--frames', '3', '--save-state', 'cpu.state', '--export', 'cache.pc2')
+        run('--backend', 'gpu', '--frames', '3', '--save-state', 'gpu.state')
+        run('--backend', 'cpu', '--load-state', 'cpu.state', '--frames', '4', '--export-every', '2',
+            '--export', 'resumed.pc2')
+        cpu, gpu, cache, resumed = read('cpu.state'), read('gpu.state'), read('cache.pc2'), read('resumed.pc2')
+    finally:
+        shutil.rmtree(tmp)
+    write_corpus(os.path.join(HERE, 'seeds_state'), state_seeds(cpu, gpu, cache), 'state-file')
+    write_corpus(os.path.join(HERE, 'seeds_pc2'), pc2_seeds(cache, resumed, gpu), 'PC2')
+
+
+if __name__ == '__main__':
+    main()
