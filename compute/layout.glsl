@@ -75,6 +75,7 @@ using uint = uint32_t;
 #define TEXTURE_CORNER_START 20      // R32UI, per particle + 1: its first entry in the corner list
 #define TEXTURE_CORNER_TRIANGLES 21  // R32UI, per corner entry: a triangle around the particle (ascending)
 #define TEXTURE_TRIANGLES 22         // RGBA32UI, per triangle: xyz its corners
+#define TEXTURE_REST_POSITIONS 23    // RGBA32F, per particle: xyz its rest position (bounded contact; 1 texel otherwise)
 // RGBA32F texels per struct in the views above: member m of element k is texel
 // k * STRUCT_TEXELS + m (tests/test_gpu_layout.cpp checks these against the std430 strides).
 #define MATERIAL_TEXELS 2
@@ -151,7 +152,9 @@ struct MeshVertex {
   F(float, gust_inv_length3)   /* 1/m, 1 / (3 gust length) */                              \
   F(uint, wind_enabled)        /* 1 = compute_wind_forces runs and advance adds its force */ \
   F(uint, gust_enabled)        /* 1 = the wind has gusts */                                \
-  F(uint, pins_moving)         /* 1 = pinned masses follow pinned_motion */
+  F(uint, pins_moving)         /* 1 = pinned masses follow pinned_motion */                \
+  F(uint, bounded_contact)     /* 1 = xpbd's self-contact (docs/model.md) */               \
+  F(float, max_step)           /* m, predict's displacement limit per substep (0: none) */
 #define STEP_PARAMS_DECLARE(type, name) type name;
 // std140 rounds the block's size up to 16 bytes; alignas makes sizeof agree.
 STRUCT_ALIGN16 StepParams { STEP_PARAMS_FIELDS(STEP_PARAMS_DECLARE) };

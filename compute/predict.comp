@@ -39,6 +39,13 @@ void main() {
   precise vec3 acc = params.gravity;
   if (params.wind_enabled != 0u) acc = acc + wind_force[i].xyz * p.w;  // compute_wind_forces ran before
   precise vec3 d = displacement_of(i).xyz * material_of(i).keep.x + acc * params.dt2;
+  if (params.max_step > 0.0) {
+    // The bounded contact's speed limit (docs/model.md, "Self-contact that holds").
+    float len = length3(d);
+    precise float scale = params.max_step * (1.0 / len);
+    precise vec3 limited = d * scale;
+    if (len > params.max_step) d = limited;
+  }
   precise vec3 next = p.xyz + d;
   // The tether to the nearest pin (long-range attachments, host/core/tethers.cpp).
   vec4 tether = texelFetch(tethers_view, i);

@@ -13,6 +13,8 @@
 layout(local_size_x = WORKGROUP_SIZE) in;
 layout(std430, binding = BINDING_POSITIONS_OUT) writeonly buffer Output { vec4 pos_out[]; };
 layout(std430, binding = BINDING_DISPLACEMENT) writeonly buffer Displacements { vec4 disp[]; };
+// Particle ids in cell order: the bounded contact looks up a touching mass's rest position.
+layout(std430, binding = BINDING_CELL_ENTRIES) readonly buffer Entries { uint entries[]; };
 
 uniform bool u_collide_objects;
 
@@ -23,7 +25,7 @@ struct Contacts {
 
 // Adds the push-out from every particle among entries [first, last) that lies in one of the
 // three cells (x - 1 .. x + 1, row.y, row.z) and closer than the contact distance.
-Contacts visit_entries(Contacts acc, vec3 xi, ivec3 row, uint first, uint last) {
+Contacts visit_entries(Contacts acc, vec3 xi, vec3 rest_i, ivec3 row, uint first, uint last) {
   float contact = params.contact_distance;
   for (uint e = first; e < last; ++e) {
     vec3 xj = texelFetch(sorted_positions_view, int(e)).xyz;
@@ -36,8 +38,21 @@ Contacts visit_entries(Contacts acc, vec3 xi, ivec3 row, uint first, uint last) 
     vec3 e3 = xi - xj;
     float d = length3(e3);
     if (d >= contact || d == 0.0) continue;
-    precise float push = (contact - d) * (1.0 / d);
-    precise vec3 sum = acc.sum + e3 * push;
+    if (params.bounded_contact == 0u) {
+      precise float push = (contact - d) * (1.0 / d);
+      precise vec3 sum = acc.sum + e3 * push;
+      acc.sum = sum;
+      ++acc.hits;
+      continue;
+    }
+    // Bounded contact: masses closer at rest than the contact distance (the cloth's own
+    // neighbours) are kept only at their rest distance; each of the pair moves half the gap.
+    // Read only for a touching pair, so the rest positions cost nothing in the common case.
+    precise vec3 rest_e = rest_i - texelFetch(rest_positions_view, int(entries[e])).xyz;
+    float keep = min(contact, length3(rest_e));
+    if (!(d < keep)) continue;
+    precise float half_push = (keep - d) * (0.5 / d);
+    precise vec3 sum = acc.sum + e3 * half_push;
     acc.sum = sum;
     ++acc.hits;
   }
@@ -49,13 +64,13 @@ uint bucket_start(uint b) { return texelFetch(cell_start_view, int(b)).x; }
 // The three cells (x - 1 .. x + 1) of row (y, z) around cell c: three consecutive buckets,
 // so one run of entries, in the reference's order (dx = -1, 0, 1; ascending ids within a
 // cell) -- or two runs when the three buckets wrap around the end of the table.
-Contacts visit_row(Contacts acc, vec3 xi, ivec3 c, int dy, int dz) {
+Contacts visit_row(Contacts acc, vec3 xi, vec3 rest_i, ivec3 c, int dy, int dz) {
   ivec3 row = ivec3(c.x, c.y + dy, c.z + dz);
   uint size = params.table_size;
   uint b0 = (hash_row(row.y, row.z) + uint(c.x - 1)) & (size - 1u);
   uint end = b0 + 3u;
-  acc = visit_entries(acc, xi, row, bucket_start(b0), bucket_start(min(end, size)));
-  if (end > size) acc = visit_entries(acc, xi, row, bucket_start(0u), bucket_start(end - size));
+  acc = visit_entries(acc, xi, rest_i, row, bucket_start(b0), bucket_start(min(end, size)));
+  if (end > size) acc = visit_entries(acc, xi, rest_i, row, bucket_start(0u), bucket_start(end - size));
   return acc;
 }
 
@@ -71,22 +86,28 @@ void main() {
   precise vec3 xi = p.xyz;
   ivec3 c = cell_of(xi);
   Contacts acc = Contacts(vec3(0.0), 0u);
+  // (Without the bounded contact the view holds one dummy texel: not read.)
+  vec3 rest_i = params.bounded_contact != 0u ? texelFetch(rest_positions_view, i).xyz : vec3(0.0);
   // The nine rows of three cells, in the reference's order (dz, then dy), written out so
   // every offset is a constant.
-  acc = visit_row(acc, xi, c, -1, -1);
-  acc = visit_row(acc, xi, c, 0, -1);
-  acc = visit_row(acc, xi, c, 1, -1);
-  acc = visit_row(acc, xi, c, -1, 0);
-  acc = visit_row(acc, xi, c, 0, 0);
-  acc = visit_row(acc, xi, c, 1, 0);
-  acc = visit_row(acc, xi, c, -1, 1);
-  acc = visit_row(acc, xi, c, 0, 1);
-  acc = visit_row(acc, xi, c, 1, 1);
+  acc = visit_row(acc, xi, rest_i, c, -1, -1);
+  acc = visit_row(acc, xi, rest_i, c, 0, -1);
+  acc = visit_row(acc, xi, rest_i, c, 1, -1);
+  acc = visit_row(acc, xi, rest_i, c, -1, 0);
+  acc = visit_row(acc, xi, rest_i, c, 0, 0);
+  acc = visit_row(acc, xi, rest_i, c, 1, 0);
+  acc = visit_row(acc, xi, rest_i, c, -1, 1);
+  acc = visit_row(acc, xi, rest_i, c, 0, 1);
+  acc = visit_row(acc, xi, rest_i, c, 1, 1);
   precise vec3 sum = acc.sum;
   uint hits = acc.hits;
   precise vec3 d = displacement_of(i).xyz;
   if (hits > 0u) {
-    precise float scale = 1.0 / (float(hits) * params.steps);
+    // Classic: the average over the contacts, spread over the substeps (DESIGN.md §1.3).
+    // Bounded: the average, whole, every substep.
+    precise float classic_scale = 1.0 / (float(hits) * params.steps);
+    precise float bounded_scale = 1.0 / float(hits);
+    float scale = params.bounded_contact != 0u ? bounded_scale : classic_scale;
     precise vec3 corr = sum * scale;
     xi = xi + corr;
     d = d + corr;  // x_prev stays where it was

@@ -199,6 +199,7 @@ void add_simulate_command(CLI::App& app, std::function<int()>& run) {
           // A line of its own per frame, so a script can collect them (scripts/contact-check).
           progress.finish();  // clears the progress line; update() redraws it
           fmt::print("frame {} self-intersections {}\n", frame, count_self_intersections(model, backend->snapshot()));
+          std::fflush(stdout);  // a script reading a pipe sees each line as it comes
         }
         progress.update(f);
       }

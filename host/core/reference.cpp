@@ -110,6 +110,14 @@ template <class R> Constants<R> make_constants(const Scene& scene, const ClothMo
   c.tether_limit = R(1.0 + sp.tether_stretch);
   c.iterations = sp.constraint_iterations;
   c.self_collision = sp.self_collision;
+  c.bounded_contact = c.xpbd && c.self_collision;
+  if (c.bounded_contact) {
+    // A mass moves at most a quarter of the contact distance per substep: two masses closing
+    // on each other cover at most half of it, so a mass of one layer is seen by the other's
+    // masses before it can reach the gap between them (docs/model.md).
+    c.max_step = R(kMaxStepFraction * 2.0 * thickness);
+    for (const glm::dvec3& p : model.initial) c.rest.push_back(Vec3<R>(p));
+  }
   for (auto& s : scene.spheres) c.spheres.push_back({Vec3<R>(s.origin), R(s.radius), R(1.0 - s.friction)});
   for (auto& p : scene.planes) c.planes.push_back({Vec3<R>(p.point), Vec3<R>(p.normal), R(1.0 - p.friction)});
   make_wind(scene, c);

@@ -64,6 +64,10 @@ template <class R> struct MaterialC {
   R compliance(SpringType t) const { return t == SpringType::Bending ? alpha_bending : alpha; }
 };
 
+// The bounded contact's speed limit: a mass moves at most this fraction of the contact
+// distance per substep (Constants::max_step).
+inline constexpr double kMaxStepFraction = 0.25;
+
 // Scene parameters converted once to R: the GPU uploads exactly Constants<float>.
 template <class R> struct Constants {
   Vec3<R> gravity;
@@ -73,6 +77,13 @@ template <class R> struct Constants {
   R inv_cell;           // 1 / cell edge (cell edge = contact_distance)
   R steps;              // simulation_steps
   R tether_limit;       // xpbd: 1 + tether_stretch
+  // xpbd with self-collision, the bounded contact (docs/model.md, "Self-contact that holds"):
+  // predict clamps each substep's displacement to max_step (0: no clamp), and
+  // resolve_self_contacts keeps two masses min(contact_distance, their rest distance) apart,
+  // the rest distance from `rest` (the model's rest positions, rounded to R once).
+  bool bounded_contact = false;
+  R max_step = 0;
+  std::vector<Vec3<R>> rest;
   std::vector<MaterialC<R>> materials;  // by cloth, Scene::cloths() order
   std::vector<R> mass;  // kg, per particle (particle_masses: follows a live density edit)
   int iterations;

@@ -22,11 +22,24 @@ template <class R> void resolve_self_contacts(const Constants<R>& c, State<R>& s
       const R d = length3(e3);
       // i itself, and coincident masses, have no direction to separate along: skipped.
       if (d >= c.contact_distance || d == R(0)) return;
-      sum += e3 * ((c.contact_distance - d) * (R(1) / d));
+      if (!c.bounded_contact) {
+        sum += e3 * ((c.contact_distance - d) * (R(1) / d));
+        ++hits;
+        return;
+      }
+      // Bounded contact: masses closer at rest than the contact distance (the cloth's own
+      // neighbours) are kept only at their rest distance; each of the pair moves half the gap.
+      const R rest = length3(c.rest[i] - c.rest[j]);
+      const R keep = std::min(c.contact_distance, rest);
+      if (!(d < keep)) return;
+      sum += e3 * ((keep - d) * (R(0.5) / d));
       ++hits;
     });
     if (hits > 0) {
-      const Vec3<R> corr = sum * (R(1) / (R(hits) * c.steps));
+      // Classic: the average over the contacts, spread over the substeps (DESIGN.md §1.3).
+      // Bounded: the average, whole, every substep.
+      const R scale = c.bounded_contact ? R(1) / R(hits) : R(1) / (R(hits) * c.steps);
+      const Vec3<R> corr = sum * scale;
       s.pos_out[i] = Vec4<R>(xi + corr, s.pos[i].w);
       s.disp[i] = Vec4<R>(Vec3<R>(s.disp[i]) + corr, R(0));  // x_prev stays where it was
     }

@@ -136,6 +136,11 @@ template <class R> void predict(const ClothModel& m, const Constants<R>& c, Stat
     Vec3<R> acc = c.gravity;
     if (c.wind.enabled) acc = acc + Vec3<R>(s.wind[i]) * w;  // compute_wind_forces ran before
     Vec3<R> d = Vec3<R>(s.disp[i]) * c.materials[m.material[i]].keep_velocity + acc * c.dt2;
+    if (c.max_step > R(0)) {
+      // The bounded contact's speed limit (docs/model.md, "Self-contact that holds").
+      const R len = length3(d);
+      if (len > c.max_step) d = d * (c.max_step * (R(1) / len));
+    }
     Vec3<R> x = Vec3<R>(s.pos[i]) + d;
     if (const int pin = m.tether_pin[i]; pin >= 0) {
       const Vec3<R> e = x - pin_position(pin);

@@ -47,10 +47,12 @@ void GpuSimulator::set_time(double t) {
 void GpuSimulator::set_parameters(const Scene& scene) {
   const std::vector<float> old_mass = constants_.mass;
   const bool had_anchors = constants_.moving_pins(), had_wind = constants_.wind.enabled;
+  const bool had_bounded = constants_.bounded_contact;
   constants_ = make_constants<float>(scene, model_);
   masses_ = particle_masses(scene, model_);
   if (constants_.timeline.moves()) set_substep_time(constants_, time_);
   if (constants_.moving_pins() != had_anchors) upload_anchors();
+  if (constants_.bounded_contact != had_bounded) upload_rest_positions();  // switched solver or self-collision
   if (constants_.wind.enabled != had_wind)
     wind_forces_.allocate((constants_.wind.enabled ? model_.count() : 1) * sizeof(glm::vec4));
   params_ = make_step_params(constants_, model_);

@@ -43,12 +43,12 @@ std::optional<GpuMemoryInfo> available_gpu_memory() {
 
 uint64_t simulator_bytes(const ClothModel& model) {
   const uint64_t n = uint64_t(model.count()), table = hash_table_size(uint32_t(n));
-  // pos, disp, forces, normals, the self-collision output, the kept copy, the tethers and the
-  // particles' mass and material; the springs, their gather entries (two per spring), the
+  // pos, disp, forces, normals, the self-collision output, the kept copy, the tethers, the
+  // particles' mass and material and the rest positions (bounded contact only; counted always); the springs, their gather entries (two per spring), the
   // triangles and their corner entries (three per triangle); the hash's entries per particle and
   // its count and start per bucket (scan sums are less than 1 % more).
   const uint64_t springs = model.springs.size(), triangles = model.triangles.size();
-  return n * (8 * sizeof(glm::vec4) + 3 * sizeof(uint32_t)) + springs * (sizeof(layout::SpringTexel) + 2 * sizeof(glm::uvec2)) +
+  return n * (9 * sizeof(glm::vec4) + 3 * sizeof(uint32_t)) + springs * (sizeof(layout::SpringTexel) + 2 * sizeof(glm::uvec2)) +
          triangles * (sizeof(glm::uvec4) + 3 * sizeof(uint32_t)) + (2 * table + 1) * sizeof(uint32_t);
 }
 

@@ -57,6 +57,8 @@ layout::StepParams make_step_params(const Constants<float>& c, const ClothModel&
   p.inv_cell = c.inv_cell;
   p.steps = c.steps;
   p.tether_limit = c.tether_limit;
+  p.bounded_contact = c.bounded_contact;
+  p.max_step = c.max_step;
   p.count = uint32_t(m.count());
   p.table_size = hash_table_size(uint32_t(m.count()));
   p.sphere_count = uint32_t(c.spheres.size());
@@ -158,6 +160,16 @@ void GpuSimulator::upload_model() {
   gl::upload_vector(corner_start_, m.corner_start, GL_STATIC_DRAW);
   gl::upload_vector(corner_triangles_, nonempty(m.corner_triangles), GL_STATIC_DRAW);
   gl::upload_vector(tethers_, tethers, GL_STATIC_DRAW);
+  upload_rest_positions();
+}
+
+void GpuSimulator::upload_rest_positions() {
+  // Only the bounded contact reads them (one dummy texel otherwise: a view may not be empty).
+  std::vector<glm::vec4> rest;
+  for (const Vec3<float>& r : constants_.rest) rest.push_back({r.x, r.y, r.z, 0.f});
+  if (rest.empty()) rest.resize(1);
+  gl::upload_vector(rest_positions_, rest, GL_STATIC_DRAW);
+  rest_positions_view_.attach(rest_positions_, GL_RGBA32F);
 }
 
 void GpuSimulator::upload_materials() {
@@ -188,7 +200,7 @@ size_t GpuSimulator::memory_bytes() const {
   for (const gl::Buffer* b : {&positions_, &displacement_, &forces_, &normals_, &springs_, &spheres_, &planes_,
                               &step_params_, &positions_out_, &cell_count_, &cell_start_, &cell_entries_,
                               &sorted_positions_, &tethers_, &wind_forces_, &anchors_, &gather_start_, &gather_,
-                              &particles_, &materials_, &corner_start_, &corner_triangles_, &triangles_})
+                              &particles_, &materials_, &corner_start_, &corner_triangles_, &triangles_, &rest_positions_})
     total += b->size();
   return total + scan_.memory_bytes() + guard_.memory_bytes();
 }
@@ -223,6 +235,7 @@ void GpuSimulator::bind_all() const {
   cell_start_view_.bind(TEXTURE_CELL_START);
   sorted_positions_view_.bind(TEXTURE_SORTED_POSITIONS);
   tethers_view_.bind(TEXTURE_TETHERS);
+  rest_positions_view_.bind(TEXTURE_REST_POSITIONS);
 }
 
 void GpuSimulator::attach_views() {
@@ -242,6 +255,7 @@ void GpuSimulator::attach_views() {
   cell_start_view_.attach(cell_start_, GL_R32UI);
   sorted_positions_view_.attach(sorted_positions_, GL_RGBA32F);
   tethers_view_.attach(tethers_, GL_RGBA32F);
+  rest_positions_view_.attach(rest_positions_, GL_RGBA32F);
 }
 
 GpuBackend::GpuBackend(std::unique_ptr<gl::GlContext> context, const Scene& scene, const ClothModel& model,

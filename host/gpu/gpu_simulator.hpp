@@ -104,6 +104,7 @@ class GpuSimulator {
   void swap_positions();  // the Jacobi/ping-pong output becomes the positions (rebinds the two)
   void upload_colliders();  // from constants_
   void upload_anchors();    // from constants_ (one dummy element without pinned_motion)
+  void upload_rest_positions();  // Constants::rest (the bounded contact), or one dummy texel
   void upload_model();      // the cloth model's lists (springs, gather, triangles, corners, tethers)
   void upload_materials();  // from constants_: the materials and every particle's mass and material
   std::vector<float> inverse_masses() const;  // of every particle for the current densities
@@ -133,6 +134,7 @@ class GpuSimulator {
   gl::Buffer wind_forces_{"wind forces"}, anchors_{"anchors"};
   gl::Buffer gather_start_{"gather start"}, gather_{"gather"}, particles_{"particles"}, materials_{"materials"};
   gl::Buffer corner_start_{"corner start"}, corner_triangles_{"corner triangles"}, triangles_{"triangles"};
+  gl::Buffer rest_positions_{"rest positions"};
   // Read-only views of the buffers above (compute/particle_views.glsl).
   gl::BufferTexture positions_view_{"positions view"}, positions_out_view_{"positions out view"};
   gl::BufferTexture displacement_view_{"displacement view"}, springs_view_{"springs view"}, spheres_view_{"spheres view"};
@@ -142,6 +144,7 @@ class GpuSimulator {
   gl::BufferTexture triangles_view_{"triangles view"};
   gl::BufferTexture planes_view_{"planes view"}, cell_start_view_{"cell start view"};
   gl::BufferTexture sorted_positions_view_{"sorted positions view"}, tethers_view_{"tethers view"};
+  gl::BufferTexture rest_positions_view_{"rest positions view"};
   uint32_t table_size_ = 0;
   bool in_step_ = false;
   bool in_frame_ = false;  // within step_frame's substeps
