@@ -91,13 +91,54 @@ void keep_out_of_sphere(vec3 o, float r, inout vec3 x, inout vec3 d) {
   d = nd;
 }
 
+// xpbd's contact response (coulomb_respond in host/core/reference_collisions.cpp): the push
+// along the outward contact normal n, then Coulomb friction on the substep's displacement
+// relative to the collider: its tangential part cancelled up to mu times the push's depth along n.
+void coulomb_respond(vec3 t_minus_x, vec3 n, float mu, vec3 m, inout vec3 x, inout vec3 d) {
+  precise vec3 pushed = d + t_minus_x;
+  float depth = dot3(t_minus_x, n);
+  vec3 cancel = vec3(0.0);
+  if (depth > 0.0 && mu > 0.0) {
+    precise vec3 rel = pushed - m;
+    precise vec3 tangential = rel - n * dot3(rel, n);
+    float slide = length3(tangential);
+    precise float limit = mu * depth;
+    precise float inv_slide = 1.0 / slide;
+    precise vec3 part = tangential * (limit * inv_slide);
+    if (slide > 0.0) cancel = slide <= limit ? tangential : part;
+  }
+  precise vec3 next_x = x + (t_minus_x - cancel), next_d = pushed - cancel;
+  x = next_x;
+  d = next_d;
+}
+
+// The outward normal of a sphere at the point x + t_minus_x (up at the centre).
+vec3 sphere_normal(vec3 o, vec3 x, vec3 t_minus_x) {
+  precise vec3 e = (x + t_minus_x) - o;
+  float len = length3(e);
+  precise float inv = 1.0 / len;
+  precise vec3 unit = e * inv;
+  return len > 0.0 ? unit : vec3(0.0, 1.0, 0.0);
+}
+
+// One sphere contact's response (respond_to_sphere in the reference): xpbd's Coulomb friction
+// (params.coulomb_friction, with friction on), else the CS184 blend, in the sphere's frame when
+// it moves.
+void respond_to_sphere(bool friction, vec3 o, float keep, float mu, vec3 m, vec3 t_minus_x, inout vec3 x,
+                       inout vec3 d) {
+  if (friction && params.coulomb_friction != 0u) coulomb_respond(t_minus_x, sphere_normal(o, x, t_minus_x), mu, m, x, d);
+  else if (any(notEqual(m, vec3(0.0)))) blend_to_moving(t_minus_x, keep, m, x, d);
+  else blend_to(t_minus_x, keep, x, d);
+}
+
 // With `friction` false every contact keeps all of its tangential motion (keep = 1): the pure
 // push-out that xpbd's constraint pass applies after each correction (docs/model.md); applying
 // it twice changes nothing.
 void collide_with_objects_friction(inout vec3 x, inout vec3 d, bool friction) {
   for (int s = 0; s < int(params.sphere_count); ++s) {
     vec4 origin_radius = texelFetch(spheres_view, SPHERE_TEXELS * s);
-    float keep = friction ? texelFetch(spheres_view, SPHERE_TEXELS * s + 1).x : 1.0;
+    vec4 keep_mu = texelFetch(spheres_view, SPHERE_TEXELS * s + 1);
+    float keep = friction ? keep_mu.x : 1.0;
     vec3 m = texelFetch(spheres_view, SPHERE_TEXELS * s + 2).xyz;
     float r = origin_radius.w;
     vec3 e = x - origin_radius.xyz;
@@ -106,13 +147,12 @@ void collide_with_objects_friction(inout vec3 x, inout vec3 d, bool friction) {
       // Outside at the end: caught if it went through the sphere during the substep.
       vec3 through;
       if (!passed_through_sphere(e, dist, r, d - m, through)) continue;
-      if (any(notEqual(m, vec3(0.0)))) blend_to_moving(through, keep, m, x, d);
-      else blend_to(through, keep, x, d);
+      respond_to_sphere(friction, origin_radius.xyz, keep, keep_mu.y, m, through, x, d);
       keep_out_of_sphere(origin_radius.xyz, r, x, d);
       continue;
     }
     if (any(notEqual(m, vec3(0.0)))) {
-      blend_to_moving(moving_sphere_push(e, dist, r, d, m), keep, m, x, d);
+      respond_to_sphere(friction, origin_radius.xyz, keep, keep_mu.y, m, moving_sphere_push(e, dist, r, d, m), x, d);
       keep_out_of_sphere(origin_radius.xyz, r, x, d);
       continue;
     }
@@ -130,19 +170,22 @@ void collide_with_objects_friction(inout vec3 x, inout vec3 d, bool friction) {
     } else {
       t_minus_x = vec3(0.0, r, 0.0);
     }
-    blend_to(t_minus_x, keep, x, d);
+    respond_to_sphere(friction, origin_radius.xyz, keep, keep_mu.y, vec3(0.0), t_minus_x, x, d);
     keep_out_of_sphere(origin_radius.xyz, r, x, d);
   }
   for (int k = 0; k < int(params.plane_count); ++k) {
     vec4 point_front = texelFetch(planes_view, PLANE_TEXELS * k);
     vec4 normal_keep = texelFetch(planes_view, PLANE_TEXELS * k + 1);
-    vec3 m = texelFetch(planes_view, PLANE_TEXELS * k + 2).xyz;
+    vec4 motion_mu = texelFetch(planes_view, PLANE_TEXELS * k + 2);
+    vec3 m = motion_mu.xyz;
     vec3 n = normal_keep.xyz;
     float front = point_front.w;
+    bool coulomb = friction && params.coulomb_friction != 0u;
     if (!friction) normal_keep.w = 1.0;
     // The classic crossing test (in the plane's frame, x_prev - p_prev = (x - p) - (d - m), so a
     // sweep is seen at any speed), and a mass found behind the front at both ends of the
-    // substep is lifted to the front (docs/model.md).
+    // substep is lifted to the front (docs/model.md); with Coulomb friction a mass within the
+    // surface offset in front is in contact too (resting contact).
     float dist = dot3(x - point_front.xyz, n);
     precise vec3 rel_d = d - m;
     precise float dist_prev = dist - dot3(rel_d, n);
@@ -150,15 +193,21 @@ void collide_with_objects_friction(inout vec3 x, inout vec3 d, bool friction) {
     float side;
     if (crossing > 0.0) {
       precise float ahead = dist * front;
-      if (!(ahead < 0.0)) continue;
+      if (!(ahead < (coulomb ? 1e-4 : 0.0))) continue;
       side = front;
     } else {
       side = dist_prev > 0.0 ? 1.0 : (dist_prev < 0.0 ? -1.0 : 0.0);
     }
     precise float along = 1e-4 * side - dist;
     precise vec3 t_minus_x = n * along;
-    if (any(notEqual(m, vec3(0.0)))) blend_to_moving(t_minus_x, normal_keep.w, m, x, d);
-    else blend_to(t_minus_x, normal_keep.w, x, d);
+    if (coulomb) {
+      precise vec3 outward = n * (side != 0.0 ? side : front);
+      coulomb_respond(t_minus_x, outward, motion_mu.w, m, x, d);
+    } else if (any(notEqual(m, vec3(0.0)))) {
+      blend_to_moving(t_minus_x, normal_keep.w, m, x, d);
+    } else {
+      blend_to(t_minus_x, normal_keep.w, x, d);
+    }
   }
 }
 

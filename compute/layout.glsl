@@ -106,14 +106,14 @@ struct MaterialTexels {
 // every substep); exactly 0 for a static collider, which then takes the classic formulas.
 struct SphereCollider {
   vec4 origin_radius;  // xyz origin (at the substep's end), w radius
-  vec4 keep;           // x = 1 - friction
+  vec4 keep;           // x = 1 - friction, y = friction (xpbd's Coulomb mu)
   vec4 motion;         // xyz m over this substep
 };
 
 struct PlaneCollider {
   vec4 point;   // xyz a point on the plane (at the substep's end), w its front: +1 or -1, the cloth's side
   vec4 normal;  // xyz unit normal, w = 1 - friction
-  vec4 motion;  // xyz m over this substep
+  vec4 motion;  // xyz m over this substep, w = friction (xpbd's Coulomb mu)
 };
 
 // Per-vertex extras of a drawn mesh: a collider's uv and tangent; the cloth's uv, and in uv.zw the particles
@@ -154,7 +154,8 @@ struct MeshVertex {
   F(uint, gust_enabled)        /* 1 = the wind has gusts */                                \
   F(uint, pins_moving)         /* 1 = pinned masses follow pinned_motion */                \
   F(uint, bounded_contact)     /* 1 = xpbd's self-contact (docs/model.md) */               \
-  F(float, max_step)           /* m, predict's displacement limit per substep (0: none) */
+  F(float, max_step)           /* m, predict's displacement limit per substep (0: none) */ \
+  F(uint, coulomb_friction)    /* 1 = contacts take Coulomb friction (xpbd), 0 the CS184 blend */
 #define STEP_PARAMS_DECLARE(type, name) type name;
 // std140 rounds the block's size up to 16 bytes; alignas makes sizeof agree.
 STRUCT_ALIGN16 StepParams { STEP_PARAMS_FIELDS(STEP_PARAMS_DECLARE) };

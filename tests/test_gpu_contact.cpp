@@ -1,7 +1,9 @@
 // The GPU twins of tests/test_contact_colliders.cpp: the new collider branches (a mass found
 // behind a plane, a mass through a static sphere, a fast sphere over a mass) give the
-// reference's floats bit for bit on llvmpipe.
+// reference's floats bit for bit on llvmpipe; so does xpbd's Coulomb friction on a slope.
+#include "backend.hpp"
 #include "contact_cases.hpp"
+#include "friction_cases.hpp"
 #include "gpu_pass_fixtures.hpp"
 
 TEST_CASE("collide_objects on the GPU lifts and catches exactly as the reference", "[gpu][contact]") {
@@ -23,5 +25,39 @@ TEST_CASE("collide_objects on the GPU lifts and catches exactly as the reference
   CHECK(st.pos[1].y > 0.8f);
   pass_fixtures::check_same("positions", out.pos, st.pos, pass_fixtures::kPassTolerance);
   pass_fixtures::check_same("displacements", out.disp, st.disp, pass_fixtures::kPassTolerance);
+  CHECK_NO_GL_ERRORS();
+}
+
+// xpbd's Coulomb friction (tests/test_friction.cpp) on the GPU: a cloth sliding down a slope
+// and one held on it give the reference's floats, each pass from an identical state and a
+// whole run.
+TEST_CASE("Coulomb friction on the GPU holds and slides a cloth on a slope exactly as the reference",
+          "[gpu][contact][friction]") {
+  REQUIRE_GL_CONTEXT();
+  for (auto [theta, mu] : {std::pair{35.0, 0.4}, std::pair{20.0, 0.5}}) {
+    INFO("theta " << theta << " deg, mu " << mu);
+    const test::Slope s = test::slope(theta, mu, 30);
+    {
+      GpuSimulator gpu(s.scene, s.model, pass_fixtures::compute_dir());
+      for (const PassError& e : check_passes(s.scene, s.model, gpu, 10)) {
+        INFO(e.pass << ": max |GPU - CPU| = " << e.max_error << " m");
+        if (gl::gl_renderer_is_llvmpipe()) CHECK(e.bitwise);
+        else CHECK(e.max_error <= pass_fixtures::kPassTolerance);
+      }
+    }
+    GpuSimulator gpu(s.scene, s.model, pass_fixtures::compute_dir());
+    CpuBackend<float> cpu(s.scene, s.model);
+    for (int f = 0; f < 20; ++f) {
+      gpu.step_frame();
+      cpu.step_frame();
+    }
+    State<float> out;
+    gpu.download(out);
+    const test::SlopeMotion moved = test::slope_motion(s, out.pos);
+    INFO("moved " << moved.mean_down << " m down the slope in 20 frames");
+    CHECK((theta > 30 ? moved.mean_down > 0.01 : moved.max_distance < 1e-6));
+    pass_fixtures::check_same("positions", out.pos, cpu.state().pos, pass_fixtures::kRunTolerance);
+    pass_fixtures::check_same("displacements", out.disp, cpu.state().disp, pass_fixtures::kRunTolerance);
+  }
   CHECK_NO_GL_ERRORS();
 }

@@ -118,8 +118,10 @@ template <class R> Constants<R> make_constants(const Scene& scene, const ClothMo
     c.max_step = R(kMaxStepFraction * 2.0 * thickness);
     for (const glm::dvec3& p : model.initial) c.rest.push_back(Vec3<R>(p));
   }
-  for (auto& s : scene.spheres) c.spheres.push_back({Vec3<R>(s.origin), R(s.radius), R(1.0 - s.friction)});
-  for (auto& p : scene.planes) c.planes.push_back({Vec3<R>(p.point), Vec3<R>(p.normal), R(1.0 - p.friction)});
+  for (auto& s : scene.spheres)
+    c.spheres.push_back({Vec3<R>(s.origin), R(s.radius), R(1.0 - s.friction), Vec3<R>(0), R(s.friction)});
+  for (auto& p : scene.planes)
+    c.planes.push_back({Vec3<R>(p.point), Vec3<R>(p.normal), R(1.0 - p.friction), Vec3<R>(0), R(1), R(p.friction)});
   make_wind(scene, c);
   make_timeline(scene, model, c);
   // Each plane's front: the side the cloth's rest centre is on, where the plane is at t = 0.

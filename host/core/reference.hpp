@@ -26,10 +26,12 @@ template <class R> R dot3(const Vec3<R>& a, const Vec3<R>& b) { return a.x * b.x
 
 // keep = 1 - friction; motion = the collider's displacement over this substep (0: static, and
 // then exactly the classic formulas run).
-template <class R> struct SphereC { Vec3<R> origin; R radius; R keep; Vec3<R> motion{0}; };
+// mu: the friction coefficient itself, for xpbd's Coulomb friction (docs/model.md, "Coulomb friction (xpbd)").
+template <class R> struct SphereC { Vec3<R> origin; R radius; R keep; Vec3<R> motion{0}; R mu = R(0); };
 // front: +1 or -1, the side of the plane the cloth starts on (its rest centre's side, +1 when on
-// it); a mass is in contact whenever it is not in front, however it got behind.
-template <class R> struct PlaneC { Vec3<R> point; Vec3<R> normal; R keep; Vec3<R> motion{0}; R front = R(1); };
+// it); a mass is in contact whenever it is not in front, however it got behind (with xpbd's
+// Coulomb friction also when within the surface offset in front: docs/model.md).
+template <class R> struct PlaneC { Vec3<R> point; Vec3<R> normal; R keep; Vec3<R> motion{0}; R front = R(1); R mu = R(0); };
 
 // The wind as the passes use it (docs/model.md, "Wind"). The factors fold the constants of
 // the formulas: drag = -rho C_d / 12 is -1/2 rho C_d, times 1/2 (the cross product of two

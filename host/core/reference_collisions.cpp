@@ -117,24 +117,62 @@ template <class R> void keep_out_of_sphere(const SphereC<R>& sp, Vec3<R>& x, Vec
   d = d + out;
 }
 
+// xpbd's contact response (docs/model.md, "Coulomb friction"): the push t - x out along the
+// contact normal n (unit, outwards), then Coulomb friction on the substep's displacement
+// relative to the collider (d - m after the push): its tangential part is cancelled if it is at
+// most mu times the push's depth along n (static friction), else shortened by that much
+// (sliding). The depth is what the mass was pressed in over the substep (g cos(theta) dt^2 for a
+// mass resting on a slope), so the friction is mu times the normal force at any substep length.
+// The whole change, push and friction, is added to x once.
+template <class R>
+void coulomb_respond(const Vec3<R>& t_minus_x, const Vec3<R>& n, R mu, const Vec3<R>& m, Vec3<R>& x, Vec3<R>& d) {
+  const Vec3<R> pushed = d + t_minus_x;
+  const R depth = dot3(t_minus_x, n);
+  Vec3<R> cancel(0);
+  if (depth > R(0) && mu > R(0)) {
+    const Vec3<R> rel = pushed - m;
+    const Vec3<R> tangential = rel - n * dot3(rel, n);
+    const R slide = length3(tangential);
+    const R limit = mu * depth;
+    if (slide > R(0)) cancel = slide <= limit ? tangential : tangential * (limit * (R(1) / slide));
+  }
+  x = x + (t_minus_x - cancel);
+  d = pushed - cancel;
+}
+
+// The outward normal of a sphere at the point x + t_minus_x (up at the centre).
+template <class R> Vec3<R> sphere_normal(const SphereC<R>& sp, const Vec3<R>& x, const Vec3<R>& t_minus_x) {
+  const Vec3<R> e = (x + t_minus_x) - sp.origin;
+  const R len = length3(e);
+  return len > R(0) ? e * (R(1) / len) : Vec3<R>(0, 1, 0);
+}
+
+// One sphere contact's response: xpbd's Coulomb friction (with friction on), else the CS184
+// blend, in the sphere's frame when it moves.
+template <class R>
+void respond_to_sphere(const Constants<R>& c, bool friction, const SphereC<R>& sp, const Vec3<R>& t_minus_x,
+                       Vec3<R>& x, Vec3<R>& d) {
+  if (friction && c.xpbd) coulomb_respond(t_minus_x, sphere_normal(sp, x, t_minus_x), sp.mu, sp.motion, x, d);
+  else if (sp.motion != Vec3<R>(0)) blend_to_moving(t_minus_x, friction ? sp.keep : R(1), sp.motion, x, d);
+  else blend_to(t_minus_x, friction ? sp.keep : R(1), x, d);
+}
+
 // One particle against every sphere, then every plane. With `friction` false every contact
 // keeps all of its tangential motion (keep = 1): the pure push-out of xpbd's constraint pass.
 template <class R> void collide_particle(const Constants<R>& c, Vec3<R>& x, Vec3<R>& d, bool friction) {
   for (const SphereC<R>& sp : c.spheres) {
     const Vec3<R> e = x - sp.origin;
     const R dist = length3(e);
-    const R keep = friction ? sp.keep : R(1);
     if (dist > sp.radius) {
       // Outside at the end: caught if it went through the sphere during the substep.
       Vec3<R> t_minus_x;
       if (!passed_through_sphere(e, dist, sp.radius, d - sp.motion, t_minus_x)) continue;
-      if (sp.motion != Vec3<R>(0)) blend_to_moving(t_minus_x, keep, sp.motion, x, d);
-      else blend_to(t_minus_x, keep, x, d);
+      respond_to_sphere(c, friction, sp, t_minus_x, x, d);
       keep_out_of_sphere(sp, x, d);
       continue;
     }
     if (sp.motion != Vec3<R>(0)) {
-      blend_to_moving(moving_sphere_push(e, dist, sp.radius, d, sp.motion), keep, sp.motion, x, d);
+      respond_to_sphere(c, friction, sp, moving_sphere_push(e, dist, sp.radius, d, sp.motion), x, d);
       keep_out_of_sphere(sp, x, d);
       continue;
     }
@@ -146,28 +184,31 @@ template <class R> void collide_particle(const Constants<R>& c, Vec3<R>& x, Vec3
     const Vec3<R> t_minus_x = dot3(e, e_prev) < R(0) && prev_dist > R(0) ? e_prev * (sp.radius * (R(1) / prev_dist)) - e
                               : dist > R(0) ? e * ((sp.radius - dist) * (R(1) / dist))
                                             : Vec3<R>(0, sp.radius, 0);
-    blend_to(t_minus_x, keep, x, d);
+    respond_to_sphere(c, friction, sp, t_minus_x, x, d);
     keep_out_of_sphere(sp, x, d);
   }
   for (const PlaneC<R>& pl : c.planes) {
-    const R keep = friction ? pl.keep : R(1);
+    const bool coulomb = friction && c.xpbd;
     // The classic test: a mass that crossed the plane this substep (dist * dist_prev <= 0; for
     // a moving plane in its frame, x_prev - p_prev = (x - p) - (d - m), so a sweep is seen at
     // any speed) goes back to the side it came from. And a mass found behind the plane's front
-    // at both ends of the substep (a correction put it there) is lifted to the front.
+    // at both ends of the substep (a correction put it there) is lifted to the front. With
+    // Coulomb friction a mass within the surface offset in front is in contact too: a mass
+    // resting there is pressed in a little every substep, and held every substep.
     const R dist = dot3(x - pl.point, pl.normal);
     const R dist_prev = dist - dot3(d - pl.motion, pl.normal);
     R side;
     if (dist * dist_prev > R(0)) {
-      if (!(dist * pl.front < R(0))) continue;
+      if (!(dist * pl.front < (coulomb ? R(1e-4) : R(0)))) continue;
       side = pl.front;
     } else {
       side = dist_prev > R(0) ? R(1) : (dist_prev < R(0) ? R(-1) : R(0));
     }
     // t = x - dist n + SURFACE_OFFSET side n, so t - x is along n.
     const Vec3<R> t_minus_x = pl.normal * (R(1e-4) * side - dist);
-    if (pl.motion != Vec3<R>(0)) blend_to_moving(t_minus_x, keep, pl.motion, x, d);
-    else blend_to(t_minus_x, keep, x, d);
+    if (coulomb) coulomb_respond(t_minus_x, pl.normal * (side != R(0) ? side : pl.front), pl.mu, pl.motion, x, d);
+    else if (pl.motion != Vec3<R>(0)) blend_to_moving(t_minus_x, friction ? pl.keep : R(1), pl.motion, x, d);
+    else blend_to(t_minus_x, friction ? pl.keep : R(1), x, d);
   }
 }
 

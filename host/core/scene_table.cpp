@@ -66,7 +66,8 @@ const char* const kMassLumpings[] = {"area", "uniform"};
 
 const ParamInfo kFriction{.key = "friction", .required = true, .lo = 0, .hi = 1,
                           .expected = "a friction coefficient in [0, 1]",
-                          .meaning = "0: a touching mass keeps its motion, 1: it sticks"};
+                          .meaning = "classic: the CS184 blend, 0 a touching mass keeps its motion, 1 it "
+                                     "sticks; xpbd: Coulomb's mu, a cloth holds on a slope while tan(angle) <= mu"};
 
 const Param<Scene> kScene[] = {
     // Scene::cloth and Scene::extra_cloths; the panel shows the rows of every cloth.

@@ -7,9 +7,9 @@ namespace clothsim {
 void GpuSimulator::upload_colliders() {
   auto v4 = [](const Vec3<float>& v, float w) { return glm::vec4(v.x, v.y, v.z, w); };
   std::vector<layout::SphereCollider> spheres;
-  for (auto& s : constants_.spheres) spheres.push_back({v4(s.origin, s.radius), {s.keep, 0.f, 0.f, 0.f}, v4(s.motion, 0.f)});
+  for (auto& s : constants_.spheres) spheres.push_back({v4(s.origin, s.radius), {s.keep, s.mu, 0.f, 0.f}, v4(s.motion, 0.f)});
   std::vector<layout::PlaneCollider> planes;
-  for (auto& p : constants_.planes) planes.push_back({v4(p.point, p.front), v4(p.normal, p.keep), v4(p.motion, 0.f)});
+  for (auto& p : constants_.planes) planes.push_back({v4(p.point, p.front), v4(p.normal, p.keep), v4(p.motion, p.mu)});
   // A storage buffer may not be empty when bound: keep one dummy element for zero colliders.
   if (spheres.empty()) spheres.resize(1);
   if (planes.empty()) planes.resize(1);

@@ -75,6 +75,7 @@ layout::StepParams make_step_params(const Constants<float>& c, const ClothModel&
   p.gust_phase = w.gust_phase;
   p.gust_inv_length3 = w.gust_inv_length3;
   p.pins_moving = c.moving_pins();
+  p.coulomb_friction = c.xpbd;
   p.pin_offset = glm::vec3(c.pin_offset.x, c.pin_offset.y, c.pin_offset.z);
   return p;
 }
