@@ -6,6 +6,7 @@
 #include "common.glsl"
 #include "particle_views.glsl"
 #include "constraint_colour.glsl"
+#include "collide_objects.glsl"
 
 layout(local_size_x = WORKGROUP_SIZE) in;
 layout(std430, binding = BINDING_POSITIONS) writeonly buffer Positions { vec4 pos[]; };
@@ -24,6 +25,12 @@ void main() {
   vec3 di = displacement_of(i).xyz, dj = displacement_of(j).xyz;
   precise float limit = params.stretch_limit * rest;
   if (!limit_stretch(xi, xj, di, dj, pi.w, pj.w, wsum, limit)) return;
+  // Provot's pull may not leave a mass deeper than 0.1 mm inside a collider or behind a
+  // plane (docs/model.md, "Colliders: contact that holds"); shallower, nothing changes.
+  if (params.sphere_count + params.plane_count > 0u) {
+    if (pi.w != 0.0) keep_out_of_colliders(xi, di);
+    if (pj.w != 0.0) keep_out_of_colliders(xj, dj);
+  }
   pos[i].xyz = xi;
   pos[j].xyz = xj;
   disp[i] = vec4(di, 0.0);
