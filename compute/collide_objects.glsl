@@ -213,25 +213,12 @@ void collide_with_objects_friction(inout vec3 x, inout vec3 d, bool friction) {
 
 void collide_with_objects(inout vec3 x, inout vec3 d) { collide_with_objects_friction(x, d, true); }
 
-// A mass deeper than 0.1 mm inside a sphere, or behind a plane's front, goes back to the
-// surface without friction (keep_out_of_colliders in host/core/reference_collisions.cpp).
-void keep_out_of_colliders(inout vec3 x, inout vec3 d) {
+// A mass deeper than 0.1 mm inside a sphere goes back to its surface without friction
+// (keep_out_of_spheres in host/core/reference_collisions.cpp).
+void keep_out_of_spheres(inout vec3 x, inout vec3 d) {
   for (int s = 0; s < int(params.sphere_count); ++s) {
     vec4 origin_radius = texelFetch(spheres_view, SPHERE_TEXELS * s);
     keep_out_of_sphere(origin_radius.xyz, origin_radius.w, x, d);
-  }
-  for (int k = 0; k < int(params.plane_count); ++k) {
-    vec4 point_front = texelFetch(planes_view, PLANE_TEXELS * k);
-    vec3 n = texelFetch(planes_view, PLANE_TEXELS * k + 1).xyz;
-    float front = point_front.w;
-    float dist = dot3(x - point_front.xyz, n);
-    precise float behind = dist * front;
-    if (!(behind < -1e-4)) continue;
-    precise float along = 1e-4 * front - dist;
-    precise vec3 out_along_n = n * along;
-    precise vec3 nx = x + out_along_n, nd = d + out_along_n;
-    x = nx;
-    d = nd;
   }
 }
 

@@ -65,6 +65,19 @@ struct Placed {
     collide_self(c, s);
     return g.pos;
   }
+  // A 33x17 grid folded in the middle: rows 9..16 lie back over rows 7..0, `gap` above them,
+  // columns sx apart and rows sz apart, each coordinate jittered by up to 1 mm (seeded).
+  void fold_33x17(float gap, float sx, float sz, unsigned seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> jitter(-1e-3f, 1e-3f);
+    for (int y = 0; y < 17; ++y)
+      for (int x = 0; x < 33; ++x) {
+        const int row = y <= 8 ? y : 16 - y;
+        Vec4<float>& p = s.pos[model.index(x, y)];
+        p = Vec4<float>(float(x) * sx + jitter(rng), 1.f + (y <= 8 ? 0.f : gap) + jitter(rng),
+                        float(row) * sz + jitter(rng), p.w);
+      }
+  }
   // The particles not placed by the test go far apart, out of everyone's reach.
   void park_from(int first) {
     for (int i = first; i < model.count(); ++i) s.pos[i] = Vec4<float>(5.f + 0.5f * float(i), 7.f, -3.f, s.pos[i].w);

@@ -8,16 +8,7 @@ TEST_CASE("the GPU correction equals the reference's on a cloth folded onto itse
   REQUIRE_GL_CONTEXT();
   // 33x17 over 0.4 m: rows 9..16 folded back over rows 7..0, 0.6 thickness above them.
   Placed t(test::make_scene(33, 17, 0, {"cloth.width=0.4", "cloth.height=0.4"}));
-  const float gap = 0.6f * float(t.scene.cloth.thickness), sx = 0.4f / 32, sz = 0.4f / 16;
-  std::mt19937 rng(11);
-  std::uniform_real_distribution<float> jitter(-1e-3f, 1e-3f);
-  for (int y = 0; y < 17; ++y)
-    for (int x = 0; x < 33; ++x) {
-      const int row = y <= 8 ? y : 16 - y;
-      Vec4<float>& p = t.s.pos[t.model.index(x, y)];
-      p = Vec4<float>(float(x) * sx + jitter(rng), 1.f + (y <= 8 ? 0.f : gap) + jitter(rng),
-                      float(row) * sz + jitter(rng), p.w);
-    }
+  t.fold_33x17(0.6f * float(t.scene.cloth.thickness), 0.4f / 32, 0.4f / 16, 11);
   const Positions before = t.s.pos;
   const Positions gpu = t.collide();
   check_same_pass_result(gpu, t.s.pos);

@@ -24,16 +24,7 @@ TEST_CASE("the GPU's bounded contact equals the reference's on a cloth folded on
                                          "simulation.solver=\"xpbd\"", "simulation.constraint_iterations=1",
                                          "simulation.self_collision=true"}));
   REQUIRE(t.c.bounded_contact);
-  const float gap = 0.012f, sx = 0.010f, sz = 0.4f / 16;
-  std::mt19937 rng(5);
-  std::uniform_real_distribution<float> jitter(-1e-3f, 1e-3f);
-  for (int y = 0; y < 17; ++y)
-    for (int x = 0; x < 33; ++x) {
-      const int row = y <= 8 ? y : 16 - y;
-      Vec4<float>& p = t.s.pos[t.model.index(x, y)];
-      p = Vec4<float>(float(x) * sx + jitter(rng), 1.f + (y <= 8 ? 0.f : gap) + jitter(rng),
-                      float(row) * sz + jitter(rng), p.w);
-    }
+  t.fold_33x17(0.012f, 0.010f, 0.4f / 16, 5);
   const Positions before = t.s.pos;
   const Positions gpu = t.collide();
   check_same_pass_result(gpu, t.s.pos);

@@ -212,15 +212,8 @@ template <class R> void collide_particle(const Constants<R>& c, Vec3<R>& x, Vec3
   }
 }
 
-template <class R> void keep_out_of_colliders(const Constants<R>& c, Vec3<R>& x, Vec3<R>& d) {
+template <class R> void keep_out_of_spheres(const Constants<R>& c, Vec3<R>& x, Vec3<R>& d) {
   for (const SphereC<R>& sp : c.spheres) keep_out_of_sphere(sp, x, d);
-  for (const PlaneC<R>& pl : c.planes) {
-    const R dist = dot3(x - pl.point, pl.normal);
-    if (!(dist * pl.front < R(-1e-4))) continue;
-    const Vec3<R> out = pl.normal * (R(1e-4) * pl.front - dist);
-    x = x + out;
-    d = d + out;
-  }
 }
 
 template <class R> void collide_objects(const Constants<R>& c, State<R>& s) {
@@ -238,7 +231,7 @@ template <class R> void collide_objects(const Constants<R>& c, State<R>& s) {
   template void resolve_self_contacts<R>(const Constants<R>&, State<R>&); \
   template void collide_objects<R>(const Constants<R>&, State<R>&); \
   template void collide_particle<R>(const Constants<R>&, Vec3<R>&, Vec3<R>&, bool); \
-  template void keep_out_of_colliders<R>(const Constants<R>&, Vec3<R>&, Vec3<R>&);
+  template void keep_out_of_spheres<R>(const Constants<R>&, Vec3<R>&, Vec3<R>&);
 CLOTHSIM_INSTANTIATE(float)
 CLOTHSIM_INSTANTIATE(double)
 
