@@ -11,6 +11,7 @@
 #include <random>
 #include "gl_test_support.hpp"
 #include "gpu_simulator.hpp"
+#include "intersections.hpp"
 #include "prefix_scan.hpp"
 #include "reference.hpp"
 #include "test_helpers.hpp"
@@ -31,6 +32,13 @@ inline float max_diff(const Positions& a, const Positions& b) {
   for (size_t i = 0; i < a.size(); ++i)
     for (int k = 0; k < 3; ++k) m = std::max(m, std::abs(a[i][k] - b[i][k]));
   return m;
+}
+
+// The exact count of intersecting triangle pairs (host/core/intersections.hpp) of a downloaded state.
+inline size_t intersections_of(const ClothModel& model, const State<float>& s) {
+  std::vector<glm::dvec3> at;
+  for (auto& p : s.pos) at.emplace_back(p.x, p.y, p.z);
+  return count_self_intersections(model.triangles, at);
 }
 
 // One pass from an identical state: bit for bit on llvmpipe (DESIGN.md §6), else within 1e-6 m.

@@ -2,7 +2,6 @@
 // on a folded cloth, determinism of whole runs, and the heap of the classic scene. The hash
 // stages themselves are tested in test_gpu_hash.cpp.
 #include "gpu_self_collision_fixtures.hpp"
-#include "intersections.hpp"
 
 TEST_CASE("the GPU correction equals the reference's on a cloth folded onto itself", "[gpu][self_collision]") {
   REQUIRE_GL_CONTEXT();
@@ -101,9 +100,7 @@ TEST_CASE("the selfCollision cloth heaps on the plane without non-neighbours clo
     gpu.step_frame();
     if (f % 10 && f != 200) continue;
     gpu.download(s);
-    std::vector<glm::dvec3> at;
-    for (auto& p : s.pos) at.emplace_back(p.x, p.y, p.z);
-    most_intersecting = std::max(most_intersecting, count_self_intersections(model.triangles, at));
+    most_intersecting = std::max(most_intersecting, intersections_of(model, s));
     if (f == 200) check_heap_spacing(scene, model, s);
   }
   INFO("most intersecting triangle pairs at a tenth frame: " << most_intersecting);

@@ -3,17 +3,6 @@
 // triangles (the exact counter of host/core/intersections.cpp, every tenth frame), bitwise the
 // reference's on llvmpipe. The CPU side is test_self_contact.cpp.
 #include "gpu_self_collision_fixtures.hpp"
-#include "intersections.hpp"
-
-namespace {
-
-size_t intersections_of(const ClothModel& model, const State<float>& s) {
-  std::vector<glm::dvec3> at;
-  for (auto& p : s.pos) at.emplace_back(p.x, p.y, p.z);
-  return count_self_intersections(model.triangles, at);
-}
-
-}  // namespace
 
 TEST_CASE("the GPU's bounded contact equals the reference's on a cloth folded onto itself", "[gpu][self_contact]") {
   REQUIRE_GL_CONTEXT();
