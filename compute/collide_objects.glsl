@@ -91,6 +91,19 @@ void keep_out_of_sphere(vec3 o, float r, inout vec3 x, inout vec3 d) {
   d = nd;
 }
 
+// A mass deeper than 0.1 mm behind a plane's front goes to its surface offset on the front,
+// along n, without friction (keep_in_front_of_plane in host/core/reference_collisions.cpp).
+void keep_in_front_of_plane(vec3 p, vec3 n, float front, inout vec3 x, inout vec3 d) {
+  float dist = dot3(x - p, n);
+  precise float behind = dist * front;
+  if (!(behind < -1e-4)) return;
+  precise float along = 1e-4 * front - dist;
+  precise vec3 out_along_n = n * along;
+  precise vec3 nx = x + out_along_n, nd = d + out_along_n;
+  x = nx;
+  d = nd;
+}
+
 // xpbd's contact response (coulomb_respond in host/core/reference_collisions.cpp): the push
 // along the outward contact normal n, then Coulomb friction on the substep's displacement
 // relative to the collider: its tangential part cancelled up to mu times the push's depth along n.
@@ -208,17 +221,24 @@ void collide_with_objects_friction(inout vec3 x, inout vec3 d, bool friction) {
     } else {
       blend_to(t_minus_x, normal_keep.w, x, d);
     }
+    // The blend of a mass found behind starts from x_prev, behind too: it can end behind.
+    if (side == front) keep_in_front_of_plane(point_front.xyz, n, front, x, d);
   }
 }
 
 void collide_with_objects(inout vec3 x, inout vec3 d) { collide_with_objects_friction(x, d, true); }
 
-// A mass deeper than 0.1 mm inside a sphere goes back to its surface without friction
-// (keep_out_of_spheres in host/core/reference_collisions.cpp).
-void keep_out_of_spheres(inout vec3 x, inout vec3 d) {
+// A mass deeper than 0.1 mm inside a sphere, or behind a plane's front, goes back to the
+// surface without friction (keep_out_of_colliders in host/core/reference_collisions.cpp).
+void keep_out_of_colliders(inout vec3 x, inout vec3 d) {
   for (int s = 0; s < int(params.sphere_count); ++s) {
     vec4 origin_radius = texelFetch(spheres_view, SPHERE_TEXELS * s);
     keep_out_of_sphere(origin_radius.xyz, origin_radius.w, x, d);
+  }
+  for (int k = 0; k < int(params.plane_count); ++k) {
+    vec4 point_front = texelFetch(planes_view, PLANE_TEXELS * k);
+    vec3 n = texelFetch(planes_view, PLANE_TEXELS * k + 1).xyz;
+    keep_in_front_of_plane(point_front.xyz, n, point_front.w, x, d);
   }
 }
 

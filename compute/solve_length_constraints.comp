@@ -25,11 +25,11 @@ void main() {
   vec3 di = displacement_of(i).xyz, dj = displacement_of(j).xyz;
   precise float limit = params.stretch_limit * rest;
   if (!limit_stretch(xi, xj, di, dj, pi.w, pj.w, wsum, limit)) return;
-  // Provot's pull may not leave a mass deeper than 0.1 mm inside a sphere (docs/model.md,
-  // "Colliders: contact that holds"); shallower, nothing changes.
-  if (params.sphere_count > 0u) {
-    if (pi.w != 0.0) keep_out_of_spheres(xi, di);
-    if (pj.w != 0.0) keep_out_of_spheres(xj, dj);
+  // Provot's pull may not leave a mass deeper than 0.1 mm inside a collider or behind a
+  // plane (docs/model.md, "Colliders: contact that holds"); shallower, nothing changes.
+  if (params.sphere_count + params.plane_count > 0u) {
+    if (pi.w != 0.0) keep_out_of_colliders(xi, di);
+    if (pj.w != 0.0) keep_out_of_colliders(xj, dj);
   }
   pos[i].xyz = xi;
   pos[j].xyz = xj;

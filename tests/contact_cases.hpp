@@ -33,4 +33,15 @@ template <class R> void set_contact_state(State<R>& s) {
   s.pos[2] = Vec4<R>(R(0.23), R(0.8), R(0.3), s.pos[2].w);
 }
 
+// A horizontal 17x11 cloth hung from its (0, 0) corner, pinned behind a vertical plane
+// through the cloth near that corner, with gravity leaning towards the plane: the cloth presses
+// on it, the masses that start behind it are found behind (the CS184 blend, from x_prev, leaves
+// them behind), and the springs from the pin are stretched past max_stretch, so Provot pulls
+// their far ends towards the pin, through the plane.
+inline Scene pin_behind_plane_scene(std::vector<std::string> sets = {}) {
+  sets.insert(sets.end(), {"cloth.pinned=[[0,0]]", "simulation.gravity=[-4.0, -9.8, -4.0]"});
+  return make_scene(17, 11, 0, sets,
+                    R"(, "plane": {"point": [0.12, 1.0, 0.12], "normal": [1.0, 0.0, 1.0], "friction": 0.3})");
+}
+
 }  // namespace clothsim::test

@@ -25,8 +25,8 @@ inline constexpr double kRunTolerance = 1e-4;   // m, after at most 50 substeps
 
 inline std::filesystem::path compute_dir() { return test::source_path("compute"); }
 
-// A horizontal cloth (y = 1) pinned at the middles of its four edges, with self-collision
-// off. A big sphere pokes up through the quarter around the (1, 1) corner and presses it
+// A horizontal cloth (y = 1) pinned at the middles of its four edges and at the (1, 1) corner
+// (inside the sphere: it keeps the squeezed patch from sliding out), with self-collision off. A big sphere pokes up through the quarter around the (1, 1) corner and presses it
 // against a ceiling plane (normal down) lower than the sphere's top: in every substep the
 // sphere pushes particles up through the plane, the plane pushes them back, and the springs
 // between the tent and the pins are stretched past max_stretch. The tent covers the last
@@ -48,7 +48,7 @@ inline constexpr int kWarmupFrames = 1;
 
 inline Scene pressed_cloth(int nw, int nh, std::vector<std::string> sets = {}, const char* colliders = kSphereAndPlane,
                     int orientation = 0) {
-  sets.push_back(fmt::format("cloth.pinned=[[{0},0],[0,{1}],[{2},{1}],[{0},{3}]]", nw / 2, nh / 2, nw - 1, nh - 1));
+  sets.push_back(fmt::format("cloth.pinned=[[{0},0],[0,{1}],[{2},{1}],[{0},{3}],[{2},{3}]]", nw / 2, nh / 2, nw - 1, nh - 1));
   sets.push_back("simulation.self_collision=false");
   return test::make_scene(nw, nh, orientation, sets, colliders);
 }

@@ -1,4 +1,5 @@
 // Whole GPU runs against the reference: substeps in lock step, pins, determinism, several colliders, options.
+#include "contact_cases.hpp"
 #include "gpu_pass_fixtures.hpp"
 
 TEST_CASE("50 GPU substeps match 50 reference substeps on a 33x17 cloth", "[gpu]") {
@@ -13,6 +14,14 @@ TEST_CASE("50 GPU substeps match 50 reference substeps on a 33x17 cloth", "[gpu]
 TEST_CASE("4 GPU substeps match 4 reference substeps on a 131x129 cloth in contact", "[gpu]") {
   REQUIRE_GL_CONTEXT();
   check_run(pressed_cloth(131, 129), kWarmupFrames, 4);
+  CHECK_NO_GL_ERRORS();
+}
+
+TEST_CASE("classic: masses found behind a plane and pulled behind it by Provot are kept out on the GPU as on the CPU",
+          "[gpu]") {
+  REQUIRE_GL_CONTEXT();
+  // Both plane keep-outs (after the blend, after Provot's pull) act from the first substep on.
+  check_run(test::pin_behind_plane_scene(), 0, 60);
   CHECK_NO_GL_ERRORS();
 }
 

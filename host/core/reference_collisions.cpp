@@ -117,6 +117,17 @@ template <class R> void keep_out_of_sphere(const SphereC<R>& sp, Vec3<R>& x, Vec
   d = d + out;
 }
 
+// A mass deeper than 0.1 mm behind a plane's front goes to its surface offset on the front,
+// along the normal, without friction: after Provot's pull, and after the CS184 blend of a mass
+// found behind (the blend starts from x_prev, behind too, so it can end still behind).
+template <class R> void keep_in_front_of_plane(const PlaneC<R>& pl, Vec3<R>& x, Vec3<R>& d) {
+  const R dist = dot3(x - pl.point, pl.normal);
+  if (!(dist * pl.front < R(-1e-4))) return;
+  const Vec3<R> out = pl.normal * (R(1e-4) * pl.front - dist);
+  x = x + out;
+  d = d + out;
+}
+
 // xpbd's contact response (docs/model.md, "Coulomb friction"): the push t - x out along the
 // contact normal n (unit, outwards), then Coulomb friction on the substep's displacement
 // relative to the collider (d - m after the push): its tangential part is cancelled if it is at
@@ -209,11 +220,13 @@ template <class R> void collide_particle(const Constants<R>& c, Vec3<R>& x, Vec3
     if (coulomb) coulomb_respond(t_minus_x, pl.normal * (side != R(0) ? side : pl.front), pl.mu, pl.motion, x, d);
     else if (pl.motion != Vec3<R>(0)) blend_to_moving(t_minus_x, friction ? pl.keep : R(1), pl.motion, x, d);
     else blend_to(t_minus_x, friction ? pl.keep : R(1), x, d);
+    if (side == pl.front) keep_in_front_of_plane(pl, x, d);
   }
 }
 
-template <class R> void keep_out_of_spheres(const Constants<R>& c, Vec3<R>& x, Vec3<R>& d) {
+template <class R> void keep_out_of_colliders(const Constants<R>& c, Vec3<R>& x, Vec3<R>& d) {
   for (const SphereC<R>& sp : c.spheres) keep_out_of_sphere(sp, x, d);
+  for (const PlaneC<R>& pl : c.planes) keep_in_front_of_plane(pl, x, d);
 }
 
 template <class R> void collide_objects(const Constants<R>& c, State<R>& s) {
@@ -231,7 +244,7 @@ template <class R> void collide_objects(const Constants<R>& c, State<R>& s) {
   template void resolve_self_contacts<R>(const Constants<R>&, State<R>&); \
   template void collide_objects<R>(const Constants<R>&, State<R>&); \
   template void collide_particle<R>(const Constants<R>&, Vec3<R>&, Vec3<R>&, bool); \
-  template void keep_out_of_spheres<R>(const Constants<R>&, Vec3<R>&, Vec3<R>&);
+  template void keep_out_of_colliders<R>(const Constants<R>&, Vec3<R>&, Vec3<R>&);
 CLOTHSIM_INSTANTIATE(float)
 CLOTHSIM_INSTANTIATE(double)
 

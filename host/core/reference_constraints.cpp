@@ -45,11 +45,11 @@ void solve_length_constraint_colour(const ClothModel& m, const Constants<R>& c, 
     if (wsum == R(0)) return;
     Vec3<R> xi(s.pos[i]), xj(s.pos[j]), di(s.disp[i]), dj(s.disp[j]);
     if (!limit_stretch(xi, xj, di, dj, wi, wj, wsum, c.stretch_limit * R(sp.rest))) return;
-    // Provot's pull may not leave a mass deeper than 0.1 mm inside a sphere (docs/model.md,
-    // "Colliders: contact that holds"); shallower, nothing changes.
-    if (!c.spheres.empty()) {
-      if (wi != R(0)) keep_out_of_spheres(c, xi, di);
-      if (wj != R(0)) keep_out_of_spheres(c, xj, dj);
+    // Provot's pull may not leave a mass deeper than 0.1 mm inside a collider or behind a
+    // plane (docs/model.md, "Colliders: contact that holds"); shallower, nothing changes.
+    if (c.has_colliders()) {
+      if (wi != R(0)) keep_out_of_colliders(c, xi, di);
+      if (wj != R(0)) keep_out_of_colliders(c, xj, dj);
     }
     s.pos[i] = Vec4<R>(xi, wi);
     s.pos[j] = Vec4<R>(xj, wj);

@@ -9,9 +9,9 @@ namespace clothsim {
 // `friction` false every contact keeps all of its tangential motion (keep = 1): the pure
 // push-out of xpbd's constraint pass.
 template <class R> void collide_particle(const Constants<R>& c, Vec3<R>& x, Vec3<R>& d, bool friction);
-// A mass deeper than 0.1 mm inside a sphere goes back to its surface, without friction;
-// otherwise nothing (keep_out_of_sphere, for every sphere in file order).
-template <class R> void keep_out_of_spheres(const Constants<R>& c, Vec3<R>& x, Vec3<R>& d);
+// A mass deeper than 0.1 mm inside a sphere, or behind a plane's front, goes back to the
+// surface (a plane's: its surface offset on the front), without friction; otherwise nothing.
+template <class R> void keep_out_of_colliders(const Constants<R>& c, Vec3<R>& x, Vec3<R>& d);
 
 
 }  // namespace clothsim
