@@ -24,6 +24,7 @@ void print_stats(const Scene& scene, const ClothStats& st, int frames, double wa
   fmt::print("substeps          {}\n", substeps);
   fmt::print("wall time         {:.3f} s ({:.2f} ms/frame)\n", wall, frames ? 1e3 * wall / frames : 0.0);
   fmt::print("max stretch       {:.4f} x rest length\n", st.max_stretch_ratio);
+  fmt::print("stretch p99       {:.4f} x rest length (99 % of the springs at most)\n", st.p99_stretch_ratio);
   fmt::print("kinetic energy    {:.6g} J (max speed {:.4g} m/s)\n", st.kinetic, st.max_speed);
   if (st.sphere_clearance.size() > 8) {
     // A collider built of many spheres (a round table): the closest one says what matters.

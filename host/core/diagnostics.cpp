@@ -42,15 +42,24 @@ ClothStats measure(const Scene& scene, const ClothModel& m, const ClothSnapshot&
     st.max_speed = std::max(st.max_speed, glm::length(v));
     st.gravitational -= mass[i] * glm::dot(scene.simulation.gravity, x);
   }
+  std::vector<double> ratios;
+  ratios.reserve(m.springs.size());
   for (const Spring& sp : m.springs) {
     const double len = glm::length(xyz(s.pos[sp.j]) - xyz(s.pos[sp.i]));
     st.max_stretch_ratio = std::max(st.max_stretch_ratio, len / sp.rest);
+    ratios.push_back(len / sp.rest);
     const ClothParams& p = *cloths.at(sp.material);
     const bool enabled[3] = {p.enable_structural, p.enable_shearing, p.enable_bending};
     if (enabled[int(sp.type)]) {
       const double k = sp.type == SpringType::Bending ? 0.2 * p.ks : p.ks;
       st.spring += 0.5 * k * (len - sp.rest) * (len - sp.rest);
     }
+  }
+  if (!ratios.empty()) {
+    // The nearest-rank percentile: the smallest ratio that at least 99 % of the springs reach.
+    const size_t rank = std::min(ratios.size() - 1, size_t(std::ceil(0.99 * double(ratios.size()))) - 1);
+    std::nth_element(ratios.begin(), ratios.begin() + std::ptrdiff_t(rank), ratios.end());
+    st.p99_stretch_ratio = ratios[rank];
   }
   const glm::dvec3 centre = initial_centre(m);
   // A keyframed collider is where its keys put it at `time`, as the collision passes of the

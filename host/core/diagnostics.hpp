@@ -23,6 +23,7 @@ struct ClothSnapshot {
 
 struct ClothStats {
   double max_stretch_ratio = 0;  // max over springs of length / rest length
+  double p99_stretch_ratio = 0;  // its 99th percentile (the ratio 99 % of the springs are at or under)
   double kinetic = 0;            // J, from the Verlet velocity d / dt, d = x - x_prev
   double gravitational = 0;      // J, -m g . x summed
   double spring = 0;             // J, 1/2 k (len - rest)^2 over enabled springs
