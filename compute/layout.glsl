@@ -56,6 +56,9 @@ using uint = uint32_t;
 // when the scene has no wind / no pinned_motion. 21 is the layout test's probe.
 #define BINDING_WIND_FORCES 22  // vec4: xyz aerodynamic force of this substep (compute_wind_forces)
 #define BINDING_ANCHORS 23      // vec4: xyz start position, w 1 for a pinned mass (pinned_motion)
+// xpbd's warm-started multipliers (docs/model.md): per spring, sorted by colour, xyz the unit
+// direction i -> j of its last visit, w its Lagrange multiplier carried into the next substep.
+#define BINDING_MULTIPLIERS 25
 // Texture units of the read-only texel views (GL_TEXTURE_BUFFER) of the simulation's buffers,
 // through which the hot passes read (compute/particle_views.glsl says why). Above the units
 // the renderer uses (0-2: fabric, height map, sky), so drawing a frame leaves them bound.
@@ -69,13 +72,14 @@ using uint = uint32_t;
 #define TEXTURE_TETHERS 15           // RGBA32F, one texel per particle: x its nearest pin (-1: none), y the rest distance
 // The rest of the cloth model (ClothModel in host/core/cloth.hpp), static over a run.
 #define TEXTURE_GATHER_START 16      // R32UI, per particle + 1: its first entry in the gather list
-#define TEXTURE_GATHER 17            // RG32UI, per gather entry: x the other end | type << 30, y the rest length's bits
+#define TEXTURE_GATHER 17            // RGBA32UI, per gather entry: x the other end | type << 30, y the rest length's bits, z the spring, w 1 if the particle is its i end
 #define TEXTURE_PARTICLES 18         // RGBA32F, per particle: x mass (kg), y its cloth's material index
 #define TEXTURE_MATERIALS 19         // RGBA32F, MATERIAL_TEXELS per cloth (MaterialTexels)
 #define TEXTURE_CORNER_START 20      // R32UI, per particle + 1: its first entry in the corner list
 #define TEXTURE_CORNER_TRIANGLES 21  // R32UI, per corner entry: a triangle around the particle (ascending)
 #define TEXTURE_TRIANGLES 22         // RGBA32UI, per triangle: xyz its corners
 #define TEXTURE_REST_POSITIONS 23    // RGBA32F, per particle: xyz its rest position (bounded contact; 1 texel otherwise)
+#define TEXTURE_MULTIPLIERS 24       // RGBA32F, per spring: BINDING_MULTIPLIERS, read by predict and the sweep
 // RGBA32F texels per struct in the views above: member m of element k is texel
 // k * STRUCT_TEXELS + m (tests/test_gpu_layout.cpp checks these against the std430 strides).
 #define MATERIAL_TEXELS 2

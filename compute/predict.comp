@@ -1,5 +1,5 @@
-// Reads positions and displacements (through the views), the wind forces, the tethers and the
-// colliders; writes positions and displacements in place. One invocation per particle: the
+// Reads positions and displacements (through the views), the springs' multipliers, the wind
+// forces, the tethers and the colliders; writes positions and displacements in place. One invocation per particle: the
 // xpbd solver's first pass (docs/model.md), damped Verlet under gravity (and the wind) alone,
 // the springs being constraints solved after it, then the particle's tether to its nearest pin;
 // with u_collide_objects the collision objects follow in the same invocation. The CPU twin is
@@ -38,7 +38,18 @@ void main() {
   }
   precise vec3 acc = params.gravity;
   if (params.wind_enabled != 0u) acc = acc + wind_force[i].xyz * p.w;  // compute_wind_forces ran before
-  precise vec3 d = displacement_of(i).xyz * material_of(i).keep.x + acc * params.dt2;
+  // The springs' multipliers of the last substep, as their forces over this one (times dt^2):
+  // -n lambda on a spring's i end, +n lambda on its j end, in the gather order.
+  precise vec3 warm = vec3(0.0);
+  uint first = texelFetch(gather_start_view, i).x, last = texelFetch(gather_start_view, i + 1).x;
+  for (uint g = first; g < last; ++g) {
+    uvec4 entry = texelFetch(gather_view, int(g));  // z: the spring, w: 1 if i is its i end
+    vec4 l = texelFetch(multipliers_view, int(entry.z));
+    precise vec3 f = l.xyz * l.w;
+    precise vec3 minus = warm - f, plus = warm + f;
+    warm = entry.w != 0u ? minus : plus;
+  }
+  precise vec3 d = displacement_of(i).xyz * material_of(i).keep.x + acc * params.dt2 + warm * p.w;
   if (params.max_step > 0.0) {
     // The bounded contact's speed limit (docs/model.md, "Self-contact that holds").
     float len = length3(d);

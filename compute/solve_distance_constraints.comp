@@ -1,4 +1,4 @@
-// Reads (through the views) and writes positions and displacements in place. The xpbd
+// Reads (through the views) and writes positions, displacements and the springs' multipliers in place. The xpbd
 // solver's constraint pass (docs/model.md): dispatched once per colour over that colour's
 // springs (ClothModel::colour_start), one invocation per spring; no two springs of a
 // colour share a particle, so the writes never race. Each spring's XPBD distance constraint is
@@ -13,6 +13,7 @@
 layout(local_size_x = WORKGROUP_SIZE) in;
 layout(std430, binding = BINDING_POSITIONS) writeonly buffer Positions { vec4 pos[]; };
 layout(std430, binding = BINDING_DISPLACEMENT) writeonly buffer Displacements { vec4 disp[]; };
+layout(std430, binding = BINDING_MULTIPLIERS) writeonly buffer Multipliers { vec4 multiplier[]; };
 
 void main() {
   int i, j, material_index;
@@ -30,15 +31,27 @@ void main() {
   precise vec3 e = xj - xi;
   float len = length3(e);
   if (len > 0.0) {
-    // dlambda = -C / (w_i + w_j + alpha~), C = len - rest; i and j move along e by their w.
-    precise float scale = (len - rest) * (1.0 / len) * (1.0 / (wsum + alpha));
-    precise vec3 corr = e * scale;
+    // From the multiplier the spring ended the last substep with (predict applied it):
+    // dlambda = (-C - alpha~ lambda) / (w_i + w_j + alpha~), C = len - rest; i moves by
+    // -w_i n dlambda, j by +w_j n dlambda.
+    uint k = u_first + gl_GlobalInvocationID.x;
+    float lambda = texelFetch(multipliers_view, int(k)).w;
+    precise vec3 n = e * (1.0 / len);
+    // (A spring of ks 0, alpha~ = +inf, never pulls: its lambda stays 0, and inf * 0 is not taken.)
+    precise float held = lambda != 0.0 ? alpha * lambda : 0.0;
+    precise float dlambda = (-(len - rest) - held) * (1.0 / (wsum + alpha));
+    precise vec3 corr = n * dlambda;
     precise vec3 ci = corr * pi.w;
     precise vec3 cj = corr * pj.w;
-    xi = xi + ci;
-    xj = xj - cj;
-    di = di + ci;
-    dj = dj - cj;
+    xi = xi - ci;
+    xj = xj + cj;
+    di = di - ci;
+    dj = dj + cj;
+    // Carried into the next substep scaled by beta = 1 / (1 + (w_i + w_j) / (4 alpha~))
+    // (solve_distance_constraint_colour says why).
+    precise float beta = 1.0 / (1.0 + wsum * (0.25 / alpha));
+    precise float carried = (lambda + dlambda) * beta;
+    multiplier[k] = vec4(n, carried);
   }
   // max_stretch stays a hard limit, in the same visit.
   limit_stretch(xi, xj, di, dj, pi.w, pj.w, wsum, params.stretch_limit * rest);

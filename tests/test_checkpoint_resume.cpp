@@ -70,7 +70,7 @@ template <class R> void check_resumes_bitwise(const Scene& s, int n) {
     write_checkpoint(dir / "half.state", checkpoint_of(s, m, first));
   }
   const Checkpoint c = read_checkpoint(dir / "half.state");
-  CHECK(c.version == 2);
+  CHECK(c.version == 3);
   CHECK(c.state.dt == s.dt());
   CpuBackend<R> second(s, m);
   check_fits(c, dir / "half.state", s, m, second.scalar_bytes(), second.name());
@@ -157,13 +157,16 @@ TEST_CASE("a version-1 state file (no substep length) still loads, its dt taken 
   CpuBackend<double> first(s, m);
   for (int f = 0; f < 5; ++f) first.step_frame();
   TempDir dir("v1");
-  write_checkpoint(dir / "v2.state", checkpoint_of(s, m, first));
-  // The same state as version 1 wrote it: 72-byte header (no dt), version 1, its own checksum.
-  const std::string v2 = slurp(dir / "v2.state");
-  REQUIRE(v2.size() > 88);
-  std::string v1 = v2.substr(0, 72) + v2.substr(80, v2.size() - 80 - 8);
-  const uint32_t one = 1;
+  write_checkpoint(dir / "v3.state", checkpoint_of(s, m, first));
+  // The same state as version 1 wrote it: 72-byte header (no dt, offset 68 reserved as zero),
+  // version 1, no multipliers after the two streams, its own checksum.
+  const std::string v3 = slurp(dir / "v3.state");
+  const size_t multipliers = m.springs.size() * 4 * sizeof(double);
+  REQUIRE(v3.size() > 88 + multipliers);
+  std::string v1 = v3.substr(0, 72) + v3.substr(80, v3.size() - 80 - 8 - multipliers);
+  const uint32_t one = 1, zero = 0;
   std::memcpy(v1.data() + 16, &one, 4);
+  std::memcpy(v1.data() + 68, &zero, 4);
   const uint64_t h = fnv1a(v1);
   v1.append(reinterpret_cast<const char*>(&h), 8);
   std::ofstream(dir / "v1.state", std::ios::binary) << v1;
@@ -173,7 +176,7 @@ TEST_CASE("a version-1 state file (no substep length) still loads, its dt taken 
   CHECK(c.state.dt == 0);
   CpuBackend<double> a(s, m), b(s, m);
   a.load_state(c.state);
-  b.load_state(read_checkpoint(dir / "v2.state").state);
+  b.load_state(read_checkpoint(dir / "v3.state").state);
   a.step_frame();
   b.step_frame();
   CHECK(test::mismatches(a.save_state().positions, b.save_state().positions) == 0);
@@ -182,11 +185,11 @@ TEST_CASE("a version-1 state file (no substep length) still loads, its dt taken 
   CHECK(read_checkpoint(dir / "again.state").state.dt == s.dt());
 
   // A version this clothsim does not know is refused, naming both.
-  std::string v9 = v2;
+  std::string v9 = v3;
   const uint32_t nine = 9;
   std::memcpy(v9.data() + 16, &nine, 4);
   std::ofstream(dir / "v9.state", std::ios::binary) << v9;
-  CHECK_THROWS_WITH(read_checkpoint(dir / "v9.state"), Catch::Contains("version 9") && Catch::Contains("versions 1 and 2"));
+  CHECK_THROWS_WITH(read_checkpoint(dir / "v9.state"), Catch::Contains("version 9") && Catch::Contains("versions 1 to 3"));
 }
 
 TEST_CASE("a state with a NaN time or an Inf position or displacement is refused naming the file (exit 2)",

@@ -3,11 +3,10 @@
 // swings at that mode's frequency, and a loaded sheet comes to rest where Newton's static solve
 // puts it. The GPU twins are in test_gpu_closed_forms.cpp.
 //
-// The classic solver (forces and Verlet) meets all three. xpbd (one Gauss-Seidel sweep per
-// substep, lambda from 0) does not yet: its rest state is off by about w ks dt^2 per link (2 % on
-// the chain, 1.26 mm on the sheet's 5 cm sag), the bias that grows four-fold per doubling of the
-// resolution (docs/model.md, "Static equilibrium"); its cases are marked [!shouldfail] until the
-// solver converges (issue 22), so they fail the day it does and the mark must go.
+// Both solvers meet all three. xpbd did not before its multipliers were carried from substep to
+// substep (docs/model.md, "Warm-started multipliers"): with lambda from 0 every substep its rest
+// state was off by about 2 (ks/m) dt^2 per spring (2 % on the chain, 1.26 mm on the sheet's 5 cm
+// sag), the bias that grows four-fold per doubling of the resolution.
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -106,17 +105,19 @@ TEST_CASE("xpbd: a chain stretched into its lowest mode and released swings at i
   CHECK(omega == Approx(test::chain_mode_omega()).epsilon(0.05));
 }
 
-TEST_CASE("xpbd: a hanging chain at rest stretches each link by the weight below it over ks, within 1 %",
-          "[closed-form][!shouldfail]") {
-  const double e = chain_error<double>("xpbd");
-  INFO("largest relative error of a link's stretch: " << e << " (today about 0.02)");
+TEMPLATE_TEST_CASE("xpbd: a hanging chain at rest stretches each link by the weight below it over ks, within 1 %",
+                   "[closed-form]", float, double) {
+  const double e = chain_error<TestType>("xpbd");
+  INFO("largest relative error of a link's stretch: " << e << " (0.02 with lambda from 0 every substep)");
   CHECK(e <= 0.01);
 }
 
-TEST_CASE("xpbd: a sheet pinned along its border rests under its weight where the static solve puts it, within 1 mm",
-          "[closed-form][!shouldfail]") {
+TEMPLATE_TEST_CASE("xpbd: a sheet pinned along its border rests under its weight where the static solve puts it, "
+                   "within 1 mm",
+                   "[closed-form]", float, double) {
   double sag = 0;
-  const double e = sheet_error<double>("xpbd", &sag);
-  INFO("static sag " << sag << " m; largest distance from it after 300 frames " << e << " m (today about 1.26 mm)");
+  const double e = sheet_error<TestType>("xpbd", &sag);
+  INFO("static sag " << sag << " m; largest distance from it after 300 frames " << e
+                     << " m (1.26 mm with lambda from 0 every substep)");
   CHECK(e <= 1e-3);
 }

@@ -1,8 +1,7 @@
 // The GPU twins of test_closed_forms.cpp (issue 22 item 3): the same closed forms checked on
 // what the GPU computes (a hanging chain's link stretches, its lowest mode's frequency, a loaded
 // sheet against Newton's static solve), and on llvmpipe the run bit for bit the float
-// reference's. xpbd's rest-state cases fail today (test_closed_forms.cpp says why) and are
-// checked only there, on the reference the GPU equals bit for bit.
+// reference's. Both solvers.
 #include <catch2/catch.hpp>
 
 #include "closed_form_cases.hpp"
@@ -66,10 +65,11 @@ double gpu_sheet_error(const std::string& solver) {
 
 }  // namespace
 
-TEST_CASE("classic on the GPU: a hanging chain's links stretch by the weight below over ks, within 1 %", "[gpu]") {
+TEST_CASE("on the GPU a hanging chain's links stretch by the weight below over ks, within 1 %, either solver", "[gpu]") {
   REQUIRE_GL_CONTEXT();
-  const double e = gpu_chain_error("classic");
-  INFO("largest relative error of a link's stretch: " << e);
+  const std::string solver = GENERATE("classic", "xpbd");
+  const double e = gpu_chain_error(solver);
+  INFO(solver << ": largest relative error of a link's stretch: " << e);
   CHECK(e <= 0.01);
   CHECK_NO_GL_ERRORS();
 }
@@ -85,11 +85,12 @@ TEST_CASE("on the GPU a chain released from its lowest mode swings at its freque
   CHECK_NO_GL_ERRORS();
 }
 
-TEST_CASE("classic on the GPU: a sheet pinned along its border rests where the static solve puts it, within 1 mm",
+TEST_CASE("on the GPU a sheet pinned along its border rests where the static solve puts it, within 1 mm, either solver",
           "[gpu]") {
   REQUIRE_GL_CONTEXT();
-  const double e = gpu_sheet_error("classic");
-  INFO("largest distance from the static solve after 300 frames " << e << " m");
+  const std::string solver = GENERATE("classic", "xpbd");
+  const double e = gpu_sheet_error(solver);
+  INFO(solver << ": largest distance from the static solve after 300 frames " << e << " m");
   CHECK(e <= 1e-3);
   CHECK_NO_GL_ERRORS();
 }

@@ -18,14 +18,16 @@ namespace {
 // State file, little endian (README "Checkpoints", docs/export.md):
 //   char[16] "clothsim state\n\0", u32 version, u32 scalar bytes, u32 nw, u32 nh, u64 cloth hash,
 //   i64 frame, f64 time, u32 scene name length, u32 backend name length, u32 pinned particles,
-//   u32 zero (reserved), [version 2: f64 dt, the substep length the displacements are per],
-//   the two names,
-//   positions (nw*nh*4 scalars), displacements (nw*nh*4 scalars), u64 FNV-1a of all before.
+//   u32 multipliers (version 3; zero before), [version >= 2: f64 dt, the substep length the
+//   displacements are per], the two names,
+//   positions (nw*nh*4 scalars), displacements (nw*nh*4 scalars), [version 3: the xpbd
+//   springs' carried multipliers (multipliers*4 scalars: direction, lambda)], u64 FNV-1a of all before.
 // Version 1 (72-byte header, no dt) is still read: its dt is unknown (SavedState::dt = 0) and
 // taken as the loading scene's, i.e. its displacements load unscaled, as they always did.
+// Versions 1 and 2 have no multipliers: an xpbd run resumed from one starts them at zero.
 static_assert(std::endian::native == std::endian::little, "state files are written in host byte order");
 constexpr char kMagic[16] = "clothsim state\n";
-constexpr uint32_t kVersion = 2;
+constexpr uint32_t kVersion = 3;
 constexpr size_t kHeaderBytesV1 = 72, kHeaderBytes = 80;  // by version
 constexpr uint32_t kMaxName = 4096;
 
@@ -72,6 +74,7 @@ template <class R> SavedState save_streams(const State<R>& s, int64_t frame, dou
   out.dt = dt;
   out.positions = bytes_of(s.pos);
   out.displacement = bytes_of(s.disp);
+  out.multipliers = bytes_of(s.lambda);
   return out;
 }
 
@@ -91,6 +94,14 @@ template <class R> void load_streams(const SavedState& saved, State<R>& s, doubl
   // Saved per substep of another length: the same velocity in this one (as a live edit of the
   // substeps does, with the same function on both backends, so they round alike). Equal
   // lengths, or an unknown one (a version-1 file), leave the bits as they are.
+  // Multipliers of this cloth's springs load bit for bit; none saved (an older file): zero.
+  s.lambda.assign(s.lambda.size(), Vec4<R>(0));
+  if (!saved.multipliers.empty()) {
+    if (saved.multipliers.size() != s.lambda.size() * sizeof(Vec4<R>))
+      throw CheckpointError(fmt::format("a state of {} spring multipliers does not fit a cloth of {} springs",
+                                        saved.multipliers.size() / sizeof(Vec4<R>), s.lambda.size()));
+    std::memcpy(s.lambda.data(), saved.multipliers.data(), saved.multipliers.size());
+  }
   if (saved.dt > 0 && dt > 0 && saved.dt != dt) rescale_displacement(s, dt / saved.dt);
 }
 
@@ -127,7 +138,7 @@ void write_checkpoint(const std::string& path, const Checkpoint& c) {
   put<uint32_t>(head, uint32_t(c.scene.size()));
   put<uint32_t>(head, uint32_t(c.backend.size()));
   put<uint32_t>(head, uint32_t(c.pins));
-  put<uint32_t>(head, 0);
+  put<uint32_t>(head, uint32_t(s.multipliers.size() / (4 * size_t(s.scalar_bytes))));
   put<double>(head, s.dt);
   head.insert(head.end(), c.scene.begin(), c.scene.end());
   head.insert(head.end(), c.backend.begin(), c.backend.end());
@@ -140,7 +151,7 @@ void write_checkpoint(const std::string& path, const Checkpoint& c) {
   if (!f) throw CheckpointError(fmt::format("{}: cannot open for writing ({})", tmp, std::strerror(errno)));
   uint64_t h = kFnvOffset;
   bool ok = true;
-  const std::vector<uint8_t>* parts[] = {&head, &s.positions, &s.displacement};
+  const std::vector<uint8_t>* parts[] = {&head, &s.positions, &s.displacement, &s.multipliers};
   for (const std::vector<uint8_t>* part : parts) {
     fnv(h, part->data(), part->size());
     ok = ok && std::fwrite(part->data(), 1, part->size(), f) == part->size();
@@ -171,8 +182,8 @@ Checkpoint read_checkpoint(std::istream& in, uint64_t size, const std::string& n
     throw fail("not a clothsim state file (no 'clothsim state' header)");
   if (size < sizeof kMagic + 4) throw fail(fmt::format("truncated ({} bytes, shorter than the header)", size));
   const uint32_t version = get<uint32_t>(head + 16);
-  if (version != 1 && version != kVersion)
-    throw fail(fmt::format("state file version {}, this clothsim reads versions 1 and {}", version, kVersion));
+  if (version < 1 || version > kVersion)
+    throw fail(fmt::format("state file version {}, this clothsim reads versions 1 to {}", version, kVersion));
   const size_t header = version == 1 ? kHeaderBytesV1 : kHeaderBytes;
   if (size < header) throw fail(fmt::format("truncated ({} bytes, shorter than the header)", size));
   in.clear();
@@ -187,7 +198,12 @@ Checkpoint read_checkpoint(std::istream& in, uint64_t size, const std::string& n
     throw fail(fmt::format("grid {}x{} is out of range", nw, nh));
   if (scene_len > kMaxName || backend_len > kMaxName) throw fail("corrupted header (name lengths out of range)");
   const uint64_t stream = uint64_t(nw) * nh * 4 * scalar;
-  const uint64_t expected = header + scene_len + backend_len + 2 * stream + sizeof(uint64_t);
+  const uint32_t multipliers = version >= 3 ? get<uint32_t>(head + 68) : 0;
+  // At most 64 springs per particle (more than any cloth model has), so the size below is bounded.
+  if (uint64_t(multipliers) > 64 * uint64_t(nw) * nh)
+    throw fail(fmt::format("{} spring multipliers for {} particles is out of range", multipliers, uint64_t(nw) * nh));
+  const uint64_t multiplier_stream = uint64_t(multipliers) * 4 * scalar;
+  const uint64_t expected = header + scene_len + backend_len + 2 * stream + multiplier_stream + sizeof(uint64_t);
   if (size != expected)
     throw fail(fmt::format("{} ({} bytes, a {}x{} cloth of {}-byte scalars needs {})",
                            size < expected ? "truncated" : "has trailing bytes", size, nw, nh, scalar, expected));
@@ -205,11 +221,13 @@ Checkpoint read_checkpoint(std::istream& in, uint64_t size, const std::string& n
   c.backend.resize(backend_len);
   s.positions.resize(stream);
   s.displacement.resize(stream);
+  s.multipliers.resize(multiplier_stream);
   uint64_t stored = 0;
   in.read(c.scene.data(), scene_len);
   in.read(c.backend.data(), backend_len);
   in.read(reinterpret_cast<char*>(s.positions.data()), std::streamsize(stream));
   in.read(reinterpret_cast<char*>(s.displacement.data()), std::streamsize(stream));
+  in.read(reinterpret_cast<char*>(s.multipliers.data()), std::streamsize(multiplier_stream));
   in.read(reinterpret_cast<char*>(&stored), sizeof stored);
   if (!in) throw fail("read failed");
   uint64_t h = kFnvOffset;
@@ -218,6 +236,7 @@ Checkpoint read_checkpoint(std::istream& in, uint64_t size, const std::string& n
   fnv(h, c.backend.data(), backend_len);
   fnv(h, s.positions.data(), stream);
   fnv(h, s.displacement.data(), stream);
+  fnv(h, s.multipliers.data(), multiplier_stream);
   if (h != stored) throw fail("corrupted (checksum mismatch)");
   // A state that passed its checksum may still hold what no run can continue from (written
   // by hand, or by a foreign tool): every number is checked before a backend sees it.
@@ -225,15 +244,16 @@ Checkpoint read_checkpoint(std::istream& in, uint64_t size, const std::string& n
   if (s.frame < 0) throw fail(fmt::format("the frame is {} (expected >= 0)", s.frame));
   if (version != 1 && !(std::isfinite(s.dt) && s.dt > 0))
     throw fail(fmt::format("the substep length is {} s (expected a finite length > 0)", s.dt));
-  const char* streams[2] = {"position", "displacement"};
-  for (int k = 0; k < 2; ++k) {
-    const std::vector<uint8_t>& bytes = k == 0 ? s.positions : s.displacement;
+  const char* streams[3] = {"position", "displacement", "multiplier"};
+  const char* owners[3] = {"particle", "particle", "spring"};
+  for (int k = 0; k < 3; ++k) {
+    const std::vector<uint8_t>& bytes = k == 0 ? s.positions : k == 1 ? s.displacement : s.multipliers;
     const size_t n = bytes.size() / scalar;
     for (size_t i = 0; i < n; ++i) {
       const double v = scalar == 8 ? get<double>(bytes.data() + 8 * i) : double(get<float>(bytes.data() + 4 * i));
       if (!std::isfinite(v))
-        throw fail(fmt::format("the {} of particle {} has {} = {} (a state holds finite numbers only)", streams[k],
-                               i / 4, "xyzw"[i % 4], v));
+        throw fail(fmt::format("the {} of {} {} has {} = {} (a state holds finite numbers only)", streams[k],
+                               owners[k], i / 4, "xyzw"[i % 4], v));
     }
   }
   return c;

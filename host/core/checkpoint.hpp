@@ -26,6 +26,8 @@ struct SavedState {
   std::vector<uint8_t> positions;       // 4 scalars per particle: x, y, z, inverse mass
   std::vector<uint8_t> displacement;  // 4 scalars per particle: what the integrator carries
                                         // besides the positions (see velocity_stream)
+  std::vector<uint8_t> multipliers;   // 4 scalars per spring: xpbd's carried multipliers
+                                      // (State::lambda); empty from a version 1 or 2 file
   size_t particles() const { return scalar_bytes ? positions.size() / (4 * size_t(scalar_bytes)) : 0; }
 };
 

@@ -145,6 +145,7 @@ template <class R> State<R> initial_state(const ClothModel& m) {
   s.force.assign(n, Vec4<R>(0));
   s.normal.assign(n, Vec4<R>(0));
   s.pos_out = s.pos;
+  s.lambda.assign(m.springs.size(), Vec4<R>(0));
   s.hash = make_spatial_hash(uint32_t(n));
   return s;
 }

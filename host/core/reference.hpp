@@ -128,14 +128,22 @@ template <class R> struct State {
   std::vector<Vec4<R>> wind;        // aerodynamic force per particle (compute_wind_forces); empty without wind
   SpatialHash hash;                 // self-collision scratch, sized once
   std::vector<Vec4<R>> pos_out;     // self-collision Jacobi output
+  // xpbd: per spring (the model's sorted order), the unit direction i -> j of its last visit
+  // (xyz) and its Lagrange multiplier (w), carried from substep to substep: predict applies
+  // them as the springs' forces of the last substep, the sweep starts from them (docs/model.md,
+  // "Warm-started multipliers"). Zero at the start and for the classic solver.
+  std::vector<Vec4<R>> lambda;
 };
 
 template <class R> State<R> initial_state(const ClothModel& model);
 
 // After a change of the substep length (frames_per_sec or simulation_steps), the displacement
-// per substep scales with it, so the cloth keeps its velocity: d *= dt_new / dt_old.
+// per substep scales with it, so the cloth keeps its velocity: d *= dt_new / dt_old; and xpbd's
+// carried multipliers, forces times dt^2, with its square, so the springs keep their forces.
 template <class R> void rescale_displacement(State<R>& s, double dt_ratio) {
   for (auto& d : s.disp) d = Vec4<R>(Vec3<R>(d) * R(dt_ratio), R(0));
+  const R squared = R(dt_ratio * dt_ratio);
+  for (auto& l : s.lambda) l = Vec4<R>(Vec3<R>(l), l.w * squared);
 }
 
 // The passes, in step order.

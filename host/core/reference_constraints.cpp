@@ -75,14 +75,27 @@ void solve_distance_constraint_colour(const ClothModel& m, const Constants<R>& c
     const Vec3<R> e = xj - xi;
     const R len = length3(e);
     if (len > R(0)) {
-      // XPBD with the multiplier starting at 0 (one solve per substep): dlambda = -C / (w + alpha~),
-      // C = len - rest, moving i by -wi grad_i C dlambda and j by -wj grad_j C dlambda.
-      const Vec3<R> corr = e * ((len - rest) * (R(1) / len) * (R(1) / (wsum + alpha)));
+      // XPBD from the multiplier the spring ended the last substep with (predict applied it):
+      // dlambda = (-C - alpha~ lambda) / (wi + wj + alpha~), C = len - rest, moving i by
+      // -wi n dlambda and j by +wj n dlambda along n = e / len.
+      const size_t k = size_t(&sp - m.springs.data());
+      const R lambda = s.lambda[k].w;
+      const Vec3<R> n = e * (R(1) / len);
+      // (A spring of ks 0, alpha~ = +inf, never pulls: its lambda stays 0, and inf * 0 is not taken.)
+      const R held = lambda != R(0) ? alpha * lambda : R(0);
+      const R dlambda = (-(len - rest) - held) * (R(1) / (wsum + alpha));
+      const Vec3<R> corr = n * dlambda;
       const Vec3<R> ci = corr * wi, cj = corr * wj;
-      xi = xi + ci;
-      xj = xj - cj;
-      di = di + ci;
-      dj = dj - cj;
+      xi = xi - ci;
+      xj = xj + cj;
+      di = di - ci;
+      dj = dj + cj;
+      // Carried into the next substep scaled by beta = 1 / (1 + (wi + wj) / (4 alpha~)): whole
+      // for a spring soft against its masses' substep inertia, where the carried force makes
+      // the rest state exact, fading for a stiff one, where applying it ahead would be
+      // explicit and unstable (docs/model.md, "Warm-started multipliers").
+      const R beta = R(1) / (R(1) + wsum * (R(0.25) / alpha));
+      s.lambda[k] = Vec4<R>(n, (lambda + dlambda) * beta);
     }
     // max_stretch stays a hard limit, in the same visit.
     limit_stretch(xi, xj, di, dj, wi, wj, wsum, c.stretch_limit * rest);

@@ -135,7 +135,16 @@ template <class R> void predict(const ClothModel& m, const Constants<R>& c, Stat
     }
     Vec3<R> acc = c.gravity;
     if (c.wind.enabled) acc = acc + Vec3<R>(s.wind[i]) * w;  // compute_wind_forces ran before
-    Vec3<R> d = Vec3<R>(s.disp[i]) * c.materials[m.material[i]].keep_velocity + acc * c.dt2;
+    // The springs' multipliers of the last substep, as their forces over this one (times dt^2):
+    // -n lambda on the spring's i end, +n lambda on its j end, in the gather order.
+    Vec3<R> warm(0);
+    for (uint32_t k = m.gather_start[i]; k < m.gather_start[i + 1]; ++k) {
+      const uint32_t sk = m.gather[k];
+      const Vec4<R>& l = s.lambda[sk];
+      const Vec3<R> f = Vec3<R>(l) * l.w;
+      warm = m.springs[sk].i == uint32_t(i) ? warm - f : warm + f;
+    }
+    Vec3<R> d = Vec3<R>(s.disp[i]) * c.materials[m.material[i]].keep_velocity + acc * c.dt2 + warm * w;
     if (c.max_step > R(0)) {
       // The bounded contact's speed limit (docs/model.md, "Self-contact that holds").
       const R len = length3(d);

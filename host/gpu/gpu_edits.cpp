@@ -2,6 +2,8 @@
 // each changes buffers the next step reads.
 #include "gpu_simulator.hpp"
 
+#include <algorithm>
+
 namespace clothsim {
 
 void GpuSimulator::upload_colliders() {
@@ -48,6 +50,14 @@ void GpuSimulator::set_parameters(const Scene& scene) {
   const std::vector<float> old_mass = constants_.mass;
   const bool had_anchors = constants_.moving_pins(), had_wind = constants_.wind.enabled;
   const bool had_bounded = constants_.bounded_contact;
+  // xpbd's carried multipliers hold the springs' forces: a switch of solver or of a spring type
+  // makes them meaningless, so they start over from zero (as at the start of a run).
+  auto springs_in_play = [](const Constants<float>& c) {
+    std::vector<int> v{int(c.xpbd)};
+    for (const auto& m : c.materials) v.insert(v.end(), {m.enabled[0], m.enabled[1], m.enabled[2]});
+    return v;
+  };
+  const std::vector<int> had_springs = springs_in_play(constants_);
   constants_ = make_constants<float>(scene, model_);
   masses_ = particle_masses(scene, model_);
   if (constants_.timeline.moves()) set_substep_time(constants_, time_);
@@ -67,15 +77,24 @@ void GpuSimulator::set_parameters(const Scene& scene) {
     for (size_t i = 0; i < pos.size(); ++i) if (pos[i].w != 0.f) pos[i].w = inverse[i];
     positions_.upload(0, pos.size() * sizeof(glm::vec4), pos.data());
   }
+  if (springs_in_play(constants_) != had_springs) {
+    std::vector<Vec4<float>> zero(std::max<size_t>(1, model_.springs.size()), Vec4<float>(0));
+    gl::upload_vector(multipliers_, zero);
+    multipliers_view_.attach(multipliers_, GL_RGBA32F);
+  }
   if (scene.dt() != dt_) {
     // A new substep length: the displacement per substep scales with it, so the cloth keeps
-    // its velocity (the same function the reference uses, so both sides round alike).
+    // its velocity, and the multipliers (forces times dt^2) with its square, so the springs
+    // keep their forces (the same function the reference uses, so both sides round alike).
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     State<float> s;
     s.disp = gl::download_vector<Vec4<float>>(displacement_);
+    s.lambda = gl::download_vector<Vec4<float>>(multipliers_);
     rescale_displacement(s, scene.dt() / dt_);
     gl::upload_vector(displacement_, s.disp);
+    gl::upload_vector(multipliers_, s.lambda);
     displacement_view_.attach(displacement_, GL_RGBA32F);
+    multipliers_view_.attach(multipliers_, GL_RGBA32F);
     dt_ = scene.dt();
   }
 }

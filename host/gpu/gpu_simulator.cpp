@@ -137,15 +137,17 @@ void GpuSimulator::upload_model() {
   std::vector<layout::SpringTexel> springs;
   for (const Spring& s : m.springs)
     springs.push_back({{s.i, s.j, std::bit_cast<uint32_t>(float(s.rest)), uint32_t(s.type) | (s.material << 2)}});
-  std::vector<glm::uvec2> gather;
+  std::vector<glm::uvec4> gather;
   for (uint32_t g : m.gather) {
-    // The other end is filled in per particle below; every particle index fits in 30 bits.
-    gather.push_back({0u, std::bit_cast<uint32_t>(float(m.springs[g].rest))});
+    // The other end and the side are filled in per particle below; every particle index fits
+    // in 30 bits.
+    gather.push_back({0u, std::bit_cast<uint32_t>(float(m.springs[g].rest)), g, 0u});
   }
   for (uint32_t i = 0; i < uint32_t(m.count()); ++i)
     for (uint32_t g = m.gather_start[i]; g < m.gather_start[i + 1]; ++g) {
       const Spring& s = m.springs[m.gather[g]];
       gather[g].x = (s.i == i ? s.j : s.i) | (uint32_t(s.type) << 30);
+      gather[g].w = s.i == i ? 1u : 0u;
     }
   std::vector<glm::uvec4> triangles;
   for (auto& t : m.triangles) triangles.push_back({t[0], t[1], t[2], 0u});
@@ -171,6 +173,7 @@ void GpuSimulator::upload_rest_positions() {
   if (rest.empty()) rest.resize(1);
   gl::upload_vector(rest_positions_, rest, GL_STATIC_DRAW);
   rest_positions_view_.attach(rest_positions_, GL_RGBA32F);
+  multipliers_view_.attach(multipliers_, GL_RGBA32F);
 }
 
 void GpuSimulator::upload_materials() {
@@ -201,7 +204,8 @@ size_t GpuSimulator::memory_bytes() const {
   for (const gl::Buffer* b : {&positions_, &displacement_, &forces_, &normals_, &springs_, &spheres_, &planes_,
                               &step_params_, &positions_out_, &cell_count_, &cell_start_, &cell_entries_,
                               &sorted_positions_, &tethers_, &wind_forces_, &anchors_, &gather_start_, &gather_,
-                              &particles_, &materials_, &corner_start_, &corner_triangles_, &triangles_, &rest_positions_})
+                              &particles_, &materials_, &corner_start_, &corner_triangles_, &triangles_, &rest_positions_,
+                              &multipliers_})
     total += b->size();
   return total + scan_.memory_bytes() + guard_.memory_bytes();
 }
@@ -237,6 +241,8 @@ void GpuSimulator::bind_all() const {
   sorted_positions_view_.bind(TEXTURE_SORTED_POSITIONS);
   tethers_view_.bind(TEXTURE_TETHERS);
   rest_positions_view_.bind(TEXTURE_REST_POSITIONS);
+  multipliers_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_MULTIPLIERS);
+  multipliers_view_.bind(TEXTURE_MULTIPLIERS);
 }
 
 void GpuSimulator::attach_views() {
@@ -245,7 +251,7 @@ void GpuSimulator::attach_views() {
   displacement_view_.attach(displacement_, GL_RGBA32F);
   springs_view_.attach(springs_, GL_RGBA32UI);
   gather_start_view_.attach(gather_start_, GL_R32UI);
-  gather_view_.attach(gather_, GL_RG32UI);
+  gather_view_.attach(gather_, GL_RGBA32UI);
   particles_view_.attach(particles_, GL_RGBA32F);
   materials_view_.attach(materials_, GL_RGBA32F);
   corner_start_view_.attach(corner_start_, GL_R32UI);

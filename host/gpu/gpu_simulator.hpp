@@ -135,6 +135,7 @@ class GpuSimulator {
   gl::Buffer gather_start_{"gather start"}, gather_{"gather"}, particles_{"particles"}, materials_{"materials"};
   gl::Buffer corner_start_{"corner start"}, corner_triangles_{"corner triangles"}, triangles_{"triangles"};
   gl::Buffer rest_positions_{"rest positions"};
+  gl::Buffer multipliers_{"multipliers"};  // xpbd: per spring, its direction and carried lambda
   // Read-only views of the buffers above (compute/particle_views.glsl).
   gl::BufferTexture positions_view_{"positions view"}, positions_out_view_{"positions out view"};
   gl::BufferTexture displacement_view_{"displacement view"}, springs_view_{"springs view"}, spheres_view_{"spheres view"};
@@ -145,6 +146,7 @@ class GpuSimulator {
   gl::BufferTexture planes_view_{"planes view"}, cell_start_view_{"cell start view"};
   gl::BufferTexture sorted_positions_view_{"sorted positions view"}, tethers_view_{"tethers view"};
   gl::BufferTexture rest_positions_view_{"rest positions view"};
+  gl::BufferTexture multipliers_view_{"multipliers view"};
   uint32_t table_size_ = 0;
   bool in_step_ = false;
   bool in_frame_ = false;  // within step_frame's substeps

@@ -2,6 +2,8 @@
 // checks and tests. None runs during a step.
 #include "gpu_simulator.hpp"
 
+#include <algorithm>
+
 namespace clothsim {
 
 void GpuSimulator::download_hash(SpatialHash& h) {
@@ -29,6 +31,10 @@ void GpuSimulator::upload(const State<float>& s) {
   gl::upload_vector(displacement_, s.disp);
   if (s.force.size() == s.pos.size()) gl::upload_vector(forces_, s.force);
   if (constants_.wind.enabled && s.wind.size() == s.pos.size()) gl::upload_vector(wind_forces_, s.wind);
+  // The multipliers (zero for a state without them); a storage buffer may not be empty.
+  std::vector<Vec4<float>> multipliers = s.lambda;
+  multipliers.resize(std::max<size_t>(1, model_.springs.size()), Vec4<float>(0));
+  gl::upload_vector(multipliers_, multipliers);
   // The Jacobi/ping-pong output matches the buffer it stands in for.
   positions_out_.allocate(positions_.size());
   attach_views();
@@ -42,6 +48,8 @@ void GpuSimulator::download(State<float>& s) {
   s.force = gl::download_vector<Vec4<float>>(forces_);
   s.normal = gl::download_vector<Vec4<float>>(normals_);
   if (constants_.wind.enabled) s.wind = gl::download_vector<Vec4<float>>(wind_forces_);
+  s.lambda = gl::download_vector<Vec4<float>>(multipliers_);
+  s.lambda.resize(model_.springs.size());  // less the dummy of a cloth without springs
 }
 
 // A checkpoint is the two state buffers as they are, read back and uploaded bit for bit.

@@ -143,7 +143,8 @@ void GpuSimulator::dispatch_colour(gl::Program& program, ColourUniforms where, i
   program.set(where.count, count);
   program.dispatch(gl::workgroups_for(count, WORKGROUP_SIZE));
   dispatched(program);
-  // The next colour (or the next substep's first pass) reads these positions and displacements.
+  // The next colour (or the next substep's first pass) reads these positions and displacements,
+  // and xpbd's next predict the multipliers.
   barrier(kComputeReads);
 }
 

@@ -106,6 +106,12 @@ std::vector<PassError> check_passes(const Scene& scene, const ClothModel& model,
     v.insert(v.end(), st.disp.begin(), st.disp.end());
     return v;
   };
+  // xpbd's sweep also writes the springs' carried multipliers (direction, lambda).
+  auto with_multipliers = [&](const State<float>& st) {
+    auto v = both(st);
+    v.insert(v.end(), st.lambda.begin(), st.lambda.end());
+    return v;
+  };
   // A force error matters by the displacement it causes in one substep: F * w * dt^2.
   auto displacement = [&](const State<float>& st) {
     std::vector<Vec4<float>> v(st.force.size());
@@ -166,7 +172,10 @@ std::vector<PassError> check_passes(const Scene& scene, const ClothModel& model,
           [&] { gpu.predict(true); }, both);
   }
   check("solve_distance_constraints", [&] { solve_distance_constraints(model, c, s); },
-        [&] { gpu.solve_distance_constraints(); }, both);
+        [&] { gpu.solve_distance_constraints(); }, with_multipliers);
+  // Predict again, now from the multipliers that sweep carried (a classic scene has none
+  // before it): their forces in the gather order.
+  check("predict (the sweep's multipliers carried)", [&] { predict(model, c, s); }, [&] { gpu.predict(); }, both);
   check("compute_normals", [&] { compute_normals(model, s); }, [&] { gpu.compute_normals(); },
         [](const State<float>& st) { return st.normal; });
   return out;

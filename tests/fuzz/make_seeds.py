@@ -52,8 +52,10 @@ def state_seeds(cpu, gpu, pc2):
     f_pos = state_stream_offset(gpu)   # float positions: 16 bytes per particle
     d_pos = state_stream_offset(cpu)   # double positions: 32 bytes per particle
     d_disp = d_pos + 6 * 32            # the 3x2 cloth's displacements follow its positions
-    # Version 1: the same header without its dt (72 bytes), checksummed again.
-    v1 = with_checksum(patch(gpu[:72], 16, '<I', 1) + gpu[80:-8])
+    # Version 1: the same header without its dt (72 bytes) and the streams without the version-3
+    # multipliers (their count at offset 68, 16 bytes each in floats), checksummed again.
+    multipliers = struct.unpack_from('<I', gpu, 68)[0] * 16
+    v1 = with_checksum(patch(patch(gpu[:72], 16, '<I', 1), 68, '<I', 0) + gpu[80:len(gpu) - 8 - multipliers])
     nan = float('nan')
     return [
         ('v2_double_cpu.state', cpu, 'loads', 'simulate --backend cpu --frames 3 --save-state: 3x2, doubles'),
@@ -67,7 +69,7 @@ def state_seeds(cpu, gpu, pc2):
          f'rejected\ttruncated ({len(cpu) - 40} bytes, a 3x2 cloth of 8-byte scalars needs {len(cpu)})',
          'cut inside the displacements'),
         ('trailing_byte.state', gpu + b'\0', 'rejected\thas trailing bytes', 'one byte too many'),
-        ('version_3.state', patch(gpu[:80], 16, '<I', 3), 'rejected\tstate file version 3', 'an unknown version'),
+        ('version_4.state', patch(gpu[:80], 16, '<I', 4), 'rejected\tstate file version 4', 'an unknown version'),
         ('scalar_6.state', patch(gpu[:80], 20, '<I', 6), 'rejected\tscalar size 6 bytes', 'neither float nor double'),
         ('grid_4096x4096.state', patch(patch(gpu, 24, '<I', 4096), 28, '<I', 4096),
          f'rejected\ta 4096x4096 cloth of 4-byte scalars needs {f_pos + 2 * 4096 * 4096 * 16 + 8}',
