@@ -5,6 +5,9 @@
 
 #include <cmath>
 #include <filesystem>
+#include <string>
+
+#include <glm/geometric.hpp>
 
 #include "backend.hpp"
 #include "test_helpers.hpp"
@@ -78,4 +81,46 @@ TEST_CASE("the vertical jitter is at most 5 % of the spacing, and the classic 1 
   // The classic cloth is exactly as before: the offsets of a 50 x 50 cloth are the hash times 1e-3.
   const ClothModel classic = build_cloth(test::make_scene(50, 50, 1));
   for (uint32_t i : {0u, 7u, 2499u}) CHECK(classic.initial[i].z == vertical_offset(i, 1e-3));
+}
+
+TEST_CASE("xpbd: a grid's tether is the straight rest distance to its nearest pin along the cloth", "[xpbd]") {
+  const Scene s = test::hanging_cloth(33);
+  const ClothModel m = build_cloth(s);
+  int tethered = 0;
+  for (int i = 0; i < m.count(); ++i) {
+    const int pin = m.tether_pin[size_t(i)];
+    if (pin < 0) continue;
+    ++tethered;
+    CHECK(m.tether_rest[size_t(i)] == Approx(glm::length(m.initial[size_t(i)] - m.initial[size_t(pin)])).epsilon(1e-12));
+  }
+  CHECK(tethered == m.count() - 2);
+  // The bottom centre: 0.5 m across and 1 m down from either top corner, not the 8-neighbour
+  // path's 1.04 m.
+  const int bottom_centre = m.index(16, 0);
+  CHECK(m.tether_rest[size_t(bottom_centre)] == Approx(std::sqrt(1.25)).epsilon(1e-3));
+}
+
+TEST_CASE("xpbd: the tethers hold a soft hanging cloth to 1 % over its rest distances from the pins, and without "
+          "them it stretches further",
+          "[xpbd]") {
+  // ks 20: soft enough that the cloth's own springs let it sag far more than 1 %.
+  auto worst_ratio = [](const std::string& tether_stretch) {
+    Scene s = test::hanging_cloth(33, 20);
+    s.simulation.tether_stretch = std::stod(tether_stretch);
+    const ClothModel m = build_cloth(s);
+    CpuBackend<double> cpu(s, m);
+    for (int f = 0; f < 120; ++f) cpu.step_frame();
+    double worst = 0;
+    const auto& pos = cpu.state().pos;
+    for (int i = 0; i < m.count(); ++i)
+      if (const int pin = m.tether_pin[size_t(i)]; pin >= 0)
+        worst = std::max(worst, glm::length(glm::dvec3(pos[size_t(i)]) - glm::dvec3(pos[size_t(pin)])) /
+                                    m.tether_rest[size_t(i)]);
+    return worst;
+  };
+  const double with = worst_ratio("0.01"), without = worst_ratio("100");
+  INFO("largest distance from the pin over the tether length: " << with << " with tethers, " << without
+                                                               << " without");
+  CHECK(with <= 1.01 + 1e-3);  // the sweep after predict may undo a little of it
+  CHECK(without > 1.05);
 }

@@ -1,7 +1,7 @@
 // Long-range attachments (Kim, Chentanez, Müller 2012, "Long Range Attachments: A Method to
 // Simulate Inextensible Clothing in Computer Games"): every particle is tied to its nearest
-// pin, by geodesic distance over the rest cloth, so that a local solver cannot let a large
-// cloth sag further than that distance allows however slowly its constraints converge.
+// pin along the rest cloth, so that a local solver cannot let a large cloth sag further than
+// that distance allows however slowly its constraints converge.
 #include "cloth.hpp"
 
 #include <cmath>
@@ -43,6 +43,19 @@ void build_tethers(ClothModel& m) {
         open.push({next, j});
       }
     }
+  }
+  // The length: on a grid (a flat rectangle) the straight rest distance to that pin, which is
+  // the distance along the flat cloth (Kim et al. use the rest-pose distance); the path over
+  // the 8-neighbour springs is up to 8 % longer (1 / cos 22.5°), so a tether of that length
+  // let a cloth stretch 8 % before it held. A mesh may be curved or have holes, where the
+  // straight line is shorter than the cloth: it keeps the path along its edges, an upper bound.
+  for (const ClothPart& part : m.parts) {
+    if (part.nw == 0) continue;
+    for (uint32_t i = part.first; i < part.first + part.count; ++i)
+      if (const int pin = m.tether_pin[i]; pin >= 0 && !m.pinned[i])
+        m.tether_rest[i] = std::sqrt((m.initial[i].x - m.initial[pin].x) * (m.initial[i].x - m.initial[pin].x) +
+                                     (m.initial[i].y - m.initial[pin].y) * (m.initial[i].y - m.initial[pin].y) +
+                                     (m.initial[i].z - m.initial[pin].z) * (m.initial[i].z - m.initial[pin].z));
   }
   // Pins need no tether.
   for (int i = 0; i < n; ++i)
