@@ -91,9 +91,6 @@ template <class R> void load_streams(const SavedState& saved, State<R>& s, doubl
   }
   s.disp.resize(s.pos.size());
   std::memcpy(s.disp.data(), saved.displacement.data(), saved.displacement.size());
-  // Saved per substep of another length: the same velocity in this one (as a live edit of the
-  // substeps does, with the same function on both backends, so they round alike). Equal
-  // lengths, or an unknown one (a version-1 file), leave the bits as they are.
   // Multipliers of this cloth's springs load bit for bit; none saved (an older file): zero.
   s.lambda.assign(s.lambda.size(), Vec4<R>(0));
   if (!saved.multipliers.empty()) {
@@ -102,6 +99,9 @@ template <class R> void load_streams(const SavedState& saved, State<R>& s, doubl
                                         saved.multipliers.size() / sizeof(Vec4<R>), s.lambda.size()));
     std::memcpy(s.lambda.data(), saved.multipliers.data(), saved.multipliers.size());
   }
+  // Saved per substep of another length: the same velocity (and spring forces) in this one (as
+  // a live edit of the substeps does, with the same function on both backends, so they round
+  // alike). Equal lengths, or an unknown one (a version-1 file), leave the bits as they are.
   if (saved.dt > 0 && dt > 0 && saved.dt != dt) rescale_displacement(s, dt / saved.dt);
 }
 

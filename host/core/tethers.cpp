@@ -5,6 +5,8 @@
 #include "cloth.hpp"
 
 #include <cmath>
+
+#include <glm/geometric.hpp>
 #include <queue>
 
 namespace clothsim {
@@ -53,9 +55,7 @@ void build_tethers(ClothModel& m) {
     if (part.nw == 0) continue;
     for (uint32_t i = part.first; i < part.first + part.count; ++i)
       if (const int pin = m.tether_pin[i]; pin >= 0 && !m.pinned[i])
-        m.tether_rest[i] = std::sqrt((m.initial[i].x - m.initial[pin].x) * (m.initial[i].x - m.initial[pin].x) +
-                                     (m.initial[i].y - m.initial[pin].y) * (m.initial[i].y - m.initial[pin].y) +
-                                     (m.initial[i].z - m.initial[pin].z) * (m.initial[i].z - m.initial[pin].z));
+        m.tether_rest[i] = glm::distance(m.initial[i], m.initial[pin]);
   }
   // Pins need no tether.
   for (int i = 0; i < n; ++i)

@@ -2,7 +2,7 @@
 // each changes buffers the next step reads.
 #include "gpu_simulator.hpp"
 
-#include <algorithm>
+#include <utility>
 
 namespace clothsim {
 
@@ -77,11 +77,7 @@ void GpuSimulator::set_parameters(const Scene& scene) {
     for (size_t i = 0; i < pos.size(); ++i) if (pos[i].w != 0.f) pos[i].w = inverse[i];
     positions_.upload(0, pos.size() * sizeof(glm::vec4), pos.data());
   }
-  if (springs_in_play(constants_) != had_springs) {
-    std::vector<Vec4<float>> zero(std::max<size_t>(1, model_.springs.size()), Vec4<float>(0));
-    gl::upload_vector(multipliers_, zero);
-    multipliers_view_.attach(multipliers_, GL_RGBA32F);
-  }
+  if (springs_in_play(constants_) != had_springs) upload_multipliers({});
   if (scene.dt() != dt_) {
     // A new substep length: the displacement per substep scales with it, so the cloth keeps
     // its velocity, and the multipliers (forces times dt^2) with its square, so the springs
@@ -92,9 +88,8 @@ void GpuSimulator::set_parameters(const Scene& scene) {
     s.lambda = gl::download_vector<Vec4<float>>(multipliers_);
     rescale_displacement(s, scene.dt() / dt_);
     gl::upload_vector(displacement_, s.disp);
-    gl::upload_vector(multipliers_, s.lambda);
     displacement_view_.attach(displacement_, GL_RGBA32F);
-    multipliers_view_.attach(multipliers_, GL_RGBA32F);
+    upload_multipliers(std::move(s.lambda));
     dt_ = scene.dt();
   }
 }

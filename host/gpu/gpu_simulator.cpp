@@ -1,6 +1,7 @@
 // The simulator's buffers and bindings: construction, the GPU's limits, memory and counters.
 #include "gpu_simulator.hpp"
 
+#include <algorithm>
 #include <bit>
 #include <cstdlib>
 #include <unistd.h>
@@ -173,6 +174,11 @@ void GpuSimulator::upload_rest_positions() {
   if (rest.empty()) rest.resize(1);
   gl::upload_vector(rest_positions_, rest, GL_STATIC_DRAW);
   rest_positions_view_.attach(rest_positions_, GL_RGBA32F);
+}
+
+void GpuSimulator::upload_multipliers(std::vector<Vec4<float>> multipliers) {
+  multipliers.resize(std::max<size_t>(1, model_.springs.size()), Vec4<float>(0));
+  gl::upload_vector(multipliers_, multipliers);
   multipliers_view_.attach(multipliers_, GL_RGBA32F);
 }
 
@@ -263,6 +269,7 @@ void GpuSimulator::attach_views() {
   sorted_positions_view_.attach(sorted_positions_, GL_RGBA32F);
   tethers_view_.attach(tethers_, GL_RGBA32F);
   rest_positions_view_.attach(rest_positions_, GL_RGBA32F);
+  multipliers_view_.attach(multipliers_, GL_RGBA32F);
 }
 
 GpuBackend::GpuBackend(std::unique_ptr<gl::GlContext> context, const Scene& scene, const ClothModel& model,

@@ -105,6 +105,8 @@ class GpuSimulator {
   void upload_colliders();  // from constants_
   void upload_anchors();    // from constants_ (one dummy element without pinned_motion)
   void upload_rest_positions();  // Constants::rest (the bounded contact), or one dummy texel
+  // xpbd's carried multipliers, one per spring (missing ones zero, one dummy without springs).
+  void upload_multipliers(std::vector<Vec4<float>> multipliers);
   void upload_model();      // the cloth model's lists (springs, gather, triangles, corners, tethers)
   void upload_materials();  // from constants_: the materials and every particle's mass and material
   std::vector<float> inverse_masses() const;  // of every particle for the current densities

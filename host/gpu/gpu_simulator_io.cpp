@@ -2,8 +2,6 @@
 // checks and tests. None runs during a step.
 #include "gpu_simulator.hpp"
 
-#include <algorithm>
-
 namespace clothsim {
 
 void GpuSimulator::download_hash(SpatialHash& h) {
@@ -31,10 +29,7 @@ void GpuSimulator::upload(const State<float>& s) {
   gl::upload_vector(displacement_, s.disp);
   if (s.force.size() == s.pos.size()) gl::upload_vector(forces_, s.force);
   if (constants_.wind.enabled && s.wind.size() == s.pos.size()) gl::upload_vector(wind_forces_, s.wind);
-  // The multipliers (zero for a state without them); a storage buffer may not be empty.
-  std::vector<Vec4<float>> multipliers = s.lambda;
-  multipliers.resize(std::max<size_t>(1, model_.springs.size()), Vec4<float>(0));
-  gl::upload_vector(multipliers_, multipliers);
+  upload_multipliers(s.lambda);  // zero for a state without them
   // The Jacobi/ping-pong output matches the buffer it stands in for.
   positions_out_.allocate(positions_.size());
   attach_views();
