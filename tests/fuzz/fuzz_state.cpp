@@ -7,10 +7,11 @@
 // frame, dt) would almost never be reached.
 //
 // Property, for each read: read_checkpoint either returns a Checkpoint that agrees with the
-// bytes field by field, decoded here independently from the format (magic, version 1 or 2,
-// 4- or 8-byte scalars, a grid of 3..kMaxParticles particles, the names, both streams, and a
-// file size of exactly header + names + 2 streams + checksum, with a matching checksum), whose
-// time, frame and dt are in range and whose every position and displacement is finite; or it
+// bytes field by field, decoded here independently from the format (magic, version 1, 2 or 3,
+// 4- or 8-byte scalars, a grid of 3..kMaxParticles particles, the names, both streams, version
+// 3's spring multipliers, and a file size of exactly header + names + streams + checksum, with a
+// matching checksum), whose time, frame and dt are in range and whose every position,
+// displacement and multiplier is finite; or it
 // throws clothsim::CheckpointError whose message starts with the source name. In both cases
 // the read allocates at most the input's size plus kSlackBytes (allocation_meter.hpp): a size
 // taken from the header must be checked against the file's before anything is allocated from
@@ -70,7 +71,7 @@ void check_loaded(const Checkpoint& c, const std::string& b) {
   const SavedState& s = c.state;
   expect(b.size() >= 80 && std::memcmp(b.data(), "clothsim state\n", 16) == 0, "loaded without the magic");
   const uint32_t version = get<uint32_t>(b, 16);
-  expect(version == 1 || version == 2, fmt::format("loaded a version-{} file", version));
+  expect(version >= 1 && version <= 3, fmt::format("loaded a version-{} file", version));
   expect(c.version == int(version), "Checkpoint::version is the file's");
   const size_t header = version == 1 ? 72 : 80;
   const uint32_t scalar = get<uint32_t>(b, 20), nw = get<uint32_t>(b, 24), nh = get<uint32_t>(b, 28);
@@ -86,6 +87,9 @@ void check_loaded(const Checkpoint& c, const std::string& b) {
          "the time is the file's, finite and >= 0");
   const uint64_t scene_len = get<uint32_t>(b, 56), backend_len = get<uint32_t>(b, 60);
   expect(uint32_t(c.pins) == get<uint32_t>(b, 64), "the pinned count is the file's");
+  // Version 3 keeps the xpbd springs' carried multipliers (4 scalars each) after the
+  // displacements, their count at 68; before it that word was unused and the stream absent.
+  const uint64_t multipliers = version >= 3 ? get<uint32_t>(b, 68) : 0;
   if (version == 1)
     expect(s.dt == 0, "a version-1 state has an unknown dt (0)");
   else
@@ -93,7 +97,8 @@ void check_loaded(const Checkpoint& c, const std::string& b) {
            "the dt is the file's, finite and > 0");
 
   const uint64_t stream = particles * 4 * scalar;
-  expect(uint64_t(b.size()) == header + scene_len + backend_len + 2 * stream + 8,
+  const uint64_t multiplier_stream = multipliers * 4 * scalar;
+  expect(uint64_t(b.size()) == header + scene_len + backend_len + 2 * stream + multiplier_stream + 8,
          "the file is exactly header + names + streams + checksum");
   expect(fnv1a(b.data(), b.size() - 8) == get<uint64_t>(b, b.size() - 8), "loaded with a wrong checksum");
   size_t at = header;
@@ -105,7 +110,12 @@ void check_loaded(const Checkpoint& c, const std::string& b) {
   expect(s.particles() == particles, "SavedState::particles() is nw x nh");
   expect(std::memcmp(s.positions.data(), b.data() + at, stream) == 0, "the positions are the file's");
   expect(std::memcmp(s.displacement.data(), b.data() + at + stream, stream) == 0, "the displacements are the file's");
-  for (const std::vector<uint8_t>* bytes : {&s.positions, &s.displacement})
+  // (An empty vector's data() may be null, which memcmp must not see even for 0 bytes.)
+  expect(s.multipliers.size() == multiplier_stream &&
+             (multiplier_stream == 0 ||
+              std::memcmp(s.multipliers.data(), b.data() + at + 2 * stream, multiplier_stream) == 0),
+         "the multipliers are the file's");
+  for (const std::vector<uint8_t>* bytes : {&s.positions, &s.displacement, &s.multipliers})
     for (size_t i = 0; i < bytes->size(); i += scalar) {
       double v;
       if (scalar == 8) {

@@ -5,8 +5,8 @@ tests/fuzz/seeds_pc2/, each file with its expected outcome in the folder's expec
     tests/fuzz/make_seeds.py build/clothsim-headless
 
 The valid files are written by clothsim itself (`simulate --save-state` on the CPU reference in
-double and on the GPU in float, `--export FILE.pc2`, and a run continued from a state) on a 3x2
-cloth, so they are a few hundred bytes; the others are copies of them with one thing broken
+double and on the GPU in float, both solvers, `--export FILE.pc2`, and a run continued from a
+state) on a 3x2 cloth, or derived from them (the older versions 1 and 2), so they are a few hundred bytes; the others are copies of them with one thing broken
 (cut short, a field out of range, a NaN with its checksum made to match, ...); a header field
 out of range needs no more than the header. The GPU state
 needs an OpenGL 4.3 context (llvmpipe will do). Rerun it when a format changes, and commit what
@@ -42,25 +42,41 @@ def patch(data, offset, fmt, value):
 
 
 def state_stream_offset(state):
-    """Where a version-2 state's positions start: the header and the two names."""
+    """Where a version-2 or -3 state's positions start: the header and the two names."""
     scene_len, backend_len = struct.unpack_from('<II', state, 56)
     return 80 + scene_len + backend_len
 
 
-def state_seeds(cpu, gpu, pc2):
+def state_seeds(cpu, gpu, xpbd, pc2):
     """(file, bytes, outcome, why) for seeds_state/; outcome is 'loads' or 'rejected<TAB>message'."""
     f_pos = state_stream_offset(gpu)   # float positions: 16 bytes per particle
     d_pos = state_stream_offset(cpu)   # double positions: 32 bytes per particle
     d_disp = d_pos + 6 * 32            # the 3x2 cloth's displacements follow its positions
-    # Version 1: the same header without its dt (72 bytes) and the streams without the version-3
-    # multipliers (their count at offset 68, 16 bytes each in floats), checksummed again.
+    # Versions 1 and 2: the streams without the version-3 multipliers (their count at offset 68,
+    # 16 bytes each in floats), version 1 also without the dt (a 72-byte header); checksummed again.
     multipliers = struct.unpack_from('<I', gpu, 68)[0] * 16
-    v1 = with_checksum(patch(patch(gpu[:72], 16, '<I', 1), 68, '<I', 0) + gpu[80:len(gpu) - 8 - multipliers])
+    older = patch(gpu, 68, '<I', 0)[:len(gpu) - 8 - multipliers]
+    v2 = with_checksum(patch(older, 16, '<I', 2))
+    v1 = with_checksum(patch(older[:72], 16, '<I', 1) + older[80:])
+    # The xpbd state's multipliers (4 doubles per spring) follow its two streams.
+    springs = struct.unpack_from('<I', xpbd, 68)[0]
+    x_lambda = state_stream_offset(xpbd) + 2 * 6 * 32
+    assert springs > 0 and len(xpbd) == x_lambda + springs * 32 + 8, 'the xpbd state carries its multipliers'
     nan = float('nan')
     return [
-        ('v2_double_cpu.state', cpu, 'loads', 'simulate --backend cpu --frames 3 --save-state: 3x2, doubles'),
-        ('v2_float_gpu.state', gpu, 'loads', 'simulate --backend gpu --frames 3 --save-state: 3x2, floats'),
+        ('v3_double_cpu.state', cpu, 'loads', 'simulate --backend cpu --frames 3 --save-state: 3x2, doubles'),
+        ('v3_float_gpu.state', gpu, 'loads', 'simulate --backend gpu --frames 3 --save-state: 3x2, floats'),
+        ('v3_xpbd_double_cpu.state', xpbd, 'loads',
+         f'the same with --set simulation.solver=xpbd: {springs} springs\' multipliers after the streams'),
+        ('v2_float_gpu.state', v2, 'loads', 'the float state as version 2 (no multipliers): still read'),
         ('v1_float.state', v1, 'loads', 'the float state as version 1 (72-byte header, no dt): still read'),
+        ('nan_multiplier.state', with_checksum(patch(xpbd, x_lambda + 32 + 24, '<d', nan)[:-8]),
+         'rejected\tthe multiplier of spring 1 has w = nan', 'a NaN multiplier with a matching checksum'),
+        ('multipliers_out_of_range.state', patch(xpbd[:80], 68, '<I', 385),
+         'rejected\t385 spring multipliers for 6 particles is out of range', 'more than 64 springs a particle'),
+        ('truncated_multipliers.state', xpbd[:-16],
+         f'rejected\ttruncated ({len(xpbd) - 16} bytes, a 3x2 cloth of 8-byte scalars needs {len(xpbd)})',
+         'cut inside the multipliers'),
         ('empty.state', b'', 'rejected\tnot a clothsim state file', 'an empty file'),
         ('foreign_pc2.state', pc2, 'rejected\tnot a clothsim state file', 'a PC2 cache given as a state'),
         ('truncated_header.state', cpu[:60], 'rejected\ttruncated (60 bytes, shorter than the header)',
@@ -72,7 +88,7 @@ def state_seeds(cpu, gpu, pc2):
         ('version_4.state', patch(gpu[:80], 16, '<I', 4), 'rejected\tstate file version 4', 'an unknown version'),
         ('scalar_6.state', patch(gpu[:80], 20, '<I', 6), 'rejected\tscalar size 6 bytes', 'neither float nor double'),
         ('grid_4096x4096.state', patch(patch(gpu, 24, '<I', 4096), 28, '<I', 4096),
-         f'rejected\ta 4096x4096 cloth of 4-byte scalars needs {f_pos + 2 * 4096 * 4096 * 16 + 8}',
+         f'rejected\ta 4096x4096 cloth of 4-byte scalars needs {f_pos + 2 * 4096 * 4096 * 16 + multipliers + 8}',
          'a legal grid the file is far too short for: refused before 512 MiB are allocated'),
         ('grid_8192x4096.state', patch(patch(gpu[:80], 24, '<I', 8192), 28, '<I', 4096),
          'rejected\tgrid 8192x4096 is out of range', 'more particles than kMaxParticles'),
@@ -89,7 +105,7 @@ def state_seeds(cpu, gpu, pc2):
         ('negative_frame.state', with_checksum(patch(gpu, 40, '<q', -1)[:-8]),
          'rejected\tthe frame is -1', 'a frame < 0 with a matching checksum'),
         ('zero_dt.state', with_checksum(patch(gpu, 72, '<d', 0.0)[:-8]),
-         'rejected\tthe substep length is 0 s', 'a version-2 dt of 0 with a matching checksum'),
+         'rejected\tthe substep length is 0 s', 'a dt of 0 with a matching checksum'),
     ]
 
 
@@ -156,12 +172,14 @@ def main():
             f.write(SCENE)
         run('--backend', 'cpu', '--frames', '3', '--save-state', 'cpu.state', '--export', 'cache.pc2')
         run('--backend', 'gpu', '--frames', '3', '--save-state', 'gpu.state')
+        run('--backend', 'cpu', '--frames', '3', '--set', 'simulation.solver=xpbd', '--save-state', 'xpbd.state')
         run('--backend', 'cpu', '--load-state', 'cpu.state', '--frames', '4', '--export-every', '2',
             '--export', 'resumed.pc2')
-        cpu, gpu, cache, resumed = read('cpu.state'), read('gpu.state'), read('cache.pc2'), read('resumed.pc2')
+        cpu, gpu, xpbd = read('cpu.state'), read('gpu.state'), read('xpbd.state')
+        cache, resumed = read('cache.pc2'), read('resumed.pc2')
     finally:
         shutil.rmtree(tmp)
-    write_corpus(os.path.join(HERE, 'seeds_state'), state_seeds(cpu, gpu, cache), 'state-file')
+    write_corpus(os.path.join(HERE, 'seeds_state'), state_seeds(cpu, gpu, xpbd, cache), 'state-file')
     write_corpus(os.path.join(HERE, 'seeds_pc2'), pc2_seeds(cache, resumed, gpu), 'PC2')
 
 
