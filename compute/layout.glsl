@@ -18,6 +18,7 @@ namespace layout {
 using vec3 = glm::vec3;
 using vec4 = glm::vec4;
 using uvec4 = glm::uvec4;
+using ivec4 = glm::ivec4;
 using uvec2 = glm::uvec2;
 using uint = uint32_t;
 #define STRUCT_ALIGN16 struct alignas(16)
@@ -59,6 +60,8 @@ using uint = uint32_t;
 // xpbd's warm-started multipliers (docs/model.md): per spring, sorted by colour, xyz the unit
 // direction i -> j of its last visit, w its Lagrange multiplier carried into the next substep.
 #define BINDING_MULTIPLIERS 25
+#define BINDING_MESHES 26  // MeshCollider[] (the passes read them through TEXTURE_MESHES)
+#define BINDING_SDF 27     // float per field node, every mesh collider's field in turn
 // Texture units of the read-only texel views (GL_TEXTURE_BUFFER) of the simulation's buffers,
 // through which the hot passes read (compute/particle_views.glsl says why). Above the units
 // the renderer uses (0-2: fabric, height map, sky), so drawing a frame leaves them bound.
@@ -80,11 +83,14 @@ using uint = uint32_t;
 #define TEXTURE_TRIANGLES 22         // RGBA32UI, per triangle: xyz its corners
 #define TEXTURE_REST_POSITIONS 23    // RGBA32F, per particle: xyz its rest position (bounded contact; 1 texel otherwise)
 #define TEXTURE_MULTIPLIERS 24       // RGBA32F, per spring: BINDING_MULTIPLIERS, read by predict and the sweep
+#define TEXTURE_MESHES 25            // RGBA32F, MESH_TEXELS per MeshCollider
+#define TEXTURE_SDF 26               // R32F, one texel per field node (BINDING_SDF)
 // RGBA32F texels per struct in the views above: member m of element k is texel
 // k * STRUCT_TEXELS + m (tests/test_gpu_layout.cpp checks these against the std430 strides).
 #define MATERIAL_TEXELS 2
 #define SPHERE_TEXELS 3
 #define PLANE_TEXELS 3
+#define MESH_TEXELS 7
 // Uniform block binding.
 #define BINDING_STEP_PARAMS 0
 
@@ -118,6 +124,19 @@ struct PlaneCollider {
   vec4 point;   // xyz a point on the plane (at the substep's end), w its front: +1 or -1, the cloth's side
   vec4 normal;  // xyz unit normal, w = 1 - friction
   vec4 motion;  // xyz m over this substep, w = friction (xpbd's Coulomb mu)
+};
+
+// A mesh collider (MeshC in host/core/reference.hpp): a mass at x is at local =
+// rows (x - origin) in its field's frame; node (0, 0, 0) of the field is at grid_min, its nodes
+// are the texels of TEXTURE_SDF from dims.w on, x fastest.
+struct MeshCollider {
+  vec4 row0;       // xyz the first row of the rotation's transpose, w origin.x (at the substep's end)
+  vec4 row1;       // xyz the second row, w origin.y
+  vec4 row2;       // xyz the third row, w origin.z
+  vec4 grid;       // xyz grid_min, w 1 / node spacing
+  ivec4 dims;      // xyz nodes along x, y, z, w the offset of node (0, 0, 0) (read as floatBitsToInt)
+  vec4 motion;     // xyz m over this substep, w = 1 - friction
+  vec4 material;   // x friction (xpbd's Coulomb mu), y thickness (m), z crossing (MeshC), w unused
 };
 
 // Per-vertex extras of a drawn mesh: a collider's uv and tangent; the cloth's uv, and in uv.zw the particles
@@ -159,7 +178,8 @@ struct MeshVertex {
   F(uint, pins_moving)         /* 1 = pinned masses follow pinned_motion */                \
   F(uint, bounded_contact)     /* 1 = xpbd's self-contact (docs/model.md) */               \
   F(float, max_step)           /* m, predict's displacement limit per substep (0: none) */ \
-  F(uint, coulomb_friction)    /* 1 = contacts take Coulomb friction (xpbd), 0 the CS184 blend */
+  F(uint, coulomb_friction)    /* 1 = contacts take Coulomb friction (xpbd), 0 the CS184 blend */ \
+  F(uint, mesh_count)          /* MeshCollider entries in use */
 #define STEP_PARAMS_DECLARE(type, name) type name;
 // std140 rounds the block's size up to 16 bytes; alignas makes sizeof agree.
 STRUCT_ALIGN16 StepParams { STEP_PARAMS_FIELDS(STEP_PARAMS_DECLARE) };
@@ -181,6 +201,7 @@ struct LastGoodHeader {
 static_assert(sizeof(MaterialTexels) == MATERIAL_TEXELS * sizeof(vec4), "MaterialTexels texels");
 static_assert(sizeof(SphereCollider) == SPHERE_TEXELS * sizeof(vec4), "SphereCollider texels");
 static_assert(sizeof(PlaneCollider) == PLANE_TEXELS * sizeof(vec4), "PlaneCollider texels");
+static_assert(sizeof(MeshCollider) == MESH_TEXELS * sizeof(vec4), "MeshCollider texels");
 }  // namespace layout
 #endif
 #endif

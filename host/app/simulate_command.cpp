@@ -14,6 +14,7 @@
 #include "commands.hpp"
 #include "frame_export.hpp"
 #include "intersections.hpp"
+#include "mesh_collider.hpp"
 
 namespace clothsim {
 namespace {
@@ -37,6 +38,10 @@ void print_stats(const Scene& scene, const ClothStats& st, int frames, double wa
   }
   for (size_t k = 0; k < st.plane_clearance.size(); ++k)
     fmt::print("plane[{}] clearance  {:.6f} m\n", k, st.plane_clearance[k]);
+  for (size_t k = 0; k < st.mesh_clearance.size(); ++k)
+    fmt::print("mesh[{}] clearance   {:.6f} m (to its surface; thickness {} m)\n", k, st.mesh_clearance[k],
+               scene.meshes[k].thickness);
+  for (const std::string& line : collider_mesh_report()) fmt::print("mesh collider     {}\n", line);
   fmt::print("finite            {}\n", st.finite ? "yes" : "NO (a value became NaN/Inf)");
 }
 

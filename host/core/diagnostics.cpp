@@ -1,5 +1,8 @@
 #include "diagnostics.hpp"
 
+#include "mesh_collider.hpp"
+#include "reference_detail.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cerrno>
@@ -79,6 +82,30 @@ ClothStats measure(const Scene& scene, const ClothModel& m, const ClothSnapshot&
     double best = std::numeric_limits<double>::infinity();
     for (auto& p : s.pos) best = std::min(best, side * glm::dot(xyz(p) - point, pl.normal));
     st.plane_clearance.push_back(best);
+  }
+  for (size_t k = 0; k < scene.meshes.size(); ++k) {
+    // The field's distance (to the surface, not to its offset by thickness), in the mesh's
+    // frame; a mass outside the grid is further than the band.
+    const MeshColliderParams& mp = scene.meshes[k];
+    const std::shared_ptr<const ColliderMesh> mesh = load_collider_mesh(scene, k);
+    const glm::dmat3 rot = collider_rotation(mp);
+    const glm::dvec3 origin = mp.motion ? interpolate(mp.motion->keyframes, time) : mp.origin;
+    MeshC<double> mc;  // (only the field's placement: clearance needs no response constants)
+    for (int r = 0; r < 3; ++r) mc.rows[r] = rot[r];
+    mc.grid_min = mesh->sdf.min;
+    mc.inv_voxel = 1.0 / mesh->sdf.voxel;
+    mc.dims = mesh->sdf.dims;
+    double best = mesh->sdf.band;
+    for (auto& p : s.pos) {
+      const glm::dvec3 e = xyz(p) - origin;
+      double phi;
+      glm::dvec3 grad;
+      if (sample_mesh_field(mc, mesh->sdf.values.data(), glm::dvec3(glm::dot(mc.rows[0], e), glm::dot(mc.rows[1], e),
+                                                                    glm::dot(mc.rows[2], e)),
+                            phi, grad))
+        best = std::min(best, phi);
+    }
+    st.mesh_clearance.push_back(best);
   }
   return st;
 }

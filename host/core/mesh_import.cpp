@@ -224,7 +224,7 @@ bool zero_area(const std::vector<glm::dvec3>& p, const uint32_t* c, size_t n) {
 
 }  // namespace
 
-PolyMesh load_mesh(const std::filesystem::path& file, const std::string& what) {
+PolyMesh load_mesh(const std::filesystem::path& file, const std::string& what, bool manifold) {
   const Context cx{file, what};
   std::error_code ec;
   if (!fs::exists(file, ec)) cx.fail("the mesh file does not exist");
@@ -329,6 +329,7 @@ PolyMesh load_mesh(const std::filesystem::path& file, const std::string& what) {
 
   // A cloth surface is a 2-manifold (with boundary): an edge in three faces has no cloth meaning
   // (and would give its bending springs no opposite pair).
+  if (!manifold) return out;
   std::unordered_map<uint64_t, uint8_t> uses;
   uses.reserve(out.faces.size() * 2);
   for (const auto& face : out.faces)

@@ -60,7 +60,8 @@ struct PolyMesh {
 // "scenes/disc.json: cloth.mesh". Throws SceneError (scene.hpp) "<what>: <file>: <problem>"
 // for: a missing or unreadable file, a format Assimp cannot read (with Assimp's message), no
 // faces, a non-finite coordinate, an edge shared by more than two faces (naming its two
-// vertices, 0-based), more than kMaxMeshVertices particles.
-PolyMesh load_mesh(const std::filesystem::path& file, const std::string& what);
+// vertices, 0-based; only with `manifold`, which a cloth needs and a collider does not),
+// more than kMaxMeshVertices particles.
+PolyMesh load_mesh(const std::filesystem::path& file, const std::string& what, bool manifold = true);
 
 }  // namespace clothsim

@@ -5,6 +5,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "mesh_collider.hpp"
 #include "motion.hpp"
 
 namespace clothsim {
@@ -12,6 +13,7 @@ namespace clothsim {
 bool Timeline::moves() const {
   for (auto& k : spheres) if (k) return true;
   for (auto& k : planes) if (k) return true;
+  for (auto& k : meshes) if (k) return true;
   return pins.has_value() || gust_period > 0;
 }
 
@@ -42,6 +44,7 @@ template <class R> void make_timeline(const Scene& scene, const ClothModel& mode
   tl.dt = scene.dt();
   for (auto& s : scene.spheres) tl.spheres.push_back(s.motion ? std::optional(s.motion->keyframes) : std::nullopt);
   for (auto& p : scene.planes) tl.planes.push_back(p.motion ? std::optional(p.motion->keyframes) : std::nullopt);
+  for (auto& m : scene.meshes) tl.meshes.push_back(m.motion ? std::optional(m.motion->keyframes) : std::nullopt);
   // pinned_motion of the first cloth moves the pins of every cloth (one offset for all).
   if (scene.cloth.pinned_motion) {
     tl.pins = scene.cloth.pinned_motion->keyframes;
@@ -53,6 +56,36 @@ template <class R> void make_timeline(const Scene& scene, const ClothModel& mode
     if (tl.spheres[k]) c.spheres[k].origin = Vec3<R>(interpolate(*tl.spheres[k], 0.0));
   for (size_t k = 0; k < tl.planes.size(); ++k)
     if (tl.planes[k]) c.planes[k].point = Vec3<R>(interpolate(*tl.planes[k], 0.0));
+  for (size_t k = 0; k < tl.meshes.size(); ++k)
+    if (tl.meshes[k]) c.meshes[k].origin = Vec3<R>(interpolate(*tl.meshes[k], 0.0));
+}
+
+// Each mesh collider's field, appended to one array the backends share (GPU: one buffer).
+template <class R> void make_meshes(const Scene& scene, Constants<R>& c) {
+  if (scene.meshes.empty()) return;
+  std::vector<std::shared_ptr<const ColliderMesh>> loaded;
+  uint32_t offset = 0;
+  for (size_t k = 0; k < scene.meshes.size(); ++k) {
+    const MeshColliderParams& p = scene.meshes[k];
+    const std::shared_ptr<const ColliderMesh> mesh = load_collider_mesh(scene, k);
+    loaded.push_back(mesh);
+    const SdfGrid& g = mesh->sdf;
+    const glm::dmat3 rot = collider_rotation(p);
+    MeshC<R> m;
+    for (int r = 0; r < 3; ++r) m.rows[r] = Vec3<R>(rot[r]);  // column r of R is row r of its transpose
+    m.origin = Vec3<R>(p.origin);
+    m.keep = R(1.0 - p.friction);
+    m.mu = R(p.friction);
+    m.thickness = R(p.thickness);
+    m.crossing = g.closed ? R(0) : R(0.5 * p.thickness);
+    m.grid_min = Vec3<R>(g.min);
+    m.inv_voxel = R(1.0 / g.voxel);
+    m.dims = g.dims;
+    m.offset = offset;
+    offset += uint32_t(g.values.size());
+    c.meshes.push_back(m);
+  }
+  c.sdf = concatenated_fields(loaded);
 }
 
 }  // namespace
@@ -71,6 +104,12 @@ template <class R> void set_substep_time(Constants<R>& c, double t) {
       const glm::dvec3 at = interpolate(*tl.planes[k], t1);
       c.planes[k].point = Vec3<R>(at);
       c.planes[k].motion = Vec3<R>(at - interpolate(*tl.planes[k], t));
+    }
+  for (size_t k = 0; k < tl.meshes.size(); ++k)
+    if (tl.meshes[k]) {
+      const glm::dvec3 at = interpolate(*tl.meshes[k], t1);
+      c.meshes[k].origin = Vec3<R>(at);
+      c.meshes[k].motion = Vec3<R>(at - interpolate(*tl.meshes[k], t));
     }
   if (tl.pins) c.pin_offset = Vec3<R>(interpolate(*tl.pins, t1));
   if (tl.gust_period > 0) c.wind.gust_phase = R(gust_phase(t, tl.gust_period));
@@ -122,6 +161,7 @@ template <class R> Constants<R> make_constants(const Scene& scene, const ClothMo
     c.spheres.push_back({Vec3<R>(s.origin), R(s.radius), R(1.0 - s.friction), Vec3<R>(0), R(s.friction)});
   for (auto& p : scene.planes)
     c.planes.push_back({Vec3<R>(p.point), Vec3<R>(p.normal), R(1.0 - p.friction), Vec3<R>(0), R(1), R(p.friction)});
+  make_meshes(scene, c);
   make_wind(scene, c);
   make_timeline(scene, model, c);
   // Each plane's front: the side the cloth's rest centre is on, where the plane is at t = 0.

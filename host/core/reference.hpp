@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cmath>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -32,6 +33,22 @@ template <class R> struct SphereC { Vec3<R> origin; R radius; R keep; Vec3<R> mo
 // it); a mass is in contact whenever it is not in front, however it got behind (with xpbd's
 // Coulomb friction also when within the surface offset in front: docs/model.md).
 template <class R> struct PlaneC { Vec3<R> point; Vec3<R> normal; R keep; Vec3<R> motion{0}; R front = R(1); R mu = R(0); };
+// A mesh collider through its signed distance field (sdf.hpp): a mass at x is at
+// local = rows (x - origin) in the field's frame (rows: the rotation's transpose), the field's
+// node (0, 0, 0) at grid_min; its nodes are Constants::sdf[offset ...], x fastest. A mass
+// closer than `thickness` to the surface (or inside) is pushed out along the field's gradient.
+template <class R> struct MeshC {
+  Vec3<R> rows[3];
+  Vec3<R> origin, motion{0};
+  R keep = R(1), mu = R(0), thickness = R(0);
+  // A path sample below this is a crossing (passed_through_mesh): 0 for a closed mesh's signed
+  // field, half the thickness for an open mesh's shell (its field is never negative).
+  R crossing = R(0);
+  Vec3<R> grid_min;
+  R inv_voxel;
+  glm::ivec3 dims{0};
+  uint32_t offset = 0;
+};
 
 // The wind as the passes use it (docs/model.md, "Wind"). The factors fold the constants of
 // the formulas: drag = -rho C_d / 12 is -1/2 rho C_d, times 1/2 (the cross product of two
@@ -48,7 +65,7 @@ template <class R> struct WindC {
 
 // What moves with time, in double: evaluated once per substep by set_substep_time.
 struct Timeline {
-  std::vector<std::optional<Keyframes>> spheres, planes;  // by collider, in file order
+  std::vector<std::optional<Keyframes>> spheres, planes, meshes;  // by collider, in file order
   std::optional<Keyframes> pins;                          // offsets of the pinned masses
   double gust_period = 0;                                 // 0: no gusts
   double dt = 0;
@@ -93,13 +110,15 @@ template <class R> struct Constants {
   bool xpbd;            // simulation.solver
   std::vector<SphereC<R>> spheres;
   std::vector<PlaneC<R>> planes;
+  std::vector<MeshC<R>> meshes;
+  std::shared_ptr<const std::vector<float>> sdf;  // every mesh's field, concatenated (shared, never edited)
   WindC<R> wind;
   // Moving pins: every pinned mass is at anchor + pin_offset at the end of each substep.
   // anchors: per particle, xyz the start position, w 1 for a pinned mass; empty without pinned_motion.
   std::vector<Vec4<R>> anchors;
   Vec3<R> pin_offset{0};
   Timeline timeline;
-  bool has_colliders() const { return !spheres.empty() || !planes.empty(); }
+  bool has_colliders() const { return !spheres.empty() || !planes.empty() || !meshes.empty(); }
   bool moving_pins() const { return !anchors.empty(); }
   bool enabled(const Spring& s) const { return materials[s.material].enabled[int(s.type)]; }
   // Colour c of `m` runs at all: its type is enabled in some cloth (a colour is of one type).

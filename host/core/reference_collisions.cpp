@@ -47,23 +47,6 @@ template <class R> void resolve_self_contacts(const Constants<R>& c, State<R>& s
   s.pos.swap(s.pos_out);
 }
 
-// The friction blend x' = x_prev + keep (t - x_prev) with x_prev = x - d, written as
-// d' = keep ((t - x) + d), x' = x + (d' - d): every rounded difference is small.
-template <class R> void blend_to(const Vec3<R>& t_minus_x, R keep, Vec3<R>& x, Vec3<R>& d) {
-  const Vec3<R> next_d = (t_minus_x + d) * keep;
-  x = x + (next_d - d);
-  d = next_d;
-}
-
-// The blend relative to a collider that moved by m this substep: in its frame the previous
-// position is x_prev + m, so x' = (x_prev + m) + keep (t - (x_prev + m)), i.e.
-// d' = keep ((t - x) + d - m) + m: friction damps the motion relative to the collider's.
-template <class R> void blend_to_moving(const Vec3<R>& t_minus_x, R keep, const Vec3<R>& m, Vec3<R>& x, Vec3<R>& d) {
-  const Vec3<R> next_d = ((t_minus_x + d) - m) * keep + m;
-  x = x + (next_d - d);
-  d = next_d;
-}
-
 // A moving sphere: e = x - o at the substep's end, e_prev = x_prev - o_prev = e - d + m at its
 // start. A mass normally enters by at most its motion relative to the sphere per substep and
 // is pushed out along e. Should that motion carry it past the centre (e . e_prev < 0, a
@@ -128,29 +111,6 @@ template <class R> void keep_in_front_of_plane(const PlaneC<R>& pl, Vec3<R>& x, 
   d = d + out;
 }
 
-// xpbd's contact response (docs/model.md, "Coulomb friction"): the push t - x out along the
-// contact normal n (unit, outwards), then Coulomb friction on the substep's displacement
-// relative to the collider (d - m after the push): its tangential part is cancelled if it is at
-// most mu times the push's depth along n (static friction), else shortened by that much
-// (sliding). The depth is what the mass was pressed in over the substep (g cos(theta) dt^2 for a
-// mass resting on a slope), so the friction is mu times the normal force at any substep length.
-// The whole change, push and friction, is added to x once.
-template <class R>
-void coulomb_respond(const Vec3<R>& t_minus_x, const Vec3<R>& n, R mu, const Vec3<R>& m, Vec3<R>& x, Vec3<R>& d) {
-  const Vec3<R> pushed = d + t_minus_x;
-  const R depth = dot3(t_minus_x, n);
-  Vec3<R> cancel(0);
-  if (depth > R(0) && mu > R(0)) {
-    const Vec3<R> rel = pushed - m;
-    const Vec3<R> tangential = rel - n * dot3(rel, n);
-    const R slide = length3(tangential);
-    const R limit = mu * depth;
-    if (slide > R(0)) cancel = slide <= limit ? tangential : tangential * (limit * (R(1) / slide));
-  }
-  x = x + (t_minus_x - cancel);
-  d = pushed - cancel;
-}
-
 // The outward normal of a sphere at the point x + t_minus_x (up at the centre).
 template <class R> Vec3<R> sphere_normal(const SphereC<R>& sp, const Vec3<R>& x, const Vec3<R>& t_minus_x) {
   const Vec3<R> e = (x + t_minus_x) - sp.origin;
@@ -168,7 +128,7 @@ void respond_to_sphere(const Constants<R>& c, bool friction, const SphereC<R>& s
   else blend_to(t_minus_x, friction ? sp.keep : R(1), x, d);
 }
 
-// One particle against every sphere, then every plane. With `friction` false every contact
+// One particle against every sphere, then every plane, then every mesh. With `friction` false every contact
 // keeps all of its tangential motion (keep = 1): the pure push-out of xpbd's constraint pass.
 template <class R> void collide_particle(const Constants<R>& c, Vec3<R>& x, Vec3<R>& d, bool friction) {
   for (const SphereC<R>& sp : c.spheres) {
@@ -222,11 +182,13 @@ template <class R> void collide_particle(const Constants<R>& c, Vec3<R>& x, Vec3
     else blend_to(t_minus_x, friction ? pl.keep : R(1), x, d);
     if (side == pl.front) keep_in_front_of_plane(pl, x, d);
   }
+  for (const MeshC<R>& m : c.meshes) collide_with_mesh(c, m, friction, x, d);
 }
 
 template <class R> void keep_out_of_colliders(const Constants<R>& c, Vec3<R>& x, Vec3<R>& d) {
   for (const SphereC<R>& sp : c.spheres) keep_out_of_sphere(sp, x, d);
   for (const PlaneC<R>& pl : c.planes) keep_in_front_of_plane(pl, x, d);
+  for (const MeshC<R>& m : c.meshes) keep_out_of_mesh(c, m, x, d);
 }
 
 template <class R> void collide_objects(const Constants<R>& c, State<R>& s) {

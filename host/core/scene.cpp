@@ -116,6 +116,11 @@ Scene parse_scene(const std::string& text, const std::string& source, const std:
                                    "memory; at most {} particles",
                                    source, key, particles, kMaxParticles));
   }
+  // A mesh collider's file, relative to the scene file like a mesh cloth's.
+  const bool file = !source.empty() && source[0] != '<';
+  for (MeshColliderParams& m : s.meshes)
+    m.file_path = (file ? std::filesystem::path(source).parent_path() / m.file : std::filesystem::path(m.file))
+                      .lexically_normal();
   // Special case, across two rows: XPBD's compliance is exact for one solve per substep (its
   // Lagrange multipliers start at zero every substep); a stiffer xpbd cloth needs more substeps.
   if (s.simulation.solver == Solver::Xpbd && s.simulation.constraint_iterations != 1)

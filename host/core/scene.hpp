@@ -100,6 +100,24 @@ struct PlaneParams {
   bool operator==(const PlaneParams&) const = default;
 };
 
+// A triangle mesh as a collider (docs/model.md, "Mesh colliders"): the file's surface, scaled,
+// rotated about rotation_axis, then placed at `origin` (keyframed by `motion`), collided with
+// through its signed distance field of node spacing voxel_size.
+struct MeshColliderParams {
+  std::string file;                 // as the scene writes it, relative to the scene file
+  std::filesystem::path file_path;  // resolved by the loader
+  double scale = 1;
+  glm::dvec3 origin{0.0};
+  glm::dvec3 rotation_axis{0, 1, 0};  // unit length after loading
+  double rotation_degrees = 0;
+  double friction = 0;
+  std::optional<MotionParams> motion;  // keys are origins; replaces `origin` while present
+  double voxel_size = 0;   // m; 0: the mesh's longest extent / 128 (sdf.hpp)
+  double thickness = 0.002;  // m: masses are kept this far outside the surface
+
+  bool operator==(const MeshColliderParams&) const = default;
+};
+
 struct SimulationParams {
   double frames_per_sec = 90;
   int simulation_steps = 30;
@@ -142,6 +160,7 @@ struct Scene {
   std::vector<ClothParams> extra_cloths;
   std::vector<SphereParams> spheres;  // applied in file order
   std::vector<PlaneParams> planes;    // applied in file order
+  std::vector<MeshColliderParams> meshes;  // applied after the planes, in file order
   SimulationParams simulation;
   std::optional<WindParams> wind;     // absent: no air at all (the classic model)
 

@@ -79,6 +79,9 @@ const Param<Scene> kScene[] = {
                           .one_or_many = true}),
     row<&Scene::planes>({.key = "plane", .meaning = "Plane colliders, applied after the spheres: one object or an array",
                          .one_or_many = true}),
+    row<&Scene::meshes>({.key = "mesh", .meaning = "Triangle-mesh colliders through their signed distance fields, "
+                                                   "applied after the planes: one object or an array",
+                         .one_or_many = true}),
     row<&Scene::simulation>({.key = "simulation", .meaning = "Time stepping and global forces"}),
     // The checkbox: the viewer can add or remove the wind live.
     row<&Scene::wind>({.key = "wind", .meaning = "Air: aerodynamic drag and lift on every triangle of the cloth",
@@ -201,6 +204,33 @@ const Param<PlaneParams> kPlane[] = {
                                                            "translates); friction acts relative to it"}),
 };
 
+const Param<MeshColliderParams> kMeshCollider[] = {
+    row<&MeshColliderParams::file>({.key = "file", .required = true, .expected = "a path to a mesh file",
+                                    .meaning = "a mesh file (OBJ, PLY, glTF, STL, ...), relative to the scene file; "
+                                               "closed for an inside, open for a shell of `thickness`",
+                                    .widget = kReadOnly}),
+    row<&MeshColliderParams::scale>({.key = "scale", .lo = 1e-9, .expected = "a scale > 0",
+                                     .meaning = "the file's coordinates are multiplied by this (metres per unit)",
+                                     .widget = kReadOnly}),
+    row<&MeshColliderParams::origin>({.key = "origin", .unit = "m", .meaning = "where the file's origin is placed, last"}),
+    row<&MeshColliderParams::rotation_axis>({.key = "rotation_axis", .meaning = "non-zero; made unit length on loading",
+                                             .widget = kReadOnly, .after_read = normalise_axis}),
+    row<&MeshColliderParams::rotation_degrees>({.key = "rotation_degrees", .unit = "°",
+                                                .meaning = "rotation about rotation_axis (right-handed), after the scale",
+                                                .widget = kReadOnly}),
+    row<&MeshColliderParams::friction>({.key = "friction", .lo = 0, .hi = 1,
+                                        .expected = "a friction coefficient in [0, 1]", .meaning = kFriction.meaning}),
+    row<&MeshColliderParams::motion>({.key = "motion", .meaning = "keyframed origin, in place of `origin` (the mesh "
+                                                                  "translates); friction acts relative to it"}),
+    row<&MeshColliderParams::voxel_size>({.key = "voxel_size", .lo = 0, .expected = "a spacing >= 0 (metres)",
+                                          .unit = "m",
+                                          .meaning = "node spacing of the signed distance field; 0: the mesh's longest "
+                                                     "extent / 128 (a field is at most 256 MiB)",
+                                          .widget = kReadOnly}),
+    row<&MeshColliderParams::thickness>({.key = "thickness", .lo = 0, .expected = "a thickness >= 0 (metres)",
+                                         .unit = "m", .meaning = "masses are kept this far outside the surface"}),
+};
+
 const Param<SimulationParams> kSimulation[] = {
     row<&SimulationParams::frames_per_sec>({.key = "frames_per_sec", .lo = 1e-6, .hi = 1e6,
                                             .expected = "frames per second in (0, 1e6]", .unit = "1/s",
@@ -266,6 +296,7 @@ template <> std::span<const Param<Scene>> param_rows<Scene>() { return kScene; }
 template <> std::span<const Param<ClothParams>> param_rows<ClothParams>() { return kCloth; }
 template <> std::span<const Param<SphereParams>> param_rows<SphereParams>() { return kSphere; }
 template <> std::span<const Param<PlaneParams>> param_rows<PlaneParams>() { return kPlane; }
+template <> std::span<const Param<MeshColliderParams>> param_rows<MeshColliderParams>() { return kMeshCollider; }
 template <> std::span<const Param<SimulationParams>> param_rows<SimulationParams>() { return kSimulation; }
 template <> std::span<const Param<MotionParams>> param_rows<MotionParams>() { return kMotion; }
 template <> std::span<const Param<WindParams>> param_rows<WindParams>() { return kWind; }

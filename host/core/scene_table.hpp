@@ -14,6 +14,7 @@ namespace clothsim {
 template <> std::span<const Param<Scene>> param_rows<Scene>();
 template <> std::span<const Param<ClothParams>> param_rows<ClothParams>();
 template <> std::span<const Param<SphereParams>> param_rows<SphereParams>();
+template <> std::span<const Param<MeshColliderParams>> param_rows<MeshColliderParams>();
 template <> std::span<const Param<PlaneParams>> param_rows<PlaneParams>();
 template <> std::span<const Param<SimulationParams>> param_rows<SimulationParams>();
 template <> std::span<const Param<MotionParams>> param_rows<MotionParams>();

@@ -4,6 +4,8 @@
 
 #include <utility>
 
+#include <fmt/format.h>
+
 namespace clothsim {
 
 void GpuSimulator::upload_colliders() {
@@ -12,9 +14,43 @@ void GpuSimulator::upload_colliders() {
   for (auto& s : constants_.spheres) spheres.push_back({v4(s.origin, s.radius), {s.keep, s.mu, 0.f, 0.f}, v4(s.motion, 0.f)});
   std::vector<layout::PlaneCollider> planes;
   for (auto& p : constants_.planes) planes.push_back({v4(p.point, p.front), v4(p.normal, p.keep), v4(p.motion, p.mu)});
+  std::vector<layout::MeshCollider> meshes;
+  for (auto& m : constants_.meshes) {
+    layout::MeshCollider g;
+    g.row0 = v4(m.rows[0], m.origin.x);
+    g.row1 = v4(m.rows[1], m.origin.y);
+    g.row2 = v4(m.rows[2], m.origin.z);
+    g.grid = v4(m.grid_min, m.inv_voxel);
+    g.dims = glm::ivec4(m.dims, int(m.offset));
+    g.motion = v4(m.motion, m.keep);
+    g.material = glm::vec4(m.mu, m.thickness, m.crossing, 0.f);
+    meshes.push_back(g);
+  }
   // A storage buffer may not be empty when bound: keep one dummy element for zero colliders.
   if (spheres.empty()) spheres.resize(1);
   if (planes.empty()) planes.resize(1);
+  if (meshes.empty()) meshes.resize(1);
+  // The fields never change during a run: uploaded when the constants bring another set.
+  const std::vector<float>* sdf = constants_.sdf.get();
+  if (sdf != sdf_source_ || sdf_.size() == 0) {
+    GLint limit = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &limit);
+    if (sdf != nullptr && sdf->size() > size_t(limit))
+      throw SceneError(fmt::format("the mesh colliders' fields have {} nodes in all, more than this GPU's texel buffers "
+                                   "hold ({}): set a larger mesh.voxel_size",
+                                   sdf->size(), limit));
+    const std::vector<float> none(1, 0.f);
+    gl::upload_vector(sdf_, sdf != nullptr && !sdf->empty() ? *sdf : none, GL_STATIC_DRAW);
+    sdf_view_.attach(sdf_, GL_R32F);
+    sdf_source_ = sdf;
+  }
+  const size_t mesh_bytes = meshes.size() * sizeof(meshes[0]);
+  if (meshes_.size() == mesh_bytes) {
+    meshes_.upload(0, mesh_bytes, meshes.data());
+  } else {
+    gl::upload_vector(meshes_, meshes, GL_DYNAMIC_DRAW);
+    meshes_view_.attach(meshes_, GL_RGBA32F);
+  }
   const size_t sphere_bytes = spheres.size() * sizeof(spheres[0]), plane_bytes = planes.size() * sizeof(planes[0]);
   if (spheres_.size() == sphere_bytes && planes_.size() == plane_bytes) {
     // Moving colliders, every substep: rewrite in place (the views stay attached).

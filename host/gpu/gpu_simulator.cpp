@@ -64,6 +64,7 @@ layout::StepParams make_step_params(const Constants<float>& c, const ClothModel&
   p.table_size = hash_table_size(uint32_t(m.count()));
   p.sphere_count = uint32_t(c.spheres.size());
   p.plane_count = uint32_t(c.planes.size());
+  p.mesh_count = uint32_t(c.meshes.size());
   const WindC<float>& w = c.wind;
   p.wind_enabled = w.enabled;
   p.wind_velocity = glm::vec3(w.velocity.x, w.velocity.y, w.velocity.z);
@@ -180,6 +181,8 @@ void GpuSimulator::upload_multipliers(std::vector<Vec4<float>> multipliers) {
   multipliers.resize(std::max<size_t>(1, model_.springs.size()), Vec4<float>(0));
   gl::upload_vector(multipliers_, multipliers);
   multipliers_view_.attach(multipliers_, GL_RGBA32F);
+  meshes_view_.attach(meshes_, GL_RGBA32F);
+  sdf_view_.attach(sdf_, GL_R32F);
 }
 
 void GpuSimulator::upload_materials() {
@@ -211,7 +214,7 @@ size_t GpuSimulator::memory_bytes() const {
                               &step_params_, &positions_out_, &cell_count_, &cell_start_, &cell_entries_,
                               &sorted_positions_, &tethers_, &wind_forces_, &anchors_, &gather_start_, &gather_,
                               &particles_, &materials_, &corner_start_, &corner_triangles_, &triangles_, &rest_positions_,
-                              &multipliers_})
+                              &multipliers_, &meshes_, &sdf_})
     total += b->size();
   return total + scan_.memory_bytes() + guard_.memory_bytes();
 }
@@ -249,6 +252,10 @@ void GpuSimulator::bind_all() const {
   rest_positions_view_.bind(TEXTURE_REST_POSITIONS);
   multipliers_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_MULTIPLIERS);
   multipliers_view_.bind(TEXTURE_MULTIPLIERS);
+  meshes_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_MESHES);
+  meshes_view_.bind(TEXTURE_MESHES);
+  sdf_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_SDF);
+  sdf_view_.bind(TEXTURE_SDF);
 }
 
 void GpuSimulator::attach_views() {
@@ -270,6 +277,8 @@ void GpuSimulator::attach_views() {
   tethers_view_.attach(tethers_, GL_RGBA32F);
   rest_positions_view_.attach(rest_positions_, GL_RGBA32F);
   multipliers_view_.attach(multipliers_, GL_RGBA32F);
+  meshes_view_.attach(meshes_, GL_RGBA32F);
+  sdf_view_.attach(sdf_, GL_R32F);
 }
 
 GpuBackend::GpuBackend(std::unique_ptr<gl::GlContext> context, const Scene& scene, const ClothModel& model,

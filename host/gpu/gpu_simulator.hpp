@@ -138,6 +138,10 @@ class GpuSimulator {
   gl::Buffer corner_start_{"corner start"}, corner_triangles_{"corner triangles"}, triangles_{"triangles"};
   gl::Buffer rest_positions_{"rest positions"};
   gl::Buffer multipliers_{"multipliers"};  // xpbd: per spring, its direction and carried lambda
+  // Mesh colliders: MeshCollider per mesh (rewritten per substep when one moves), and every
+  // mesh's field, uploaded once (sdf_source_: the Constants::sdf it holds).
+  gl::Buffer meshes_{"mesh colliders"}, sdf_{"mesh fields"};
+  const std::vector<float>* sdf_source_ = nullptr;
   // Read-only views of the buffers above (compute/particle_views.glsl).
   gl::BufferTexture positions_view_{"positions view"}, positions_out_view_{"positions out view"};
   gl::BufferTexture displacement_view_{"displacement view"}, springs_view_{"springs view"}, spheres_view_{"spheres view"};
@@ -149,6 +153,7 @@ class GpuSimulator {
   gl::BufferTexture sorted_positions_view_{"sorted positions view"}, tethers_view_{"tethers view"};
   gl::BufferTexture rest_positions_view_{"rest positions view"};
   gl::BufferTexture multipliers_view_{"multipliers view"};
+  gl::BufferTexture meshes_view_{"mesh colliders view"}, sdf_view_{"mesh fields view"};
   uint32_t table_size_ = 0;
   bool in_step_ = false;
   bool in_frame_ = false;  // within step_frame's substeps

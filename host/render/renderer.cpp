@@ -8,6 +8,7 @@
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "mesh_collider.hpp"
 #include "meshes.hpp"
 
 namespace clothsim {
@@ -104,16 +105,26 @@ Renderer::Renderer(const std::filesystem::path& root, const Scene& scene, const 
     plane_built_.emplace_back(pl.point);
     planes_.push_back(make_mesh(plane_mesh(glm::vec3(foot), glm::vec3(pl.normal), 3.f * scene_size_)));
   }
+  for (size_t k = 0; k < scene.meshes.size(); ++k) {
+    const MeshColliderParams& p = scene.meshes[k];
+    mesh_built_.emplace_back(p.origin);
+    meshes_.push_back(make_mesh(surface_mesh(load_collider_mesh(scene, k)->surface,
+                                             glm::mat3(collider_rotation(p)), glm::vec3(p.origin))));
+  }
   no_extras_.allocate(sizeof(layout::MeshVertex));
   sphere_now_ = sphere_built_;
   plane_now_ = plane_built_;
+  mesh_now_ = mesh_built_;
 }
 
-void Renderer::place_colliders(const std::vector<glm::vec3>& sphere_origins, const std::vector<glm::vec3>& plane_points) {
-  if (sphere_origins.size() != sphere_built_.size() || plane_points.size() != plane_built_.size())
-    throw std::logic_error("Renderer::place_colliders: not the scene's number of spheres and planes");
+void Renderer::place_colliders(const std::vector<glm::vec3>& sphere_origins, const std::vector<glm::vec3>& plane_points,
+                               const std::vector<glm::vec3>& mesh_origins) {
+  if (sphere_origins.size() != sphere_built_.size() || plane_points.size() != plane_built_.size() ||
+      (!mesh_origins.empty() && mesh_origins.size() != mesh_built_.size()))
+    throw std::logic_error("Renderer::place_colliders: not the scene's number of spheres, planes and meshes");
   sphere_now_ = sphere_origins;
   plane_now_ = plane_points;
+  if (!mesh_origins.empty()) mesh_now_ = mesh_origins;
 }
 
 Renderer::~Renderer() = default;
@@ -206,6 +217,9 @@ void Renderer::draw(const gl::Buffer& positions, const gl::Buffer& normals, cons
   if (look.show_spheres)
     for (size_t k = 0; k < spheres_.size(); ++k)
       draw_collider(*spheres_[k], sphere_now_[k] - sphere_built_[k], wire ? glm::vec4(0.45f, 0.6f, 0.9f, 1.f) : glm::vec4(0.35f, 0.5f, 0.8f, 1.f));
+  if (look.show_meshes)
+    for (size_t k = 0; k < meshes_.size(); ++k)
+      draw_collider(*meshes_[k], mesh_now_[k] - mesh_built_[k], wire ? glm::vec4(0.8f, 0.6f, 0.4f, 1.f) : glm::vec4(0.62f, 0.52f, 0.42f, 1.f));
   if (look.show_planes) {
     // Cloth resting on a plane lies 0.1 mm above it (the contact's offset), which the depth
     // buffer cannot tell apart at a few metres: push the plane's depth back a little so the

@@ -33,6 +33,7 @@ struct Appearance {
   float exposure = 1.f;
   bool show_spheres = true;
   bool show_planes = true;
+  bool show_meshes = true;
   std::array<bool, 3> wire_springs{true, true, false};  // structural, shearing, bending
 };
 
@@ -54,12 +55,14 @@ class Renderer {
   // change), in file order. Keyframed colliders move in the simulation, so callers pass the
   // simulator's current constants before every draw; the meshes stay as built and are
   // translated (u_model) from where the scene file put them. Until called, they are drawn there.
-  void place_colliders(const std::vector<glm::vec3>& sphere_origins, const std::vector<glm::vec3>& plane_points);
+  void place_colliders(const std::vector<glm::vec3>& sphere_origins, const std::vector<glm::vec3>& plane_points,
+                       const std::vector<glm::vec3>& mesh_origins = {});
   template <class R> void place_colliders(const Constants<R>& c) {
-    std::vector<glm::vec3> spheres, planes;
+    std::vector<glm::vec3> spheres, planes, meshes;
     for (const auto& s : c.spheres) spheres.emplace_back(s.origin);
     for (const auto& p : c.planes) planes.emplace_back(p.point);
-    place_colliders(spheres, planes);
+    for (const auto& m : c.meshes) meshes.emplace_back(m.origin);
+    place_colliders(spheres, planes, meshes);
   }
 
   // Draws into the bound framebuffer (clears it first).
@@ -78,9 +81,9 @@ class Renderer {
   std::vector<std::optional<gl::Program>> programs_;  // built on first use
   std::unique_ptr<Mesh> cloth_;
   std::array<std::unique_ptr<Mesh>, 3> springs_;
-  std::vector<std::unique_ptr<Mesh>> spheres_, planes_;
+  std::vector<std::unique_ptr<Mesh>> spheres_, planes_, meshes_;
   // Where each collider's mesh was built (the scene's origin / point) and where it is now.
-  std::vector<glm::vec3> sphere_built_, plane_built_, sphere_now_, plane_now_;
+  std::vector<glm::vec3> sphere_built_, plane_built_, sphere_now_, plane_now_, mesh_built_, mesh_now_;
   gl::Texture fabric_, weave_height_, bumps_height_, sky_;
   gl::Buffer no_extras_{"no mesh extras"};
   gl::Buffer cloth_extras_{"cloth extras"};  // uv and tangent ends of every particle

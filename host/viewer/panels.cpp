@@ -168,6 +168,8 @@ void appearance_panel(ViewerState& st) {
   ImGui::Checkbox("spheres", &st.look.show_spheres);
   ImGui::SameLine();
   ImGui::Checkbox("planes", &st.look.show_planes);
+  ImGui::SameLine();
+  ImGui::Checkbox("meshes", &st.look.show_meshes);
   if (st.look.shader == ShaderKind::Wireframe) {
     ImGui::Checkbox("structural", &st.look.wire_springs[0]);
     ImGui::SameLine();

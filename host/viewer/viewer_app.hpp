@@ -205,13 +205,15 @@ class Viewer {
   FrameTimer sim_timer_, render_timer_;
   Grab grab_;
   glm::vec3 grab_target_{0};
-  // Alt-drag of a sphere: its origin (and keyframes) follow the mouse in the plane through the
-  // clicked point facing the camera; `moved` is how far they have been shifted so far.
+  // Alt-drag of a sphere or a mesh collider: its origin (and keyframes) follow the mouse in the
+  // plane through the clicked point facing the camera; `moved` is how far they have been
+  // shifted so far.
   struct SphereDrag {
-    int sphere = -1;
+    int sphere = -1;  // the index among the spheres, or among the meshes when `mesh`
     Grab plane;
     glm::vec3 start{0};
     glm::dvec3 moved{0.0};
+    bool mesh = false;
   } sphere_drag_;
   glm::dvec2 cursor_{0};
   int drag_button_ = -1;

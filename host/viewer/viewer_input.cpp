@@ -1,12 +1,13 @@
 // Keys and mouse of the viewer, as the classic app: P pause, N step, R reset, Space camera,
 // Esc quit; plus F1 panels and S screenshot. Left-drag orbits, right- or ctrl-drag pans, the
 // wheel zooms, shift-click grabs the particle under the cursor until the button is released,
-// alt-click drags the sphere under it (origin and keyframes, applied live).
+// alt-click drags the sphere or mesh collider under it (origin and keyframes, applied live).
 #include <cmath>
 #include <optional>
 
 #include <fmt/format.h>
 
+#include "mesh_collider.hpp"
 #include "viewer_app.hpp"
 
 namespace clothsim {
@@ -31,6 +32,34 @@ std::optional<std::pair<int, glm::vec3>> pick_sphere(const Ray& ray, const std::
   }
   return best;
 }
+// The mesh collider whose surface the ray meets first (Moeller-Trumbore over its triangles,
+// placed where the simulation has it now), and where: as pick_sphere, at click time only.
+std::optional<std::pair<int, glm::vec3>> pick_mesh(const Ray& ray, const Scene& scene,
+                                                   const std::vector<MeshC<float>>& meshes, float best_t) {
+  std::optional<std::pair<int, glm::vec3>> best;
+  for (size_t k = 0; k < meshes.size() && k < scene.meshes.size(); ++k) {
+    const SurfaceMesh& surface = load_collider_mesh(scene, k)->surface;
+    const glm::mat3 rot(collider_rotation(scene.meshes[k]));
+    const glm::vec3 origin = meshes[k].origin;
+    for (const glm::uvec3& t : surface.triangles) {
+      const glm::vec3 a = rot * glm::vec3(surface.positions[t[0]]) + origin;
+      const glm::vec3 e1 = rot * glm::vec3(surface.positions[t[1]]) + origin - a;
+      const glm::vec3 e2 = rot * glm::vec3(surface.positions[t[2]]) + origin - a;
+      const glm::vec3 p = glm::cross(ray.direction, e2);
+      const float det = glm::dot(e1, p);
+      if (std::abs(det) < 1e-12f) continue;
+      const glm::vec3 s = ray.origin - a;
+      const float u = glm::dot(s, p) / det;
+      const glm::vec3 q = glm::cross(s, e1);
+      const float v = glm::dot(ray.direction, q) / det, d = glm::dot(e2, q) / det;
+      if (u < 0.f || v < 0.f || u + v > 1.f || !(d > 0.f) || d >= best_t) continue;
+      best_t = d;
+      best = std::pair{int(k), ray.origin + ray.direction * d};
+    }
+  }
+  return best;
+}
+
 }  // namespace
 
 void Viewer::install_callbacks() {
@@ -86,8 +115,13 @@ void Viewer::on_mouse_button(int button, int action, int mods) {
   if (button == GLFW_MOUSE_BUTTON_LEFT && (mods & GLFW_MOD_ALT)) {
     int w = 0, h = 0;
     glfwGetWindowSize(window_->handle(), &w, &h);
-    if (auto hit = pick_sphere(pick_ray(st_.camera, glm::vec2(cursor_), glm::vec2(w, h)), session_.sim->constants().spheres))
-      sphere_drag_ = {hit->first, begin_grab(0, hit->second, st_.camera), hit->second, glm::dvec3(0.0)};
+    const Ray ray = pick_ray(st_.camera, glm::vec2(cursor_), glm::vec2(w, h));
+    const auto sphere = pick_sphere(ray, session_.sim->constants().spheres);
+    const float sphere_t = sphere ? glm::length(sphere->second - ray.origin) : INFINITY;
+    if (auto mesh = pick_mesh(ray, st_.scene, session_.sim->constants().meshes, sphere_t))
+      sphere_drag_ = {mesh->first, begin_grab(0, mesh->second, st_.camera), mesh->second, glm::dvec3(0.0), true};
+    else if (sphere)
+      sphere_drag_ = {sphere->first, begin_grab(0, sphere->second, st_.camera), sphere->second, glm::dvec3(0.0)};
     return;
   }
   drag_button_ = button;
@@ -108,10 +142,18 @@ void Viewer::on_cursor(double x, double y) {
     // The whole path moves with the sphere, so a keyframed one keeps its motion.
     const glm::dvec3 delta = glm::dvec3(sphere_drag_.plane.target(pick_ray(st_.camera, glm::vec2(now), glm::vec2(w, h))) -
                                         sphere_drag_.start);
-    SphereParams& s = st_.scene.spheres[size_t(sphere_drag_.sphere)];
-    s.origin += delta - sphere_drag_.moved;
-    if (s.motion)
-      for (Keyframe& k : s.motion->keyframes) k.value += delta - sphere_drag_.moved;
+    auto shift = [&](glm::dvec3& origin, std::optional<MotionParams>& motion) {
+      origin += delta - sphere_drag_.moved;
+      if (motion)
+        for (Keyframe& k : motion->keyframes) k.value += delta - sphere_drag_.moved;
+    };
+    if (sphere_drag_.mesh) {
+      MeshColliderParams& m = st_.scene.meshes[size_t(sphere_drag_.sphere)];
+      shift(m.origin, m.motion);
+    } else {
+      SphereParams& s = st_.scene.spheres[size_t(sphere_drag_.sphere)];
+      shift(s.origin, s.motion);
+    }
     sphere_drag_.moved = delta;
     st_.parameters_changed = true;  // set_parameters uploads the colliders before the next step
     return;
