@@ -136,7 +136,7 @@ struct MeshCollider {
   vec4 grid;       // xyz grid_min, w 1 / node spacing
   ivec4 dims;      // xyz nodes along x, y, z, w the offset of node (0, 0, 0) (read as floatBitsToInt)
   vec4 motion;     // xyz m over this substep, w = 1 - friction
-  vec4 material;   // x friction (xpbd's Coulomb mu), y thickness (m), z crossing (MeshC), w unused
+  vec4 material;   // x friction (xpbd's Coulomb mu), y thickness (m), z crossing (MeshC), w 1 closed, 0 open
 };
 
 // Per-vertex extras of a drawn mesh: a collider's uv and tangent; the cloth's uv, and in uv.zw the particles

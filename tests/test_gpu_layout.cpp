@@ -127,6 +127,9 @@ TEST_CASE("the texel views step through each struct by its std430 stride", "[gpu
   CHECK(resource_property(program, GL_BUFFER_VARIABLE, "planes[0].normal", GL_OFFSET) == 16);
   CHECK(resource_property(program, GL_BUFFER_VARIABLE, "spheres[0].motion", GL_OFFSET) == 32);
   CHECK(resource_property(program, GL_BUFFER_VARIABLE, "planes[0].motion", GL_OFFSET) == 32);
+  CHECK(resource_property(program, GL_BUFFER_VARIABLE, "meshes[0].row0", GL_TOP_LEVEL_ARRAY_STRIDE) == MESH_TEXELS * 16);
+  CHECK(resource_property(program, GL_BUFFER_VARIABLE, "meshes[0].dims", GL_OFFSET) == 64);
+  CHECK(resource_property(program, GL_BUFFER_VARIABLE, "meshes[0].material", GL_OFFSET) == 96);
   CHECK_NO_GL_ERRORS();
 }
 

@@ -1,6 +1,6 @@
 // Moving colliders as drawn: the renderer builds each collider's mesh once, where the scene
 // file puts it, and translates it to where the simulation has it now (Renderer::place_colliders,
-// from the simulator's constants before every draw), so a keyframed sphere is drawn moving.
+// from the simulator's constants before every draw), so a keyframed sphere or mesh is drawn moving.
 #include <glad/gl.h>
 
 #include <cmath>
@@ -52,4 +52,34 @@ TEST_CASE("a keyframed sphere is drawn where the simulation has it at a later fr
     }
   CHECK(near_to > 0);
   CHECK(near_from == 0);
+}
+
+TEST_CASE("a mesh collider is drawn, with every shader, and moves where its keyframes put it", "[gpu][render]") {
+  REQUIRE_GL_CONTEXT();
+  // flag_pole's pole (meshes/pole.obj), keyframed 0.5 m along -x over its first 0.1 s; the
+  // flag is weightless and windless, so it stays in its plane at x >= 0, and the camera looks
+  // along -z at the pole's middle.
+  StageOptions o;
+  o.sets = {"simulation.gravity=[0,0,0]", "wind.velocity=[0,0,0]",
+            R"(mesh.motion={"keyframes": [[0, [-0.03, 0.12, 0]], [0.1, [-0.53, 0.12, 0]]]})"};
+  Stage stage("flag_pole", kWidth, kHeight, o);
+  stage.camera.look_from({-0.3f, 0.3f, 2.0f}, {-0.3f, 0.3f, 0.f});
+  const glm::ivec2 at(stage.pixel_of({-0.03f, 0.3f, 0.f})), later(stage.pixel_of({-0.53f, 0.3f, 0.f}));
+  REQUIRE(stage.gpu.constants().meshes.size() == 1);
+  for (int k = 0; k < 8; ++k) {
+    INFO(kShaderNames[size_t(k)]);
+    Appearance look;
+    look.shader = ShaderKind(k);
+    const Image shown = stage.draw(look);
+    look.show_meshes = false;
+    const Image hidden = stage.draw(look);
+    REQUIRE(shown.inside(at.x, at.y));
+    if (look.shader != ShaderKind::Wireframe) CHECK_FALSE(is_background(shown.at(at.x, at.y)));
+    CHECK(is_background(hidden.at(at.x, at.y)));
+    CHECK(count_foreground(shown) > count_foreground(hidden));
+  }
+  stage.run(18);  // 0.2 s: past the last key
+  const Image moved = stage.draw(ShaderKind::Diffuse);
+  CHECK(is_background(moved.at(at.x, at.y)));
+  CHECK_FALSE(is_background(moved.at(later.x, later.y)));
 }

@@ -86,14 +86,16 @@ std::shared_ptr<const ColliderMesh> load_collider_mesh(const Scene& scene, size_
     throw SceneError(fmt::format("{}: {}.file: {}: the mesh is a point (no extent to collide with)", scene.source, key,
                                  p.file_path.string()));
   const double voxel = p.voxel_size > 0 ? p.voxel_size : extent / kDefaultSdfDivisions;
-  const size_t bytes = sdf_nodes(out->surface, voxel) * sizeof(float);
-  if (bytes > kMaxSdfBytes) {
-    // The node count goes as 1 / voxel^3: the spacing that fits, rounded up a little.
-    const double fits = voxel * std::cbrt(double(bytes) / double(kMaxSdfBytes)) * 1.01;
-    throw SceneError(fmt::format("{}: {}.voxel_size: a spacing of {:.4g} m needs {} MiB for the field of {} "
+  const double bytes = sdf_nodes(out->surface, voxel) * sizeof(float);
+  if (bytes > double(kMaxSdfBytes)) {
+    // The node count goes as 1 / voxel^3 (the padding aside): the spacing that fits, found by
+    // growing that estimate until it does.
+    double fits = voxel * std::cbrt(bytes / double(kMaxSdfBytes));
+    while (sdf_nodes(out->surface, fits) * sizeof(float) > double(kMaxSdfBytes)) fits *= 1.01;
+    throw SceneError(fmt::format("{}: {}.voxel_size: a spacing of {:.4g} m needs {:.0f} MiB for the field of {} "
                                  "(at most {} MiB); expected a voxel_size of at least {:.3g} m",
-                                 scene.source, key, voxel, bytes >> 20, p.file_path.string(), kMaxSdfBytes >> 20,
-                                 fits));
+                                 scene.source, key, voxel, bytes / double(1 << 20), p.file_path.string(),
+                                 kMaxSdfBytes >> 20, fits));
   }
   const uint64_t hash = mesh_hash(out->surface);
   const std::filesystem::path cache = cache_path(scene, p.file_path, hash, voxel);

@@ -77,7 +77,8 @@ template <class R> void make_meshes(const Scene& scene, Constants<R>& c) {
     m.keep = R(1.0 - p.friction);
     m.mu = R(p.friction);
     m.thickness = R(p.thickness);
-    m.crossing = g.closed ? R(0) : R(0.5 * p.thickness);
+    m.closed = g.closed;
+    m.crossing = R(0.5 * p.thickness);
     m.grid_min = Vec3<R>(g.min);
     m.inv_voxel = R(1.0 / g.voxel);
     m.dims = g.dims;

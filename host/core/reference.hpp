@@ -41,8 +41,9 @@ template <class R> struct MeshC {
   Vec3<R> rows[3];
   Vec3<R> origin, motion{0};
   R keep = R(1), mu = R(0), thickness = R(0);
-  // A path sample below this is a crossing (passed_through_mesh): 0 for a closed mesh's signed
-  // field, half the thickness for an open mesh's shell (its field is never negative).
+  // closed: the field is signed (a closed mesh); else unsigned, the collider a shell. crossing:
+  // half the thickness, how near two path samples straddling a shell pass (passed_through_mesh).
+  bool closed = true;
   R crossing = R(0);
   Vec3<R> grid_min;
   R inv_voxel;

@@ -1,6 +1,6 @@
 // The reference's mesh colliders (docs/model.md, "Mesh colliders"): a mass against a mesh's
 // signed distance field, sampled by trilinear interpolation written out so that
-// compute/collide_objects.glsl computes the same bits.
+// compute/collide_meshes.glsl computes the same bits.
 #include <algorithm>
 #include <cmath>
 
@@ -58,9 +58,11 @@ template <class R> bool world_normal(const MeshC<R>& m, const Vec3<R>& grad, Vec
 
 // A mass outside the offset surface at the end of the substep that moved by rel (relative to
 // the mesh) further than its clearance: its path is sampled every half node spacing (at most 8
-// samples), and if a sample is inside the mesh (inside an open mesh's shell: closer than half
-// its thickness) it went through a wall within the substep; t - x
-// is then the way back to the sample before it, on the side it came from.
+// samples). A closed mesh: a sample inside it means the mass went through a wall within the
+// substep. An open mesh (its field unsigned): two neighbouring samples, the first approaching
+// the surface and the second leaving it (the field's slope along the path from < 0 to > 0),
+// whose distances add up to less than their spacing plus twice `crossing`, straddle the shell.
+// Either way t - x is the way back to the sample before, on the side it came from.
 template <class R>
 bool passed_through_mesh(const MeshC<R>& m, const float* sdf, const Vec3<R>& p, R phi, const Vec3<R>& rel,
                          Vec3<R>& t_minus_x) {
@@ -70,12 +72,27 @@ bool passed_through_mesh(const MeshC<R>& m, const float* sdf, const Vec3<R>& p, 
   const Vec3<R> step_all = to_local(m, rel);
   const R halves = std::ceil(moved * m.inv_voxel * R(2));
   const int samples = int(std::min(R(8), halves));
+  const R spacing = moved * (R(1) / R(samples));
   const Vec3<R> start = p - step_all;
-  for (int k = 1; k < samples; ++k) {
+  R prev_phi = R(0), prev_slope = R(0);
+  bool prev_in_grid = false;
+  for (int k = 0; k <= samples; ++k) {
+    if (m.closed && (k == 0 || k == samples)) continue;  // both ends are outside
     const Vec3<R> q = start + step_all * (R(k) / R(samples));
     R phi_q;
     Vec3<R> grad;
-    if (!sample_mesh_field(m, sdf, q, phi_q, grad) || !(phi_q < m.crossing)) continue;
+    const bool in_grid = sample_mesh_field(m, sdf, q, phi_q, grad);
+    bool crossed = false;
+    if (m.closed) {
+      crossed = in_grid && phi_q < R(0);
+    } else if (in_grid) {
+      const R slope = dot3(grad, step_all);
+      crossed = prev_in_grid && prev_slope < R(0) && slope > R(0) && prev_phi + phi_q < spacing + R(2) * m.crossing;
+      prev_phi = phi_q;
+      prev_slope = slope;
+    }
+    prev_in_grid = in_grid;
+    if (!crossed) continue;
     const Vec3<R> back = start + step_all * (R(k - 1) / R(samples));
     t_minus_x = to_world(m, back - p);
     return true;

@@ -106,10 +106,10 @@ dvec3 closest_point_on_triangle(const dvec3& p, const dvec3& a, const dvec3& b, 
   return a + ab * (vb * denom) + ac * (vc * denom);
 }
 
-size_t sdf_nodes(const SurfaceMesh& mesh, double voxel) {
+double sdf_nodes(const SurfaceMesh& mesh, double voxel) {
   SdfGrid g;
   place_grid(mesh, voxel, g);
-  return g.nodes();
+  return double(g.dims.x) * double(g.dims.y) * double(g.dims.z);
 }
 
 SdfGrid build_sdf(const SurfaceMesh& mesh, double voxel) {

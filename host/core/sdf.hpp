@@ -1,6 +1,7 @@
 // Signed distance fields of triangle meshes, for the mesh colliders (scene key `mesh`,
 // docs/model.md, "Mesh colliders"): built once on the CPU, sampled by both backends with the
-// same written-out trilinear interpolation (sdf_sample.hpp, compute/collide_objects.glsl).
+// same written-out trilinear interpolation (sample_mesh_field in reference_mesh_collisions.cpp,
+// compute/collide_meshes.glsl).
 //
 // The field is node-centred on a regular grid: value (x, y, z) is the distance at
 // min + voxel (x, y, z). Within `band` of the surface it is the exact distance to the nearest
@@ -49,8 +50,9 @@ inline constexpr size_t kMaxSdfBytes = size_t(256) << 20;
 // The default node spacing: the mesh's longest extent over this (about 2 MiB for a cube).
 inline constexpr double kDefaultSdfDivisions = 128.0;
 
-// Nodes the field of `mesh` at spacing `voxel` takes (padding included), for the memory check.
-size_t sdf_nodes(const SurfaceMesh& mesh, double voxel);
+// Nodes the field of `mesh` at spacing `voxel` takes (padding included), for the memory check;
+// a double, since a spacing far too small gives more than a size_t holds.
+double sdf_nodes(const SurfaceMesh& mesh, double voxel);
 // Builds the field; `voxel` > 0. Throws std::invalid_argument for an empty mesh.
 SdfGrid build_sdf(const SurfaceMesh& mesh, double voxel);
 

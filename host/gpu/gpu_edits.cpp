@@ -23,7 +23,7 @@ void GpuSimulator::upload_colliders() {
     g.grid = v4(m.grid_min, m.inv_voxel);
     g.dims = glm::ivec4(m.dims, int(m.offset));
     g.motion = v4(m.motion, m.keep);
-    g.material = glm::vec4(m.mu, m.thickness, m.crossing, 0.f);
+    g.material = glm::vec4(m.mu, m.thickness, m.crossing, m.closed ? 1.f : 0.f);
     meshes.push_back(g);
   }
   // A storage buffer may not be empty when bound: keep one dummy element for zero colliders.

@@ -14,6 +14,7 @@ layout(std430, binding = BINDING_POSITIONS) writeonly buffer Positions { vec4 po
 layout(std430, binding = BINDING_MATERIALS) readonly buffer Materials { MaterialTexels materials[]; };
 layout(std430, binding = BINDING_SPHERES) readonly buffer Spheres { SphereCollider spheres[]; };
 layout(std430, binding = BINDING_PLANES) readonly buffer Planes { PlaneCollider planes[]; };
+layout(std430, binding = BINDING_MESHES) readonly buffer Meshes { MeshCollider meshes[]; };
 layout(std430, binding = BINDING_PROBE_UINTS) writeonly buffer ProbeUints { uint probe_uints[]; };
 
 uint next_uint = 0u;
@@ -36,4 +37,6 @@ void main() {
   pos[5] = planes[1].normal;
   pos[6] = spheres[1].motion;
   pos[7] = planes[1].motion;
+  // Never true: keeps the mesh colliders' block in the program, for its stride and offsets.
+  if (params.count == 0xffffffffu) pos[0] = meshes[1].material + vec4(meshes[1].dims);
 }

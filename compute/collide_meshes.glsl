@@ -1,0 +1,173 @@
+// Mesh colliders (docs/model.md, "Mesh colliders"; reference_mesh_collisions.cpp): a mass
+// against a mesh's signed distance field, trilinear interpolation written out (no sampler
+// filtering) so that both backends compute the same bits. Included by collide_objects.glsl
+// after the contact responses it shares (blend_to, blend_to_moving, coulomb_respond).
+#ifndef CLOTHSIM_COLLIDE_MESHES_GLSL
+#define CLOTHSIM_COLLIDE_MESHES_GLSL
+
+#include "particle_views.glsl"
+
+struct MeshField {
+  vec3 rows[3];
+  vec3 origin, motion;
+  float keep, mu, thickness, crossing;
+  bool closed;
+  vec3 grid_min;
+  float inv_voxel;
+  ivec4 dims;  // w: the offset of node (0, 0, 0) in sdf_view
+};
+
+MeshField mesh_field(int k) {
+  vec4 r0 = texelFetch(meshes_view, MESH_TEXELS * k), r1 = texelFetch(meshes_view, MESH_TEXELS * k + 1);
+  vec4 r2 = texelFetch(meshes_view, MESH_TEXELS * k + 2), grid = texelFetch(meshes_view, MESH_TEXELS * k + 3);
+  ivec4 dims = floatBitsToInt(texelFetch(meshes_view, MESH_TEXELS * k + 4));
+  vec4 motion = texelFetch(meshes_view, MESH_TEXELS * k + 5), material = texelFetch(meshes_view, MESH_TEXELS * k + 6);
+  MeshField m;
+  m.rows[0] = r0.xyz;
+  m.rows[1] = r1.xyz;
+  m.rows[2] = r2.xyz;
+  m.origin = vec3(r0.w, r1.w, r2.w);
+  m.motion = motion.xyz;
+  m.keep = motion.w;
+  m.mu = material.x;
+  m.thickness = material.y;
+  m.crossing = material.z;
+  m.closed = material.w != 0.0;
+  m.grid_min = grid.xyz;
+  m.inv_voxel = grid.w;
+  m.dims = dims;
+  return m;
+}
+
+vec3 mesh_local(MeshField m, vec3 v) { return vec3(dot3(m.rows[0], v), dot3(m.rows[1], v), dot3(m.rows[2], v)); }
+vec3 mesh_world(MeshField m, vec3 v) {
+  precise vec3 w = (m.rows[0] * v.x + m.rows[1] * v.y) + m.rows[2] * v.z;
+  return w;
+}
+
+// The field at local point p: false outside the grid (sample_mesh_field in the reference).
+bool sample_mesh_field(MeshField m, vec3 p, out float phi, out vec3 grad) {
+  phi = 0.0;
+  grad = vec3(0.0);
+  precise vec3 g = (p - m.grid_min) * m.inv_voxel;
+  if (!(g.x >= 0.0 && g.y >= 0.0 && g.z >= 0.0 && g.x < float(m.dims.x - 1) && g.y < float(m.dims.y - 1) &&
+        g.z < float(m.dims.z - 1)))
+    return false;
+  vec3 cell = floor(g);
+  precise vec3 f = g - cell;
+  int nx = m.dims.x, nxy = m.dims.x * m.dims.y;
+  int base = m.dims.w + int(cell.x) + nx * int(cell.y) + nxy * int(cell.z);
+  float c000 = texelFetch(sdf_view, base).x, c100 = texelFetch(sdf_view, base + 1).x;
+  float c010 = texelFetch(sdf_view, base + nx).x, c110 = texelFetch(sdf_view, base + nx + 1).x;
+  float c001 = texelFetch(sdf_view, base + nxy).x, c101 = texelFetch(sdf_view, base + nxy + 1).x;
+  float c011 = texelFetch(sdf_view, base + nxy + nx).x, c111 = texelFetch(sdf_view, base + nxy + nx + 1).x;
+  precise float x00 = c100 - c000, x10 = c110 - c010, x01 = c101 - c001, x11 = c111 - c011;
+  precise float c00 = c000 + x00 * f.x, c10 = c010 + x10 * f.x, c01 = c001 + x01 * f.x, c11 = c011 + x11 * f.x;
+  precise float y0 = c10 - c00, y1 = c11 - c01;
+  precise float c0 = c00 + y0 * f.y, c1 = c01 + y1 * f.y;
+  precise float z = c1 - c0;
+  precise float value = c0 + z * f.z;
+  precise float gx0 = x00 + (x10 - x00) * f.y, gx1 = x01 + (x11 - x01) * f.y;
+  precise vec3 gradient = vec3(gx0 + (gx1 - gx0) * f.z, y0 + (y1 - y0) * f.z, z);
+  phi = value;
+  grad = gradient;
+  return true;
+}
+
+// The outward unit normal in the world; false where the field is flat.
+bool mesh_normal(MeshField m, vec3 grad, out vec3 n) {
+  n = vec3(0.0);
+  float len = length3(grad);
+  if (!(len > 0.0)) return false;
+  precise vec3 unit = grad * (1.0 / len);
+  n = mesh_world(m, unit);
+  return true;
+}
+
+// A mass outside the offset surface that moved by rel further than its clearance: true if its
+// path (sampled every half node spacing, at most 8 samples) went through a closed mesh's wall
+// or an open mesh's shell, with t - x the way back to the sample before (passed_through_mesh
+// in the reference says how).
+bool passed_through_mesh(MeshField m, vec3 p, float phi, vec3 rel, out vec3 t_minus_x) {
+  t_minus_x = vec3(0.0);
+  float moved = length3(rel);
+  precise float clearance = phi - m.thickness;
+  if (!(moved > clearance)) return false;
+  vec3 step_all = mesh_local(m, rel);
+  precise float halves = ceil(moved * m.inv_voxel * 2.0);
+  int samples = int(min(8.0, halves));
+  precise float spacing = moved * (1.0 / float(samples));
+  precise vec3 start = p - step_all;
+  float prev_phi = 0.0, prev_slope = 0.0;
+  bool prev_in_grid = false;
+  for (int k = 0; k <= samples; ++k) {
+    if (m.closed && (k == 0 || k == samples)) continue;
+    precise vec3 q = start + step_all * (float(k) / float(samples));
+    float phi_q;
+    vec3 grad;
+    bool in_grid = sample_mesh_field(m, q, phi_q, grad);
+    bool crossed = false;
+    if (m.closed) {
+      crossed = in_grid && phi_q < 0.0;
+    } else if (in_grid) {
+      float slope = dot3(grad, step_all);
+      precise float both = prev_phi + phi_q;
+      precise float reach = spacing + 2.0 * m.crossing;
+      crossed = prev_in_grid && prev_slope < 0.0 && slope > 0.0 && both < reach;
+      prev_phi = phi_q;
+      prev_slope = slope;
+    }
+    prev_in_grid = in_grid;
+    if (!crossed) continue;
+    precise vec3 back = start + step_all * (float(k - 1) / float(samples));
+    t_minus_x = mesh_world(m, back - p);
+    return true;
+  }
+  return false;
+}
+
+// A mass deeper than 0.1 mm inside the offset surface goes out along the gradient, without
+// friction (keep_out_of_mesh in the reference).
+void keep_out_of_mesh(MeshField m, inout vec3 x, inout vec3 d) {
+  vec3 p = mesh_local(m, x - m.origin);
+  float phi;
+  vec3 grad, n;
+  if (!sample_mesh_field(m, p, phi, grad)) return;
+  precise float depth = m.thickness - phi;
+  if (!(depth > 1e-4) || !mesh_normal(m, grad, n)) return;
+  precise vec3 out_along_n = n * depth;
+  precise vec3 nx = x + out_along_n, nd = d + out_along_n;
+  x = nx;
+  d = nd;
+}
+
+// One mesh collider (collide_with_mesh in the reference).
+void collide_with_mesh(int k, bool friction, inout vec3 x, inout vec3 d) {
+  MeshField m = mesh_field(k);
+  vec3 p = mesh_local(m, x - m.origin);
+  float phi;
+  vec3 grad, n;
+  precise vec3 t_minus_x;
+  if (!sample_mesh_field(m, p, phi, grad)) return;
+  if (phi < m.thickness) {
+    if (!mesh_normal(m, grad, n)) return;
+    precise float depth = m.thickness - phi;
+    t_minus_x = n * depth;
+  } else {
+    vec3 back;
+    if (!passed_through_mesh(m, p, phi, d - m.motion, back)) return;
+    t_minus_x = back;
+    float phi_back;
+    vec3 grad_back;
+    if (!sample_mesh_field(m, p + mesh_local(m, t_minus_x), phi_back, grad_back) || !mesh_normal(m, grad_back, n)) {
+      precise vec3 along = t_minus_x * (1.0 / length3(t_minus_x));
+      n = along;
+    }
+  }
+  if (friction && params.coulomb_friction != 0u) coulomb_respond(t_minus_x, n, m.mu, m.motion, x, d);
+  else if (any(notEqual(m.motion, vec3(0.0)))) blend_to_moving(t_minus_x, friction ? m.keep : 1.0, m.motion, x, d);
+  else blend_to(t_minus_x, friction ? m.keep : 1.0, x, d);
+  keep_out_of_mesh(m, x, d);
+}
+
+#endif
