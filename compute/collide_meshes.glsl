@@ -1,7 +1,7 @@
 // Mesh colliders (docs/model.md, "Mesh colliders"; reference_mesh_collisions.cpp): a mass
 // against a mesh's signed distance field, trilinear interpolation written out (no sampler
 // filtering) so that both backends compute the same bits. Included by collide_objects.glsl
-// after the contact responses it shares (blend_to, blend_to_moving, coulomb_respond).
+// after the contact response it shares (respond_to_contact).
 #ifndef CLOTHSIM_COLLIDE_MESHES_GLSL
 #define CLOTHSIM_COLLIDE_MESHES_GLSL
 
@@ -164,9 +164,8 @@ void collide_with_mesh(int k, bool friction, inout vec3 x, inout vec3 d) {
       n = along;
     }
   }
-  if (friction && params.coulomb_friction != 0u) coulomb_respond(t_minus_x, n, m.mu, m.motion, x, d);
-  else if (any(notEqual(m.motion, vec3(0.0)))) blend_to_moving(t_minus_x, friction ? m.keep : 1.0, m.motion, x, d);
-  else blend_to(t_minus_x, friction ? m.keep : 1.0, x, d);
+  respond_to_contact(friction && params.coulomb_friction != 0u, t_minus_x, n, friction ? m.keep : 1.0, m.mu, m.motion,
+                     x, d);
   keep_out_of_mesh(m, x, d);
 }
 

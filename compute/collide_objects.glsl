@@ -135,6 +135,16 @@ vec3 sphere_normal(vec3 o, vec3 x, vec3 t_minus_x) {
   return len > 0.0 ? unit : vec3(0.0, 1.0, 0.0);
 }
 
+// A contact's response along the outward normal n (respond_to_contact in the reference):
+// xpbd's Coulomb friction when `coulomb`, else the CS184 blend keeping `keep` (1: none), in the
+// collider's frame when it moves by m.
+void respond_to_contact(bool coulomb, vec3 t_minus_x, vec3 n, float keep, float mu, vec3 m, inout vec3 x,
+                        inout vec3 d) {
+  if (coulomb) coulomb_respond(t_minus_x, n, mu, m, x, d);
+  else if (any(notEqual(m, vec3(0.0)))) blend_to_moving(t_minus_x, keep, m, x, d);
+  else blend_to(t_minus_x, keep, x, d);
+}
+
 // One sphere contact's response (respond_to_sphere in the reference): xpbd's Coulomb friction
 // (params.coulomb_friction, with friction on), else the CS184 blend, in the sphere's frame when
 // it moves.
@@ -216,14 +226,8 @@ void collide_with_objects_friction(inout vec3 x, inout vec3 d, bool friction) {
     }
     precise float along = 1e-4 * side - dist;
     precise vec3 t_minus_x = n * along;
-    if (coulomb) {
-      precise vec3 outward = n * (side != 0.0 ? side : front);
-      coulomb_respond(t_minus_x, outward, motion_mu.w, m, x, d);
-    } else if (any(notEqual(m, vec3(0.0)))) {
-      blend_to_moving(t_minus_x, normal_keep.w, m, x, d);
-    } else {
-      blend_to(t_minus_x, normal_keep.w, x, d);
-    }
+    precise vec3 outward = n * (side != 0.0 ? side : front);
+    respond_to_contact(coulomb, t_minus_x, outward, normal_keep.w, motion_mu.w, m, x, d);
     // The blend of a mass found behind starts from x_prev, behind too: it can end behind.
     if (side == front) keep_in_front_of_plane(point_front.xyz, n, front, x, d);
   }

@@ -88,22 +88,13 @@ ClothStats measure(const Scene& scene, const ClothModel& m, const ClothSnapshot&
     // frame; a mass outside the grid is further than the band.
     const MeshColliderParams& mp = scene.meshes[k];
     const std::shared_ptr<const ColliderMesh> mesh = load_collider_mesh(scene, k);
-    const glm::dmat3 rot = collider_rotation(mp);
-    const glm::dvec3 origin = mp.motion ? interpolate(mp.motion->keyframes, time) : mp.origin;
-    MeshC<double> mc;  // (only the field's placement: clearance needs no response constants)
-    for (int r = 0; r < 3; ++r) mc.rows[r] = rot[r];
-    mc.grid_min = mesh->sdf.min;
-    mc.inv_voxel = 1.0 / mesh->sdf.voxel;
-    mc.dims = mesh->sdf.dims;
+    MeshC<double> mc = make_mesh_collider<double>(mp, mesh->sdf, 0);  // its own field: offset 0
+    if (mp.motion) mc.origin = interpolate(mp.motion->keyframes, time);
     double best = mesh->sdf.band;
     for (auto& p : s.pos) {
-      const glm::dvec3 e = xyz(p) - origin;
       double phi;
       glm::dvec3 grad;
-      if (sample_mesh_field(mc, mesh->sdf.values.data(), glm::dvec3(glm::dot(mc.rows[0], e), glm::dot(mc.rows[1], e),
-                                                                    glm::dot(mc.rows[2], e)),
-                            phi, grad))
-        best = std::min(best, phi);
+      if (sample_mesh_at(mc, mesh->sdf.values.data(), xyz(p), phi, grad)) best = std::min(best, phi);
     }
     st.mesh_clearance.push_back(best);
   }

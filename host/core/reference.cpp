@@ -7,6 +7,7 @@
 
 #include "mesh_collider.hpp"
 #include "motion.hpp"
+#include "reference_detail.hpp"
 
 namespace clothsim {
 
@@ -66,25 +67,10 @@ template <class R> void make_meshes(const Scene& scene, Constants<R>& c) {
   std::vector<std::shared_ptr<const ColliderMesh>> loaded;
   uint32_t offset = 0;
   for (size_t k = 0; k < scene.meshes.size(); ++k) {
-    const MeshColliderParams& p = scene.meshes[k];
     const std::shared_ptr<const ColliderMesh> mesh = load_collider_mesh(scene, k);
     loaded.push_back(mesh);
-    const SdfGrid& g = mesh->sdf;
-    const glm::dmat3 rot = collider_rotation(p);
-    MeshC<R> m;
-    for (int r = 0; r < 3; ++r) m.rows[r] = Vec3<R>(rot[r]);  // column r of R is row r of its transpose
-    m.origin = Vec3<R>(p.origin);
-    m.keep = R(1.0 - p.friction);
-    m.mu = R(p.friction);
-    m.thickness = R(p.thickness);
-    m.closed = g.closed;
-    m.crossing = R(0.5 * p.thickness);
-    m.grid_min = Vec3<R>(g.min);
-    m.inv_voxel = R(1.0 / g.voxel);
-    m.dims = g.dims;
-    m.offset = offset;
-    offset += uint32_t(g.values.size());
-    c.meshes.push_back(m);
+    c.meshes.push_back(make_mesh_collider<R>(scene.meshes[k], mesh->sdf, offset));
+    offset += uint32_t(mesh->sdf.values.size());
   }
   c.sdf = concatenated_fields(loaded);
 }

@@ -177,9 +177,8 @@ template <class R> void collide_particle(const Constants<R>& c, Vec3<R>& x, Vec3
     }
     // t = x - dist n + SURFACE_OFFSET side n, so t - x is along n.
     const Vec3<R> t_minus_x = pl.normal * (R(1e-4) * side - dist);
-    if (coulomb) coulomb_respond(t_minus_x, pl.normal * (side != R(0) ? side : pl.front), pl.mu, pl.motion, x, d);
-    else if (pl.motion != Vec3<R>(0)) blend_to_moving(t_minus_x, friction ? pl.keep : R(1), pl.motion, x, d);
-    else blend_to(t_minus_x, friction ? pl.keep : R(1), x, d);
+    respond_to_contact(coulomb, t_minus_x, pl.normal * (side != R(0) ? side : pl.front), friction ? pl.keep : R(1),
+                       pl.mu, pl.motion, x, d);
     if (side == pl.front) keep_in_front_of_plane(pl, x, d);
   }
   for (const MeshC<R>& m : c.meshes) collide_with_mesh(c, m, friction, x, d);

@@ -2,6 +2,7 @@
 #pragma once
 
 #include "reference.hpp"
+#include "sdf.hpp"
 
 namespace clothsim {
 
@@ -55,6 +56,16 @@ void coulomb_respond(const Vec3<R>& t_minus_x, const Vec3<R>& n, R mu, const Vec
   d = pushed - cancel;
 }
 
+// A contact's response along the outward normal n: xpbd's Coulomb friction when `coulomb`,
+// else the CS184 blend keeping `keep` (1: no friction), relative to the collider's motion.
+template <class R>
+void respond_to_contact(bool coulomb, const Vec3<R>& t_minus_x, const Vec3<R>& n, R keep, R mu, const Vec3<R>& motion,
+                        Vec3<R>& x, Vec3<R>& d) {
+  if (coulomb) coulomb_respond(t_minus_x, n, mu, motion, x, d);
+  else if (motion != Vec3<R>(0)) blend_to_moving(t_minus_x, keep, motion, x, d);
+  else blend_to(t_minus_x, keep, x, d);
+}
+
 // A mass against one mesh collider's field (reference_mesh_collisions.cpp): pushed out to
 // `thickness` along the field's gradient, with the collider's friction (none when `friction` is
 // false); and the same push without friction for a mass deeper than 0.1 mm (keep_out_of_mesh).
@@ -62,6 +73,11 @@ template <class R> void collide_with_mesh(const Constants<R>& c, const MeshC<R>&
 template <class R> void keep_out_of_mesh(const Constants<R>& c, const MeshC<R>& m, Vec3<R>& x, Vec3<R>& d);
 // The field of `m` at local point p (sdf: Constants::sdf): false outside its grid.
 template <class R> bool sample_mesh_field(const MeshC<R>& m, const float* sdf, const Vec3<R>& p, R& phi, Vec3<R>& grad);
+// The same at world point x (where m.origin puts the mesh).
+template <class R> bool sample_mesh_at(const MeshC<R>& m, const float* sdf, const Vec3<R>& x, R& phi, Vec3<R>& grad);
+// A mesh collider's constants from its scene entry and its field, placed at p.origin; offset:
+// its first node in the array the field is read from (Constants::sdf).
+template <class R> MeshC<R> make_mesh_collider(const MeshColliderParams& p, const SdfGrid& g, uint32_t offset);
 
 
 }  // namespace clothsim

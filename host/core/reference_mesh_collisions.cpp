@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "mesh_collider.hpp"
 #include "reference.hpp"
 #include "reference_detail.hpp"
 
@@ -43,6 +44,27 @@ template <class R> bool sample_mesh_field(const MeshC<R>& m, const float* sdf, c
   const R gx0 = x00 + (x10 - x00) * f.y, gx1 = x01 + (x11 - x01) * f.y;
   grad = Vec3<R>(gx0 + (gx1 - gx0) * f.z, y0 + (y1 - y0) * f.z, z);
   return true;
+}
+
+template <class R> bool sample_mesh_at(const MeshC<R>& m, const float* sdf, const Vec3<R>& x, R& phi, Vec3<R>& grad) {
+  return sample_mesh_field(m, sdf, to_local(m, x - m.origin), phi, grad);
+}
+
+template <class R> MeshC<R> make_mesh_collider(const MeshColliderParams& p, const SdfGrid& g, uint32_t offset) {
+  const glm::dmat3 rot = collider_rotation(p);
+  MeshC<R> m;
+  for (int r = 0; r < 3; ++r) m.rows[r] = Vec3<R>(rot[r]);  // column r of R is row r of its transpose
+  m.origin = Vec3<R>(p.origin);
+  m.keep = R(1.0 - p.friction);
+  m.mu = R(p.friction);
+  m.thickness = R(p.thickness);
+  m.closed = g.closed;
+  m.crossing = R(0.5 * p.thickness);
+  m.grid_min = Vec3<R>(g.min);
+  m.inv_voxel = R(1.0 / g.voxel);
+  m.dims = g.dims;
+  m.offset = offset;
+  return m;
 }
 
 namespace {
@@ -103,10 +125,9 @@ bool passed_through_mesh(const MeshC<R>& m, const float* sdf, const Vec3<R>& p, 
 }  // namespace
 
 template <class R> void keep_out_of_mesh(const Constants<R>& c, const MeshC<R>& m, Vec3<R>& x, Vec3<R>& d) {
-  const Vec3<R> p = to_local(m, x - m.origin);
   R phi;
   Vec3<R> grad, n;
-  if (!sample_mesh_field(m, c.sdf->data(), p, phi, grad)) return;
+  if (!sample_mesh_at(m, c.sdf->data(), x, phi, grad)) return;
   const R depth = m.thickness - phi;
   if (!(depth > R(1e-4)) || !world_normal(m, grad, n)) return;
   const Vec3<R> out = n * depth;
@@ -132,14 +153,14 @@ template <class R> void collide_with_mesh(const Constants<R>& c, const MeshC<R>&
     if (!sample_mesh_field(m, sdf, p + to_local(m, t_minus_x), phi_back, grad_back) || !world_normal(m, grad_back, n))
       n = t_minus_x * (R(1) / length3(t_minus_x));
   }
-  if (friction && c.xpbd) coulomb_respond(t_minus_x, n, m.mu, m.motion, x, d);
-  else if (m.motion != Vec3<R>(0)) blend_to_moving(t_minus_x, friction ? m.keep : R(1), m.motion, x, d);
-  else blend_to(t_minus_x, friction ? m.keep : R(1), x, d);
+  respond_to_contact(friction && c.xpbd, t_minus_x, n, friction ? m.keep : R(1), m.mu, m.motion, x, d);
   keep_out_of_mesh(c, m, x, d);
 }
 
 #define CLOTHSIM_INSTANTIATE(R)                                                                          \
   template bool sample_mesh_field<R>(const MeshC<R>&, const float*, const Vec3<R>&, R&, Vec3<R>&);        \
+  template bool sample_mesh_at<R>(const MeshC<R>&, const float*, const Vec3<R>&, R&, Vec3<R>&);           \
+  template MeshC<R> make_mesh_collider<R>(const MeshColliderParams&, const SdfGrid&, uint32_t);           \
   template void keep_out_of_mesh<R>(const Constants<R>&, const MeshC<R>&, Vec3<R>&, Vec3<R>&);           \
   template void collide_with_mesh<R>(const Constants<R>&, const MeshC<R>&, bool, Vec3<R>&, Vec3<R>&);
 CLOTHSIM_INSTANTIATE(float)
