@@ -53,6 +53,7 @@ using uint = uint32_t;
 #define BINDING_DRAW_POSITIONS 17  // vec4: xyz position of each vertex drawn
 #define BINDING_DRAW_NORMALS 18    // vec4: xyz unit normal of each vertex drawn
 #define BINDING_DRAW_EXTRAS 19     // MeshVertex extras (uv, tangent) of collider meshes
+#define BINDING_DRAW_SHADOW 20     // ShadowFrame of this frame (shaders/fit_shadow_frustum.comp)
 // Moving cloth and air (compute/wind.glsl, compute/pinned_motion.glsl); one dummy element each
 // when the scene has no wind / no pinned_motion. 21 is the layout test's probe.
 #define BINDING_WIND_FORCES 22  // vec4: xyz aerodynamic force of this substep (compute_wind_forces)
@@ -146,6 +147,16 @@ struct MeshVertex {
   vec4 tangent;  // xyz unit tangent along +u
 };
 
+// The key light's shadow projection of one drawn frame, fitted on the GPU to the bounds of the
+// cloth (read in place) and the colliders by shaders/fit_shadow_frustum.comp, then read by the
+// shadow pass and every lit shader (shaders/shadow.glsl). A perspective from the light's
+// position onto the casters' bounding sphere: the map covers what casts and nothing more.
+struct ShadowFrame {
+  vec4 view_projection[4];  // columns of the world -> light clip matrix
+  vec4 light;               // xyz the light's position, w the radius of its disc (m): the penumbrae's size
+  vec4 range;               // x near, y far (m along the light's axis), z tan of the half angle, w 1 / map texels per side
+};
+
 // Everything a pass needs that is constant over a substep. Built on the host from the
 // same Constants<float> the CPU reference uses, so both sides see identical floats. One
 // named scalar per value (std140 packs consecutive scalars as C++ does, and the vec3 first
@@ -202,6 +213,7 @@ static_assert(sizeof(MaterialTexels) == MATERIAL_TEXELS * sizeof(vec4), "Materia
 static_assert(sizeof(SphereCollider) == SPHERE_TEXELS * sizeof(vec4), "SphereCollider texels");
 static_assert(sizeof(PlaneCollider) == PLANE_TEXELS * sizeof(vec4), "PlaneCollider texels");
 static_assert(sizeof(MeshCollider) == MESH_TEXELS * sizeof(vec4), "MeshCollider texels");
+static_assert(sizeof(ShadowFrame) == 6 * sizeof(vec4), "ShadowFrame is six vec4");
 }  // namespace layout
 #endif
 #endif

@@ -1,7 +1,12 @@
-// Shared lighting terms: one point light, Blinn-Phong. Uniform names are the same in
-// every shader (u_camera_position, u_light_position, u_light_intensity, u_color).
+// Shared lighting terms: one point light (the key, shadowed by shadow.glsl), a fill light
+// (uniform ambient, or studio.glsl's sky and ground) darkened by ambient occlusion, and
+// Blinn-Phong. Uniform names are the same in every shader (u_camera_position,
+// u_light_position, u_light_intensity, u_color).
 #ifndef CLOTHSIM_LIGHTING_GLSL
 #define CLOTHSIM_LIGHTING_GLSL
+
+#include "shadow.glsl"
+#include "studio.glsl"
 
 uniform vec3 u_camera_position;
 uniform vec3 u_light_position;
@@ -22,23 +27,52 @@ vec3 facing_normal(vec3 n) {
   return gl_FrontFacing ? normalize(n) : -normalize(n);
 }
 
+uniform int u_is_cloth;       // 1: the cloth (the back tint applies), 0: a collider
+uniform vec3 u_back_tint;     // multiplies the albedo of the cloth's back (gl_FrontFacing false)
+uniform int u_ao;             // 1: the fill light is darkened by ambient occlusion
+uniform sampler2D u_ambient_occlusion;  // unit 5: blur_ambient.frag's result, one texel per pixel
+
+// How much of the fill light reaches this pixel (1 with occlusion off).
+float ambient_occlusion() {
+  return u_ao == 1 ? texelFetch(u_ambient_occlusion, ivec2(gl_FragCoord.xy), 0).r : 1.0;
+}
+
+// The albedo as lit: the studio's pattern on the floor, the back tint on the cloth's back.
+vec3 surface_albedo(vec3 albedo) {
+  if (u_is_floor == 1) return floor_albedo(v_uv);
+  if (u_is_cloth == 1 && !gl_FrontFacing) return albedo * u_back_tint;
+  return albedo;
+}
+
+// The key light's share that reaches p, shadows and (half of) the occlusion included:
+// occlusion is strictly a fill-light term, but a crease in full light would then not read at
+// all, so half of it darkens the key too, as production renderers let artists choose.
+float key_light_share(vec3 n) {
+  return key_light_visibility(v_position, n) * mix(1.0, ambient_occlusion(), 0.5);
+}
+
 // Irradiance of the point light at p (inverse-square falloff).
 vec3 light_irradiance(vec3 p) {
   vec3 d = u_light_position - p;
   return u_light_intensity / max(dot(d, d), 1e-6);
 }
 
+// Diffuse has no fill in the classic look (a shadowed side is black); the studio gives it one.
 vec3 lambert(vec3 n, vec3 albedo) {
+  albedo = surface_albedo(albedo);
   vec3 l = normalize(u_light_position - v_position);
-  return albedo * light_irradiance(v_position) * max(dot(n, l), 0.0);
+  vec3 fill = studio_fill(n, 0.0) * ambient_occlusion();
+  return albedo * light_irradiance(v_position) * (max(dot(n, l), 0.0) * key_light_share(n)) + albedo * fill;
 }
 
 vec3 blinn_phong(vec3 n, vec3 albedo, float ks, float shininess) {
+  albedo = surface_albedo(albedo);
+  if (u_is_floor == 1) ks = 0.05;  // a matte floor: the cloth's highlight would glare on it
   vec3 l = normalize(u_light_position - v_position);
   vec3 v = normalize(u_camera_position - v_position);
   vec3 h = normalize(l + v);
-  vec3 irradiance = light_irradiance(v_position);
-  vec3 ambient = 0.12 * albedo;
+  vec3 irradiance = light_irradiance(v_position) * key_light_share(n);
+  vec3 ambient = studio_fill(n, 0.12) * ambient_occlusion() * albedo;
   vec3 diffuse = albedo * irradiance * max(dot(n, l), 0.0);
   vec3 specular = ks * irradiance * pow(max(dot(n, h), 0.0), shininess);
   return ambient + diffuse + specular;
@@ -79,7 +113,10 @@ vec3 tone_map(vec3 c) {
 }
 
 vec4 encode_display(vec3 linear) {
-  return vec4(pow(tone_map(max(linear * u_exposure, 0.0)), vec3(1.0 / 2.2)), u_color.a);
+  vec3 display = pow(tone_map(max(linear * u_exposure, 0.0)), vec3(1.0 / 2.2));
+  // The floor fades into the background it stands in front of.
+  if (u_is_floor == 1) display = mix(display, studio_background(gl_FragCoord.xy), floor_fade(v_uv));
+  return vec4(display, u_color.a);
 }
 
 #endif

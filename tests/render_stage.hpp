@@ -70,7 +70,7 @@ struct Stage {
     return {target.width(), target.height(), target.read_rgba()};
   }
   Image draw(ShaderKind shader) {
-    Appearance look;
+    Appearance look = Appearance::classic();
     look.shader = shader;
     return draw(look);
   }

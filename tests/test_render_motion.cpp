@@ -68,7 +68,7 @@ TEST_CASE("a mesh collider is drawn, with every shader, and moves where its keyf
   REQUIRE(stage.gpu.constants().meshes.size() == 1);
   for (int k = 0; k < 8; ++k) {
     INFO(kShaderNames[size_t(k)]);
-    Appearance look;
+    Appearance look = Appearance::classic();
     look.shader = ShaderKind(k);
     const Image shown = stage.draw(look);
     look.show_meshes = false;

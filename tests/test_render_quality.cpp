@@ -35,7 +35,7 @@ std::vector<glm::ivec2> cloth_interior(const Image& im) {
 // The sphere scene's cloth where it starts, flat and level at y = 1, facing the light; the
 // sphere hidden so only cloth and background are drawn.
 Appearance cloth_only(ShaderKind shader) {
-  Appearance look;
+  Appearance look = Appearance::classic();
   look.shader = shader;
   look.show_spheres = false;
   return look;

@@ -1,5 +1,6 @@
 // `clothsim render SCENE --frames N --out DIR|FILE.png|FILE.mp4|FILE.gif [--shader NAME] [--size WxH]
-// [--samples N] [--exposure E] [--every K] [--fps F]`: simulates and draws headless (EGL, an
+// [--samples N] [--exposure E] [--every K] [--fps F] [--shadows on|off] [--ao on|off] [--studio on|off]
+// [--floor] [--back-tint R,G,B] [--stats]`: simulates and draws headless (EGL, an
 // offscreen multisampled framebuffer), frame by frame.
 #include <cstdio>
 #include <optional>
@@ -26,6 +27,9 @@ struct Opts {
   float exposure = 1.f;
   int every = 1;         // keep frames every, 2 * every, ...
   double fps = 0;        // of the video; 0 = the scene's rate / every
+  std::string shadows = "on", occlusion = "on", studio = "on";
+  bool floor = false, stats = false;
+  std::vector<float> back_tint{0.7f, 0.78f, 0.95f};
 };
 
 // The cloth buffers to draw: the GPU simulator's own, or CPU results uploaded per frame
@@ -92,6 +96,16 @@ int run_render(const Opts& o) {
   Appearance look;
   look.shader = *shader;
   look.exposure = o.exposure;
+  look.shadows = o.shadows == "on";
+  look.ambient_occlusion = o.occlusion == "on";
+  look.studio = o.studio == "on";
+  look.floor = o.floor;
+  look.back_tint = {o.back_tint[0], o.back_tint[1], o.back_tint[2]};
+  renderer.set_timing(o.stats);
+  if (o.floor && !scene.planes.empty())
+    fmt::print(stderr, "render: --floor: {} has a plane, which is its floor; no other is drawn\n", scene.source);
+  RenderTimes total{};
+  int timed = 0;
   FrameSink sink(o.out, w, h, fps);
 
   fmt::print("{}: {}, {} shader, {}x{}, {} samples/pixel, backend {}\n", scene.source, describe_cloth(model),
@@ -114,11 +128,25 @@ int run_render(const Opts& o) {
       source.place_colliders(renderer);
       renderer.draw(source.positions(), source.normals(), camera, look);
       sink.add(target->read_rgba());
+      if (o.stats) {
+        const RenderTimes& t = renderer.times();
+        total.shadow_ms += t.shadow_ms, total.occlusion_ms += t.occlusion_ms, total.shading_ms += t.shading_ms;
+        total.gpu_timer = t.gpu_timer;
+        ++timed;
+      }
     }
     progress.update(f);
   }
   progress.finish();
   fmt::print("{}\n", sink.finish());
+  if (o.stats && timed > 0) {
+    // The first frame builds the programs and targets: a run of one frame shows that too.
+    const double n = double(timed);
+    fmt::print("render passes, mean of {} drawn frames ({}): shadow map {:.2f} ms, ambient occlusion {:.2f} ms, "
+               "shading {:.2f} ms, total {:.2f} ms/frame\n",
+               timed, total.gpu_timer ? "GL timestamp queries" : "CPU clock + glFinish", total.shadow_ms / n,
+               total.occlusion_ms / n, total.shading_ms / n, (total.shadow_ms + total.occlusion_ms + total.shading_ms) / n);
+  }
   return kExitOk;
 }
 
@@ -151,6 +179,22 @@ void add_render_command(CLI::App& app, std::function<int()>& run) {
   cmd->add_option("--camera", o->camera, "eye and target: EX,EY,EZ,TX,TY,TZ")->delimiter(',')->expected(6);
   cmd->add_option("-a", o->lat, "sphere latitude resolution")->check(CLI::Range(3, 1000))->capture_default_str();
   cmd->add_option("-o", o->lon, "sphere longitude resolution")->check(CLI::Range(3, 1000))->capture_default_str();
+  cmd->add_option("--shadows", o->shadows, "soft shadows of the key light (lit shaders): on or off")
+      ->check(CLI::IsMember({"on", "off"}))
+      ->capture_default_str();
+  cmd->add_option("--ao", o->occlusion, "screen-space ambient occlusion (lit shaders): on or off")
+      ->check(CLI::IsMember({"on", "off"}))
+      ->capture_default_str();
+  cmd->add_option("--studio", o->studio, "background gradient, grid floor on planes, sky fill light: on or off")
+      ->check(CLI::IsMember({"on", "off"}))
+      ->capture_default_str();
+  cmd->add_flag("--floor", o->floor, "draw a studio floor under a scene without a plane (it does not collide)");
+  cmd->add_option("--back-tint", o->back_tint, "R,G,B multiplying the colour of the cloth's back (1,1,1: none)")
+      ->delimiter(',')
+      ->expected(3)
+      ->check(CLI::Range(0.f, 4.f))
+      ->capture_default_str();
+  cmd->add_flag("--stats", o->stats, "time the drawing's passes and print their mean per frame");
   cmd->add_option("-r,--root", o->root, "project root (shaders/, compute/, textures/)");
   cmd->callback([o, &run] { run = [o] { return run_render(*o); }; });
 }

@@ -127,6 +127,87 @@ void Texture::bind(GLuint unit) const {
   glBindTexture(target_, name_.get());
 }
 
+Texture Texture::target_2d(GLenum internal_format, int width, int height, bool linear, std::string_view label) {
+  Texture t(GL_TEXTURE_2D);
+  t.width_ = width;
+  t.height_ = height;
+  glBindTexture(GL_TEXTURE_2D, t.name_.get());
+  if (!label.empty()) glObjectLabel(GL_TEXTURE, t.name_.get(), GLsizei(label.size()), label.data());
+  while (glGetError() != GL_NO_ERROR) {
+  }
+  glTexStorage2D(GL_TEXTURE_2D, 1, internal_format, width, height);
+  if (const GLenum e = glGetError(); e != GL_NO_ERROR)
+    throw std::runtime_error(fmt::format("{}: cannot make a {}x{} texture (GL error 0x{:x})", label, width, height, e));
+  const GLint filter = linear ? GL_LINEAR : GL_NEAREST;
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, filter);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, filter);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  return t;
+}
+
+namespace {
+// Keeps the caller's framebuffers bound across a scope that binds another (made while the
+// caller is drawing, e.g. on its first frame, a framebuffer must not take over its target).
+struct KeepFramebuffers {
+  GLint draw = 0, read = 0;
+  KeepFramebuffers() {
+    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &draw);
+    glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &read);
+  }
+  ~KeepFramebuffers() {
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, GLuint(draw));
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, GLuint(read));
+  }
+};
+}  // namespace
+
+Framebuffer::Framebuffer(std::string_view label) : name_(gen(glGenFramebuffers)), label_(label) {
+  KeepFramebuffers keep;
+  glBindFramebuffer(GL_FRAMEBUFFER, name_.get());
+  if (!label.empty()) glObjectLabel(GL_FRAMEBUFFER, name_.get(), GLsizei(label.size()), label.data());
+}
+
+void Framebuffer::attach(GLenum attachment, const Texture& texture) {
+  KeepFramebuffers keep;
+  glBindFramebuffer(GL_FRAMEBUFFER, name_.get());
+  glFramebufferTexture(GL_FRAMEBUFFER, attachment, texture.id(), 0);
+  width_ = texture.width();
+  height_ = texture.height();
+  has_colour_ = has_colour_ || attachment != GL_DEPTH_ATTACHMENT;
+  // A depth-only framebuffer draws no colour; without saying so it is incomplete.
+  const GLenum none = GL_NONE, colour = GL_COLOR_ATTACHMENT0;
+  glDrawBuffers(1, has_colour_ ? &colour : &none);
+  glReadBuffer(has_colour_ ? GL_COLOR_ATTACHMENT0 : GL_NONE);
+  const GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+  if (status != GL_FRAMEBUFFER_COMPLETE)
+    throw std::runtime_error(fmt::format("{}: framebuffer incomplete (status 0x{:x})", label_, status));
+}
+
+void Framebuffer::bind() const {
+  glBindFramebuffer(GL_FRAMEBUFFER, name_.get());
+  glViewport(0, 0, width_, height_);
+}
+
+void Sampler::delete_sampler(GLuint id) { glDeleteSamplers(1, &id); }
+
+Sampler::Sampler(bool linear, bool compare, float border) : name_(gen(glGenSamplers)) {
+  const GLuint s = name_.get();
+  const GLint filter = linear ? GL_LINEAR : GL_NEAREST;
+  glSamplerParameteri(s, GL_TEXTURE_MIN_FILTER, filter);
+  glSamplerParameteri(s, GL_TEXTURE_MAG_FILTER, filter);
+  glSamplerParameteri(s, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_BORDER);
+  glSamplerParameteri(s, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_BORDER);
+  const float colour[4] = {border, border, border, border};
+  glSamplerParameterfv(s, GL_TEXTURE_BORDER_COLOR, colour);
+  if (compare) {
+    glSamplerParameteri(s, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+    glSamplerParameteri(s, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+  }
+}
+
+void Sampler::bind(GLuint unit) const { glBindSampler(unit, name_.get()); }
+
 Texture Texture::load_2d(const std::filesystem::path& png, const TextureFiltering& filtering) {
   Image im = read_png(png);
   Texture t(GL_TEXTURE_2D);

@@ -6,6 +6,8 @@
 #include <array>
 #include <cstdint>
 #include <filesystem>
+#include <string>
+#include <string_view>
 #include <string_view>
 #include <vector>
 
@@ -37,9 +39,14 @@ class Texture {
   // A cube map from six PNGs in GL face order +x, -x, +y, -y, +z, -z (mipmapped).
   static Texture load_cube(const std::array<std::filesystem::path, 6>& faces,
                            const TextureFiltering& filtering = {});
+  // A 2D texture of one level to draw into (a shadow map, a depth pre-pass, an occlusion
+  // buffer) in `internal_format`, e.g. GL_DEPTH_COMPONENT32F or GL_R8; clamped to its edge,
+  // filtered linearly or not. Throws std::runtime_error naming `label` if the driver refuses.
+  static Texture target_2d(GLenum internal_format, int width, int height, bool linear, std::string_view label);
   void bind(GLuint unit) const;
   int width() const { return width_; }
   int height() const { return height_; }
+  GLuint id() const { return name_.get(); }  // for Framebuffer::attach
 
  private:
   Texture(GLenum target);
@@ -63,6 +70,36 @@ class BufferTexture {
 
  private:
   detail::Name<detail::delete_texture> name_;
+};
+
+// A framebuffer object drawing into textures (the renderer's shadow and occlusion passes).
+class Framebuffer {
+ public:
+  explicit Framebuffer(std::string_view label = {});
+  // Attaches level 0 of `texture` at `attachment` (GL_DEPTH_ATTACHMENT, GL_COLOR_ATTACHMENT0),
+  // then throws std::runtime_error naming the label if the framebuffer is not complete.
+  void attach(GLenum attachment, const Texture& texture);
+  void bind() const;  // as GL_FRAMEBUFFER, with the viewport set to the attachments' size
+
+ private:
+  detail::Name<detail::delete_framebuffer> name_;
+  std::string label_;
+  int width_ = 0, height_ = 0;
+  bool has_colour_ = false;
+};
+
+// A sampler object: how a texture unit reads, whatever texture is bound there. The shadow
+// map is read two ways at once, compared (PCF) and raw (the blocker search), through two of these.
+class Sampler {
+ public:
+  // compare: GL_COMPARE_REF_TO_TEXTURE with GL_LEQUAL, for a sampler2DShadow. Outside [0, 1]
+  // the border reads `border` (1 = far: lit).
+  Sampler(bool linear, bool compare, float border);
+  void bind(GLuint unit) const;
+
+ private:
+  static void delete_sampler(GLuint id);
+  detail::Name<delete_sampler> name_;
 };
 
 // An offscreen colour + depth target for headless rendering and screenshots: multisampled

@@ -43,8 +43,6 @@ void OrbitCamera::look_from(const glm::vec3& e, const glm::vec3& t) {
   yaw = std::atan2(d.x, d.z);
 }
 
-namespace {
-
 // Roughly where each particle comes to rest, for framing (no simulation): a pinned cloth hangs
 // straight down from the nearest point of its pins' box, by its distance from that point; an
 // unpinned one drapes the same way from the top of a sphere below it, or else falls until a
@@ -101,8 +99,6 @@ std::vector<glm::dvec3> resting_points(const Scene& scene, const ClothModel& mod
   }
   return out;
 }
-
-}  // namespace
 
 OrbitCamera default_camera(const Scene& scene, const ClothModel& model, float aspect) {
   glm::dvec3 lo(1e300), hi(-1e300);

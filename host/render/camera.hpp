@@ -2,6 +2,8 @@
 // viewer uses, and the default framing of a scene.
 #pragma once
 
+#include <vector>
+
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 
@@ -35,5 +37,8 @@ struct OrbitCamera {
 // its pins, draped over a sphere, lying on a plane), and the spheres, from the front and a
 // little above, like the classic viewer.
 OrbitCamera default_camera(const Scene& scene, const ClothModel& model, float aspect);
+
+// Roughly where each particle comes to rest, for framing (no simulation; camera.cpp says how).
+std::vector<glm::dvec3> resting_points(const Scene& scene, const ClothModel& model);
 
 }  // namespace clothsim

@@ -2,12 +2,15 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 
 #include <stdexcept>
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "camera.hpp"
+#include "context.hpp"
 #include "mesh_collider.hpp"
 #include "meshes.hpp"
 
@@ -80,7 +83,7 @@ Renderer::Renderer(const std::filesystem::path& root, const Scene& scene, const 
       weave_height_(gl::Texture::load_2d(root / "textures" / "height_weave.png", options.filtering)),
       bumps_height_(gl::Texture::load_2d(root / "textures" / "height_bumps.png", options.filtering)),
       sky_(load_cube(root / "textures", options.filtering)),
-      scene_size_(cloth_extent(model)) {
+      scene_size_(cloth_extent(model)), shadow_map_size_(options.shadow_map_size) {
   cloth_ = make_indexed(cloth_triangle_indices(model));
   // The cloth's static per-vertex extras: uv, and in zw the particles whose difference is the
   // tangent along +u (ClothModel::tangent_ends), as floats (exact below 2^24).
@@ -93,6 +96,7 @@ Renderer::Renderer(const std::filesystem::path& root, const Scene& scene, const 
   for (int t = 0; t < 3; ++t) springs_[t] = make_indexed(cloth_spring_indices(model, SpringType(t)));
   for (auto& s : scene.spheres) {
     sphere_built_.emplace_back(s.origin);
+    sphere_radii_.push_back(float(s.radius));
     spheres_.push_back(make_mesh(sphere_mesh(glm::vec3(s.origin), float(s.radius) * options.sphere_shrink,
                                              options.sphere_lat, options.sphere_lon)));
   }
@@ -108,9 +112,23 @@ Renderer::Renderer(const std::filesystem::path& root, const Scene& scene, const 
   for (size_t k = 0; k < scene.meshes.size(); ++k) {
     const MeshColliderParams& p = scene.meshes[k];
     mesh_built_.emplace_back(p.origin);
-    meshes_.push_back(make_mesh(surface_mesh(load_collider_mesh(scene, k)->surface,
-                                             glm::mat3(collider_rotation(p)), glm::vec3(p.origin))));
+    MeshData drawn = surface_mesh(load_collider_mesh(scene, k)->surface, glm::mat3(collider_rotation(p)), glm::vec3(p.origin));
+    glm::vec3 lo(3e38f), hi(-3e38f);
+    for (const glm::vec4& q : drawn.positions) lo = glm::min(lo, glm::vec3(q)), hi = glm::max(hi, glm::vec3(q));
+    mesh_boxes_.emplace_back(lo, hi);
+    meshes_.push_back(make_mesh(drawn));
   }
+  // The studio floor of a scene without a plane: just below the lowest of where the cloth
+  // starts, where it will roughly rest and the colliders, so a hanging cloth hangs above it.
+  double lowest = 1e300;
+  for (auto& q : model.initial) lowest = std::min(lowest, q.y);
+  for (auto& q : resting_points(scene, model)) lowest = std::min(lowest, q.y);
+  for (auto& sp : scene.spheres) lowest = std::min(lowest, sp.origin.y - sp.radius);
+  for (auto& box : mesh_boxes_) lowest = std::min(lowest, double(box.first.y));
+  floor_height_ = float(lowest) - 0.02f * scene_size_;
+  floor_half_ = 3.f * scene_size_;
+  if (scene.planes.empty())
+    floor_ = make_mesh(plane_mesh(glm::vec3(float(centre.x), floor_height_, float(centre.z)), glm::vec3(0, 1, 0), floor_half_));
   no_extras_.allocate(sizeof(layout::MeshVertex));
   sphere_now_ = sphere_built_;
   plane_now_ = plane_built_;
@@ -149,45 +167,58 @@ void Renderer::draw_mesh(const Mesh& mesh, gl::Program& prog, bool lines, GLsize
   glBindVertexArray(0);
 }
 
-void Renderer::draw(const gl::Buffer& positions, const gl::Buffer& normals, const OrbitCamera& camera,
-                    const Appearance& look) {
-  glClearColor(0.16f, 0.17f, 0.2f, 1.f);
-  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-  glEnable(GL_DEPTH_TEST);
-  glEnable(GL_MULTISAMPLE);
-  gl::Program& prog = program(look.shader);
-  // A light above, behind and to the side of the camera: irradiance 0.8 at the target. Cloth
-  // nearer to it gets more, which the tone map rolls off instead of clipping.
-  const glm::vec3 eye = camera.eye();
-  const glm::vec3 light = camera.target + glm::vec3(0.6f, 1.4f, 0.9f) * std::max(camera.distance, scene_size_);
-  const float d2 = glm::dot(light - camera.target, light - camera.target);
-  prog.set("u_model", glm::mat4(1.f));
-  prog.set("u_view_projection", camera.view_projection());
-  prog.set("u_camera_position", eye);
-  prog.set("u_light_position", light);
-  prog.set("u_light_intensity", glm::vec3(d2 * 0.8f));
-  prog.set("u_normal_scaling", look.normal_scaling);
-  prog.set("u_height_scaling", look.height_scaling);
-  prog.set("u_exposure", look.exposure);
-  // Bump shows the fabric weave; Displacement moves vertices, so it uses the smooth bumps a
-  // 50x50 mesh can follow without jaggies.
-  const gl::Texture& height = look.shader == ShaderKind::Displacement ? bumps_height_ : weave_height_;
-  prog.set("u_texture_size", glm::vec2(height.width(), height.height()));
-  prog.set("u_texture", 0);
-  prog.set("u_height_texture", 1);
-  prog.set("u_environment", 2);
-  fabric_.bind(0);
-  height.bind(1);
-  sky_.bind(2);
+glm::vec3 Renderer::light_position(const OrbitCamera& camera) const {
+  return camera.target + glm::vec3(0.6f, 1.4f, 0.9f) * std::max(camera.distance, scene_size_);
+}
 
+std::pair<glm::vec3, glm::vec3> Renderer::collider_box(const Appearance& look) const {
+  glm::vec3 lo(3e38f), hi(-3e38f);
+  for (size_t k = 0; k < sphere_now_.size() && look.show_spheres; ++k) {
+    lo = glm::min(lo, sphere_now_[k] - glm::vec3(sphere_radii_[k]));
+    hi = glm::max(hi, sphere_now_[k] + glm::vec3(sphere_radii_[k]));
+  }
+  for (size_t k = 0; k < mesh_boxes_.size() && look.show_meshes; ++k) {
+    const glm::vec3 moved = mesh_now_[k] - mesh_built_[k];
+    lo = glm::min(lo, mesh_boxes_[k].first + moved);
+    hi = glm::max(hi, mesh_boxes_[k].second + moved);
+  }
+  return {lo, hi};
+}
+
+gl::Program& Renderer::depth_program(bool displacement) {
+  auto& slot = depth_programs_[displacement ? 1 : 0];
+  if (!slot) {
+    const auto dir = root_ / "shaders";
+    slot = gl::Program::graphics(dir / (displacement ? "displacement.vert" : "default.vert"), dir / "depth.frag",
+                                 {{"WORKGROUP_SIZE", std::to_string(WORKGROUP_SIZE)}});
+  }
+  return *slot;
+}
+
+namespace {
+bool is_lit(ShaderKind k) {
+  return k == ShaderKind::Diffuse || k == ShaderKind::Phong || k == ShaderKind::Texture || k == ShaderKind::Bump ||
+         k == ShaderKind::Displacement;
+}
+}  // namespace
+
+void Renderer::draw_objects(gl::Program& prog, const gl::Buffer& positions, const gl::Buffer& normals,
+                            const Appearance& look, Pass pass) {
+  const bool shade = pass == Pass::Shade;
+  const bool wire = shade && look.shader == ShaderKind::Wireframe;
+  const bool studio_floor = shade && look.studio && is_lit(look.shader);
+  auto colour = [&](glm::vec4 c) {
+    if (shade) prog.set("u_color", c);
+  };
   // The cloth: the simulation's own buffers, read in place by the vertex shader.
+  prog.set("u_model", glm::mat4(1.f));
   positions.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_DRAW_POSITIONS);
   normals.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_DRAW_NORMALS);
   cloth_extras_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_DRAW_EXTRAS);
   prog.set("u_is_cloth", 1);
-  const bool wire = look.shader == ShaderKind::Wireframe;
-  prog.set("u_color", wire ? glm::vec4(0.95f, 0.95f, 0.95f, 1.f) : look.color);
+  if (shade) prog.set("u_is_floor", 0);
   if (wire) {
+    colour(glm::vec4(0.95f, 0.95f, 0.95f, 1.f));
     for (int t = 0; t < 3; ++t)
       if (look.wire_springs[t]) draw_mesh(*springs_[t], prog, true);
   } else {
@@ -196,20 +227,20 @@ void Renderer::draw(const gl::Buffer& positions, const gl::Buffer& normals, cons
     static const glm::vec4 kOthers[] = {{0.85f, 0.42f, 0.30f, 1.f}, {0.35f, 0.62f, 0.45f, 1.f}, {0.55f, 0.45f, 0.75f, 1.f}};
     for (size_t k = 0; k < model_.parts.size(); ++k) {
       const ClothPart& part = model_.parts[k];
-      prog.set("u_color", k == 0 ? look.color : kOthers[(k - 1) % 3]);
+      colour(k == 0 ? look.color : kOthers[(k - 1) % 3]);
       draw_mesh(*cloth_, prog, false, GLsizei(3 * part.first_triangle), GLsizei(3 * part.triangle_count));
     }
   }
 
   // Colliders: their own buffers at the same bindings, shaded with the same program.
   prog.set("u_is_cloth", 0);
-  auto draw_collider = [&](const Mesh& m, glm::vec3 moved, glm::vec4 colour) {
+  auto draw_collider = [&](const Mesh& m, glm::vec3 moved, glm::vec4 c) {
     // Only a translation, so the normals (mat3(u_model)) are unchanged.
     prog.set("u_model", glm::translate(glm::mat4(1.f), moved));
     m.positions->bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_DRAW_POSITIONS);
     m.normals->bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_DRAW_NORMALS);
     m.extras->bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_DRAW_EXTRAS);
-    prog.set("u_color", colour);
+    colour(c);
     if (wire) glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
     draw_mesh(m, prog, false);
     if (wire) glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
@@ -220,15 +251,127 @@ void Renderer::draw(const gl::Buffer& positions, const gl::Buffer& normals, cons
   if (look.show_meshes)
     for (size_t k = 0; k < meshes_.size(); ++k)
       draw_collider(*meshes_[k], mesh_now_[k] - mesh_built_[k], wire ? glm::vec4(0.8f, 0.6f, 0.4f, 1.f) : glm::vec4(0.62f, 0.52f, 0.42f, 1.f));
-  if (look.show_planes) {
+  if (pass == Pass::Casters) return;  // a plane only receives: a floor shadowing the scene it holds up would hide it
+  const bool floor_drawn = look.floor && floor_;
+  if (look.show_planes || floor_drawn) {
     // Cloth resting on a plane lies 0.1 mm above it (the contact's offset), which the depth
     // buffer cannot tell apart at a few metres: push the plane's depth back a little so the
     // cloth wins instead of both speckling through each other.
     glEnable(GL_POLYGON_OFFSET_FILL);
     glPolygonOffset(1.f, 4.f);
-    for (size_t k = 0; k < planes_.size(); ++k)
-      draw_collider(*planes_[k], plane_now_[k] - plane_built_[k], wire ? glm::vec4(0.4f, 0.4f, 0.4f, 1.f) : glm::vec4(0.3f, 0.31f, 0.33f, 1.f));
+    if (studio_floor) {
+      prog.set("u_is_floor", 1);
+      prog.set("u_floor_half", floor_half_);
+      // Fine lines a power of ten apart, some 10 to 100 across the cloth: 10 cm under a 1 m cloth.
+      prog.set("u_grid", std::pow(10.f, std::floor(std::log10(scene_size_)) - 1.f));
+    }
+    if (look.show_planes)
+      for (size_t k = 0; k < planes_.size(); ++k)
+        draw_collider(*planes_[k], plane_now_[k] - plane_built_[k], wire ? glm::vec4(0.4f, 0.4f, 0.4f, 1.f) : glm::vec4(0.3f, 0.31f, 0.33f, 1.f));
+    if (floor_drawn) draw_collider(*floor_, glm::vec3(0.f), wire ? glm::vec4(0.4f, 0.4f, 0.4f, 1.f) : glm::vec4(0.3f, 0.31f, 0.33f, 1.f));
+    if (shade) prog.set("u_is_floor", 0);
     glDisable(GL_POLYGON_OFFSET_FILL);
+  }
+}
+
+void Renderer::draw(const gl::Buffer& positions, const gl::Buffer& normals, const OrbitCamera& camera,
+                    const Appearance& look) {
+  if (timing_ && !clock_) clock_ = std::make_unique<PassClock<3>>(gl::gl_renderer_is_llvmpipe());
+  auto mark = [&](int boundary) {
+    if (timing_) clock_->mark(boundary);
+  };
+  mark(0);
+  GLint viewport[4];
+  glGetIntegerv(GL_VIEWPORT, viewport);
+  glEnable(GL_DEPTH_TEST);
+  glEnable(GL_MULTISAMPLE);
+  const bool lit = is_lit(look.shader);
+  const bool shadows = lit && look.shadows, occlusion = lit && look.ambient_occlusion;
+  // A light above, behind and to the side of the camera: irradiance 0.8 at the target. Cloth
+  // nearer to it gets more, which the tone map rolls off instead of clipping.
+  const glm::vec3 eye = camera.eye();
+  const glm::vec3 light = light_position(camera);
+  const float d2 = glm::dot(light - camera.target, light - camera.target);
+
+  // The shadow pass: the casters from the light, into a map fitted to them this frame.
+  if (shadows) {
+    if (!shadow_) shadow_ = std::make_unique<ShadowMap>(root_ / "shaders", shadow_map_size_);
+    const auto [lo, hi] = collider_box(look);
+    // A disc a tenth of the light's distance across (a studio softbox): contact shadows stay
+    // sharp, a cloth's shadow 5 cm below it softens by about a centimetre.
+    shadow_->fit(positions, model_.count(), light, 0.1f * std::sqrt(d2), lo, hi);
+    shadow_->begin();
+    draw_objects(shadow_->caster_program(), positions, normals, look, Pass::Casters);
+    shadow_->end();
+  }
+  mark(1);
+  // Ambient occlusion: the depth pre-pass, then the two screen-space passes. Its reach is 6 %
+  // of the cloth's size: a fold's depth, and contact within a few centimetres of a 1 m cloth.
+  const bool displaced = look.shader == ShaderKind::Displacement;
+  if (occlusion) {
+    if (!occlusion_) occlusion_ = std::make_unique<AmbientOcclusion>(root_ / "shaders");
+    occlusion_->begin_depth();
+    gl::Program& depth = depth_program(displaced);
+    depth.set("u_view_projection", camera.view_projection());
+    if (displaced) {
+      depth.set("u_height_texture", 1);
+      depth.set("u_height_scaling", look.height_scaling);
+      bumps_height_.bind(1);
+    }
+    draw_objects(depth, positions, normals, look, Pass::Depth);
+    occlusion_->compute(camera.projection(), 0.06f * scene_size_);
+  }
+  mark(2);
+
+  glClearColor(0.16f, 0.17f, 0.2f, 1.f);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  gl::Program& prog = program(look.shader);
+  const glm::vec2 viewport_size{float(viewport[2]), float(viewport[3])};
+  if (look.studio) {
+    // The background gradient, behind everything: no depth written.
+    if (!background_)
+      background_ = gl::Program::graphics(root_ / "shaders" / "fullscreen.vert", root_ / "shaders" / "background.frag");
+    background_->set("u_viewport", viewport_size);
+    glDepthMask(GL_FALSE);
+    background_->use();
+    empty_.bind();
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glBindVertexArray(0);
+    glDepthMask(GL_TRUE);
+  }
+  prog.set("u_view_projection", camera.view_projection());
+  prog.set("u_camera_position", eye);
+  prog.set("u_light_position", light);
+  prog.set("u_light_intensity", glm::vec3(d2 * 0.8f));
+  prog.set("u_normal_scaling", look.normal_scaling);
+  prog.set("u_height_scaling", look.height_scaling);
+  prog.set("u_exposure", look.exposure);
+  prog.set("u_studio", look.studio ? 1 : 0);
+  prog.set("u_viewport", viewport_size);
+  prog.set("u_back_tint", look.back_tint);
+  prog.set("u_shadows", shadows ? 1 : 0);
+  prog.set("u_ao", occlusion ? 1 : 0);
+  // Bump shows the fabric weave; Displacement moves vertices, so it uses the smooth bumps a
+  // 50x50 mesh can follow without jaggies.
+  const gl::Texture& height = displaced ? bumps_height_ : weave_height_;
+  prog.set("u_texture_size", glm::vec2(height.width(), height.height()));
+  prog.set("u_texture", 0);
+  prog.set("u_height_texture", 1);
+  prog.set("u_environment", 2);
+  prog.set("u_shadow_map", int(kShadowCompareUnit));
+  prog.set("u_shadow_depth", int(kShadowDepthUnit));
+  prog.set("u_ambient_occlusion", int(kOcclusionUnit));
+  fabric_.bind(0);
+  height.bind(1);
+  sky_.bind(2);
+  if (shadows) shadow_->bind_for_lighting();
+  if (occlusion) occlusion_->bind_result();
+  draw_objects(prog, positions, normals, look, Pass::Shade);
+  if (shadows) shadow_->release();
+  mark(3);
+  if (timing_) {
+    const auto& ms = clock_->finish();
+    times_ = {ms[0], ms[1], ms[2], clock_->uses_queries()};
   }
 }
 

@@ -7,12 +7,16 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "ambient_occlusion.hpp"
 #include "camera.hpp"
 #include "objects.hpp"
 #include "program.hpp"
+#include "pass_clock.hpp"
 #include "reference.hpp"
+#include "shadow_map.hpp"
 #include "texture.hpp"
 
 namespace clothsim {
@@ -35,6 +39,29 @@ struct Appearance {
   bool show_planes = true;
   bool show_meshes = true;
   std::array<bool, 3> wire_springs{true, true, false};  // structural, shearing, bending
+  // The look of a demo (docs/rendering.md): in the lit shaders (Diffuse, Phong, Texture, Bump,
+  // Displacement) the key light casts soft shadows and ambient occlusion darkens creases and
+  // contact; the studio is a background gradient, a grid floor on every plane and a sky fill light.
+  bool shadows = true;
+  bool ambient_occlusion = true;
+  bool studio = true;
+  bool floor = false;  // a studio floor under a scene that has no plane (drawn only: it does not collide)
+  glm::vec3 back_tint{0.7f, 0.78f, 0.95f};  // multiplies the albedo of the cloth's back; (1, 1, 1): no tint
+
+  // The classic app's look: one unshadowed light, a flat background, both sides alike.
+  static Appearance classic(ShaderKind shader = ShaderKind::Phong) {
+    Appearance a;
+    a.shader = shader;
+    a.shadows = a.ambient_occlusion = a.studio = false;
+    a.back_tint = glm::vec3(1.f);
+    return a;
+  }
+};
+
+// Milliseconds of the last timed frame's passes (Renderer::set_timing).
+struct RenderTimes {
+  double shadow_ms = 0, occlusion_ms = 0, shading_ms = 0;
+  bool gpu_timer = false;  // GL timestamp queries; else glFinish and the CPU clock
 };
 
 struct RendererOptions {
@@ -43,6 +70,7 @@ struct RendererOptions {
   // collision surface is never hidden inside the drawn sphere.
   float sphere_shrink = 0.92f;
   gl::TextureFiltering filtering{};  // of every texture
+  int shadow_map_size = 2048;        // texels per side
 };
 
 class Renderer {
@@ -65,20 +93,52 @@ class Renderer {
     place_colliders(spheres, planes, meshes);
   }
 
-  // Draws into the bound framebuffer (clears it first).
+  // Draws into the bound framebuffer and viewport (clears it first): with the look's
+  // shadows, a shadow pass from the key light; with its occlusion, a depth pre-pass and two
+  // screen-space passes; then the shading pass. Every pass reads the cloth's buffers in place.
   void draw(const gl::Buffer& positions, const gl::Buffer& normals, const OrbitCamera& camera,
             const Appearance& look);
+
+  // Times every draw's passes from now on (off: no timing, nothing waits).
+  void set_timing(bool on) { timing_ = on; }
+  const RenderTimes& times() const { return times_; }
+  // The key light for `camera`: above, behind and to the side of its target.
+  glm::vec3 light_position(const OrbitCamera& camera) const;
+  // The shadow map of the last draw with shadows (null before one): for tests.
+  const ShadowMap* shadow_map() const { return shadow_.get(); }
+  // Where the studio floor of a scene without a plane lies (Appearance::floor): y, m.
+  float floor_height() const { return floor_height_; }
 
   struct Mesh;  // an index buffer in a VAO, plus vertex buffers for colliders (renderer.cpp)
 
  private:
+  enum class Pass { Casters, Depth, Shade };
   // Indices [first, first + count) of the mesh (count < 0: all of them).
   void draw_mesh(const Mesh& mesh, gl::Program& program, bool lines, GLsizei first = 0, GLsizei count = -1) const;
+  // The cloth and the colliders the look shows, for one pass: casters are the cloth, spheres
+  // and meshes (a plane only receives), the depth pre-pass and shading take everything.
+  void draw_objects(gl::Program& prog, const gl::Buffer& positions, const gl::Buffer& normals, const Appearance& look,
+                    Pass pass);
   gl::Program& program(ShaderKind kind);
+  gl::Program& depth_program(bool displacement);
+  // The shown spheres' and meshes' box where they are now (lo > hi when there are none).
+  std::pair<glm::vec3, glm::vec3> collider_box(const Appearance& look) const;
 
   const ClothModel& model_;
   std::filesystem::path root_;
   std::vector<std::optional<gl::Program>> programs_;  // built on first use
+  std::array<std::optional<gl::Program>, 2> depth_programs_;  // default.vert, displacement.vert
+  std::optional<gl::Program> background_;
+  std::unique_ptr<ShadowMap> shadow_;
+  std::unique_ptr<AmbientOcclusion> occlusion_;
+  std::unique_ptr<PassClock<3>> clock_;
+  gl::VertexArray empty_{"background"};
+  bool timing_ = false;
+  RenderTimes times_;
+  std::unique_ptr<Mesh> floor_;  // Appearance::floor (scenes without a plane)
+  float floor_height_ = 0, floor_half_ = 1;
+  std::vector<float> sphere_radii_;
+  std::vector<std::pair<glm::vec3, glm::vec3>> mesh_boxes_;  // as built
   std::unique_ptr<Mesh> cloth_;
   std::array<std::unique_ptr<Mesh>, 3> springs_;
   std::vector<std::unique_ptr<Mesh>> spheres_, planes_, meshes_;
@@ -88,6 +148,7 @@ class Renderer {
   gl::Buffer no_extras_{"no mesh extras"};
   gl::Buffer cloth_extras_{"cloth extras"};  // uv and tangent ends of every particle
   float scene_size_;
+  int shadow_map_size_;
 };
 
 }  // namespace clothsim

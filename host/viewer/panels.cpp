@@ -170,6 +170,17 @@ void appearance_panel(ViewerState& st) {
   ImGui::Checkbox("planes", &st.look.show_planes);
   ImGui::SameLine();
   ImGui::Checkbox("meshes", &st.look.show_meshes);
+  // The demo look (docs/rendering.md); the lit shaders only.
+  ImGui::Checkbox("shadows", &st.look.shadows);
+  ImGui::SameLine();
+  ImGui::Checkbox("ambient occlusion", &st.look.ambient_occlusion);
+  ImGui::SameLine();
+  ImGui::Checkbox("studio", &st.look.studio);
+  if (st.scene.planes.empty()) {
+    ImGui::SameLine();
+    ImGui::Checkbox("floor", &st.look.floor);
+  }
+  ImGui::ColorEdit3("back tint", &st.look.back_tint.x);
   if (st.look.shader == ShaderKind::Wireframe) {
     ImGui::Checkbox("structural", &st.look.wire_springs[0]);
     ImGui::SameLine();
@@ -213,6 +224,9 @@ void stats_panel(const ViewerState& st) {
   ImGui::Text("%.1f FPS%s", s.fps, st.paused ? "  (paused: P to run)" : "");
   ImGui::Text("simulation %.2f ms/frame, rendering %.2f ms (%s)", s.sim_ms, s.render_ms,
               s.gpu_timers ? "GL timer queries" : "CPU clock + glFinish");
+  // What the look costs, pass by pass (zero for a pass the look or the shader leaves out).
+  ImGui::Text("  shadow map %.2f ms, ambient occlusion %.2f ms, shading %.2f ms", s.passes.shadow_ms,
+              s.passes.occlusion_ms, s.passes.shading_ms);
   ImGui::Text("%d particles, %d springs", s.particles, s.springs);
   ImGui::Text("%d dispatches per frame", s.dispatches_per_frame);
   if (s.contacts >= 0) ImGui::Text("%d self-collision contacts", s.contacts);

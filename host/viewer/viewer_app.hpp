@@ -57,6 +57,7 @@ class Viewer {
     session_.sim = std::make_unique<GpuSimulator>(scene, *session_.model, opts_.root / "compute");
     session_.renderer = std::make_unique<Renderer>(opts_.root, scene, *session_.model,
                                                    RendererOptions{opts_.sphere_lat, opts_.sphere_lon});
+    session_.renderer->set_timing(true);  // the Stats panel shows every pass
     reset_camera();
     st_.divergence.clear();
     st_.stats.particles = session_.model->count();
@@ -112,6 +113,7 @@ class Viewer {
     session_.renderer->place_colliders(session_.sim->constants());
     session_.renderer->draw(session_.sim->positions(), session_.sim->normals(), st_.camera, st_.look);
     st_.stats.render_ms = render_timer_.end();
+    st_.stats.passes = session_.renderer->times();
     st_.stats.gpu_timers = sim_timer_.uses_queries();
     st_.stats.dispatches_per_frame = session_.sim->dispatches_per_substep() * st_.scene.simulation.simulation_steps +
                                      1 + GpuDivergenceGuard::kDispatchesPerFrame;  // normals, the guard

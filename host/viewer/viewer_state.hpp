@@ -15,6 +15,7 @@ namespace clothsim {
 struct ViewerStats {
   double fps = 0, sim_ms = 0, render_ms = 0;
   bool gpu_timers = false;  // GL timer queries (else CPU clock around glFinish)
+  RenderTimes passes;       // the renderer's passes of the last frame
   int dispatches_per_frame = 0;
   int particles = 0, springs = 0;
   int contacts = -1;        // self-collision contacts (refreshed twice a second)
