@@ -119,7 +119,7 @@ TEST_CASE("the cloth's shadow on the floor 5 cm below is over 35 % darker, and w
   CHECK_NO_GL_ERRORS();
 }
 
-TEST_CASE("a cloth 0.5 mm above the floor casts its shadow at its edge; farther up, a detached one, softer the farther",
+TEST_CASE("a cloth 0.5 mm above the floor casts its shadow at its edge, farther up a detached one, softer the farther",
           "[gpu][render][look]") {
   REQUIRE_GL_CONTEXT();
   FloorStage touching(0.0005f), low(0.01f), apart(0.05f);
@@ -253,7 +253,7 @@ TEST_CASE("the shadow map is fitted to the cloth: as many texels across a 20 cm 
   CHECK_NO_GL_ERRORS();
 }
 
-TEST_CASE("the back tint colours only the cloth's back; the studio floor lies under a scene without a plane",
+TEST_CASE("the back tint colours only the cloth's back, and the studio floor lies under a scene without a plane",
           "[gpu][render][look]") {
   REQUIRE_GL_CONTEXT();
   Stage stage("sphere", 160, 120);

@@ -105,7 +105,7 @@ int run_render(const Opts& o) {
   if (o.floor && !scene.planes.empty())
     fmt::print(stderr, "render: --floor: {} has a plane, which is its floor; no other is drawn\n", scene.source);
   RenderTimes total{};
-  int timed = 0;
+  int timed = 0, drawn = 0;
   FrameSink sink(o.out, w, h, fps);
 
   fmt::print("{}: {}, {} shader, {}x{}, {} samples/pixel, backend {}\n", scene.source, describe_cloth(model),
@@ -128,7 +128,9 @@ int run_render(const Opts& o) {
       source.place_colliders(renderer);
       renderer.draw(source.positions(), source.normals(), camera, look);
       sink.add(target->read_rgba());
-      if (o.stats) {
+      // The first drawn frame builds the programs and targets: left out of the means when
+      // there are more to average.
+      if (o.stats && (drawn++ > 0 || o.frames / o.every < 2)) {
         const RenderTimes& t = renderer.times();
         total.shadow_ms += t.shadow_ms, total.occlusion_ms += t.occlusion_ms, total.shading_ms += t.shading_ms;
         total.gpu_timer = t.gpu_timer;
@@ -140,7 +142,6 @@ int run_render(const Opts& o) {
   progress.finish();
   fmt::print("{}\n", sink.finish());
   if (o.stats && timed > 0) {
-    // The first frame builds the programs and targets: a run of one frame shows that too.
     const double n = double(timed);
     fmt::print("render passes, mean of {} drawn frames ({}): shadow map {:.2f} ms, ambient occlusion {:.2f} ms, "
                "shading {:.2f} ms, total {:.2f} ms/frame\n",
