@@ -18,8 +18,8 @@ uniform int u_shadows;                 // 1: the key light casts shadows (render
 uniform sampler2DShadow u_shadow_map;  // unit 3: depth compare, bilinear (each tap a 2x2 PCF)
 uniform sampler2D u_shadow_depth;      // unit 4: the same depths, raw (the blocker search)
 
-#define SEARCH_TAPS 12
-#define FILTER_TAPS 16
+#define SEARCH_TAPS 8
+#define FILTER_TAPS 12
 
 // Tap k of n on the unit disc, Vogel's spiral turned by `angle`: even cover with no table.
 vec2 disc_tap(int k, int n, float angle) {
