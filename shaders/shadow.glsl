@@ -6,8 +6,9 @@
 // taps averages how much of the disc p sees. Acne is kept off by three things, each for its
 // own cause: the shadow pass's slope-scaled polygon offset (the map's own depth quantisation),
 // a normal offset of about a texel here (surfaces grazing the light), and a receiver-plane
-// depth for every tap, from the facet's normal (a filter tens of texels wide across a tilted
-// receiver would otherwise shadow the receiver with itself).
+// depth for every tap from the shading normal, with slack growing with the tap's distance (a
+// filter tens of texels wide across a tilted, curved receiver would otherwise shadow the
+// receiver with itself).
 #ifndef CLOTHSIM_SHADOW_GLSL
 #define CLOTHSIM_SHADOW_GLSL
 
@@ -46,15 +47,19 @@ float window_depth(float d) {
   return 0.5 * ((f + n) / (f - n) - 2.0 * f * n / ((f - n) * d)) + 0.5;
 }
 
+// The receiver plane's depth change at a tap `offset` (uv) away, capped where the plane
+// recedes from the light: a surface meeting the light at a grazing angle has a facet plane
+// that falls away steeply, and its curved neighbours, falling away less, would shadow p. A
+// cap errs towards light (the receiver's own surface is never behind the reference), where
+// no cap on the approaching side may miss nothing: that side must stay exact.
+float plane_depth(vec2 depth_per_uv, vec2 offset, float texel_world) {
+  return min(dot(depth_per_uv, offset), 2.0 * texel_world);
+}
+
 // How much of the key light's disc the surface point p with normal n (the side being shaded)
 // sees: 1 lit, 0 in full shadow.
 float key_light_visibility(vec3 p, vec3 n) {
   if (u_shadows == 0) return 1.0;
-  // The facet's own normal (the map holds the flat triangles, not the smooth surface the
-  // shading normal describes), from screen derivatives: taken here, before any branch.
-  vec3 facet = cross(dFdx(p), dFdy(p));
-  facet = dot(facet, facet) > 0.0 ? normalize(facet) : n;
-  if (dot(facet, n) < 0.0) facet = -facet;
   vec3 to_light = shadow_frame.light.xyz - p;
   float dist = length(to_light);
   vec3 l = to_light / max(dist, 1e-9);
@@ -77,11 +82,15 @@ float key_light_visibility(vec3 p, vec3 n) {
   // the plane's depth there, not with p's, so a filter tens of texels wide across a tilted
   // receiver does not shadow the receiver with itself.
   vec3 axis_u = normalize(light_row(0)), axis_v = normalize(light_row(1)), forward = normalize(light_row(3));
-  float facing = min(dot(forward, facet), -0.2);  // it faces the light: dot(forward, facet) < 0; steeper is no guide
-  vec2 depth_per_uv = -(2.0 * tan_half * receiver) * vec2(dot(axis_u, facet), dot(axis_v, facet)) / facing;
+  float facing = min(dot(forward, n), -0.2);  // it faces the light: dot(forward, n) < 0; steeper is no guide
+  vec2 depth_per_uv = -(2.0 * tan_half * receiver) * vec2(dot(axis_u, n), dot(axis_v, n)) / facing;
   // Slack for the neighbouring facets across a fold bent towards the light: a texel and a
   // half of depth, and two texels of the facet's slope (more where the light grazes it).
   float slack = 1.5 * texel_world + 2.0 * length(depth_per_uv) * texel_uv;
+  // And for the surface curving towards the light away from p, and the flat facets the map
+  // holds departing from the smooth surface the shading normal describes (a wide filter on a
+  // hanging cloth reaches many): 30 % of the lateral distance, about 17 degrees of bend.
+  float bend = 0.3 * 2.0 * tan_half * receiver;
 
   float near = shadow_frame.range.x, radius = shadow_frame.light.w;
   // One rotation of the taps per pixel (interleaved gradient noise, Jimenez 2014): banding
@@ -97,7 +106,7 @@ float key_light_visibility(vec3 p, vec3 n) {
     float raw = textureLod(u_shadow_depth, uv + offset, 0.0).r;
     float stored = light_distance(raw);
     // Depth 1 is the cleared map: no caster.
-    if (raw < 1.0 && stored < receiver + dot(depth_per_uv, offset) - slack) {
+    if (raw < 1.0 && stored < receiver + plane_depth(depth_per_uv, offset, texel_world) - slack - bend * length(offset)) {
       blocker_sum += stored;
       ++blockers;
     }
@@ -111,7 +120,7 @@ float key_light_visibility(vec3 p, vec3 n) {
   for (int k = 0; k < FILTER_TAPS; ++k) {
     vec2 offset = filter_radius * disc_tap(k, FILTER_TAPS, angle);
     // Below 1, so that a receiver beyond the casters' far plane is lit where the map is clear.
-    float reference = min(window_depth(receiver + dot(depth_per_uv, offset) - slack), 0.999999);
+    float reference = min(window_depth(receiver + plane_depth(depth_per_uv, offset, texel_world) - slack - bend * length(offset)), 0.999999);
     lit += texture(u_shadow_map, vec3(uv + offset, reference));
   }
   return lit / float(FILTER_TAPS);
