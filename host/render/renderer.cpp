@@ -297,8 +297,8 @@ void Renderer::draw(const gl::Buffer& positions, const gl::Buffer& normals, cons
   if (shadows) {
     if (!shadow_) shadow_ = std::make_unique<ShadowMap>(root_ / "shaders", shadow_map_size_);
     const auto [lo, hi] = collider_box(look);
-    // A disc a tenth of the light's distance across (a studio softbox): contact shadows stay
-    // sharp, a cloth's shadow 5 cm below it softens by about a centimetre.
+    // A disc of radius a tenth of the light's distance (a studio softbox): contact shadows stay
+    // sharp, a cloth's shadow 5 cm below it softens over about a centimetre.
     shadow_->fit(positions, model_.count(), light, 0.1f * std::sqrt(d2), lo, hi);
     shadow_->begin();
     draw_objects(shadow_->caster_program(), positions, normals, look, Pass::Casters);
