@@ -225,8 +225,8 @@ void stats_panel(const ViewerState& st) {
   ImGui::Text("simulation %.2f ms/frame, rendering %.2f ms (%s)", s.sim_ms, s.render_ms,
               s.gpu_timers ? "GL timer queries" : "CPU clock + glFinish");
   // What the look costs, pass by pass (zero for a pass the look or the shader leaves out).
-  ImGui::Text("  shadow map %.2f ms, ambient occlusion %.2f ms, shading %.2f ms", s.passes.shadow_ms,
-              s.passes.occlusion_ms, s.passes.shading_ms);
+  ImGui::Text("  shadow %.1f ms, occlusion %.1f ms, shading %.1f ms", s.passes.shadow_ms, s.passes.occlusion_ms,
+              s.passes.shading_ms);
   ImGui::Text("%d particles, %d springs", s.particles, s.springs);
   ImGui::Text("%d dispatches per frame", s.dispatches_per_frame);
   if (s.contacts >= 0) ImGui::Text("%d self-collision contacts", s.contacts);
