@@ -5,8 +5,7 @@
 namespace clothsim {
 
 AmbientOcclusion::AmbientOcclusion(const std::filesystem::path& shaders)
-    : shaders_(shaders),
-      occlude_(gl::Program::graphics(shaders / "fullscreen.vert", shaders / "occlude_ambient.frag")),
+    : occlude_(gl::Program::graphics(shaders / "fullscreen.vert", shaders / "occlude_ambient.frag")),
       blur_(gl::Program::graphics(shaders / "fullscreen.vert", shaders / "blur_ambient.frag")) {}
 
 void AmbientOcclusion::begin_depth() {
@@ -30,30 +29,27 @@ void AmbientOcclusion::begin_depth() {
   glClear(GL_DEPTH_BUFFER_BIT);
 }
 
+void AmbientOcclusion::full_screen(gl::Program& prog, const gl::Framebuffer& target, const glm::mat4& projection,
+                                   float radius) {
+  prog.set("u_depth", 0);
+  prog.set("u_inverse_projection", glm::inverse(projection));
+  prog.set("u_viewport", glm::vec2(float(width_), float(height_)));
+  prog.set("u_radius", radius);
+  target.bind();
+  prog.use();
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+}
+
 void AmbientOcclusion::compute(const glm::mat4& projection, float radius) {
-  const glm::vec2 viewport{float(width_), float(height_)};
   glDisable(GL_DEPTH_TEST);
   empty_.bind();
-  // The pre-pass's depths are read next, as a texture, by both passes.
+  // The pre-pass's depths are read next, as a texture, by both passes; the raw occlusion by the blur.
   depth_->bind(0);
-  occlude_.set("u_depth", 0);
   occlude_.set("u_projection", projection);
-  occlude_.set("u_inverse_projection", glm::inverse(projection));
-  occlude_.set("u_viewport", viewport);
-  occlude_.set("u_radius", radius);
-  raw_target_->bind();
-  occlude_.use();
-  glDrawArrays(GL_TRIANGLES, 0, 3);
-
+  full_screen(occlude_, *raw_target_, projection, radius);
   raw_->bind(1);
-  blur_.set("u_depth", 0);
   blur_.set("u_occlusion", 1);
-  blur_.set("u_inverse_projection", glm::inverse(projection));
-  blur_.set("u_viewport", viewport);
-  blur_.set("u_radius", radius);
-  blurred_target_->bind();
-  blur_.use();
-  glDrawArrays(GL_TRIANGLES, 0, 3);
+  full_screen(blur_, *blurred_target_, projection, radius);
   glBindVertexArray(0);
   glEnable(GL_DEPTH_TEST);
   glBindFramebuffer(GL_FRAMEBUFFER, GLuint(previous_framebuffer_));

@@ -31,7 +31,9 @@ class AmbientOcclusion {
   void bind_result() const;  // at kOcclusionUnit
 
  private:
-  std::filesystem::path shaders_;
+  // Draws `prog` over the whole of `target`, reading the depth pre-pass at unit 0.
+  void full_screen(gl::Program& prog, const gl::Framebuffer& target, const glm::mat4& projection, float radius);
+
   gl::Program occlude_, blur_;
   gl::VertexArray empty_{"full-screen triangle"};
   int width_ = 0, height_ = 0;

@@ -1,8 +1,8 @@
 // Milliseconds per pass of one drawn frame: GL timestamp queries at the passes' boundaries
 // where the driver has a GPU timer (read a frame late, so nothing waits), else (llvmpipe,
-// whose timestamps are not the rasterizer's) glFinish and a steady clock at each boundary. Timestamps, not
-// GL_TIME_ELAPSED, because the viewer times the whole draw with one of those around it and
-// such queries do not nest.
+// whose timestamps are not the rasterizer's) glFinish and a steady clock at each boundary.
+// Timestamps, not GL_TIME_ELAPSED, because spans nest (the viewer times the simulation and the
+// whole draw, the renderer each of its passes inside it) and elapsed-time queries do not.
 #pragma once
 
 #include <glad/gl.h>

@@ -84,6 +84,7 @@ Renderer::Renderer(const std::filesystem::path& root, const Scene& scene, const 
       bumps_height_(gl::Texture::load_2d(root / "textures" / "height_bumps.png", options.filtering)),
       sky_(load_cube(root / "textures", options.filtering)),
       scene_size_(cloth_extent(model)), shadow_map_size_(options.shadow_map_size) {
+  floor_half_ = 3.f * scene_size_;  // big enough to look endless around the cloth
   cloth_ = make_indexed(cloth_triangle_indices(model));
   // The cloth's static per-vertex extras: uv, and in zw the particles whose difference is the
   // tangent along +u (ClothModel::tangent_ends), as floats (exact below 2^24).
@@ -104,10 +105,10 @@ Renderer::Renderer(const std::filesystem::path& root, const Scene& scene, const 
   for (auto& p : model.initial) centre += p;
   centre /= double(model.count());
   for (auto& pl : scene.planes) {
-    // A square around the cloth's shadow on the plane, big enough to look endless.
+    // A square around the cloth's shadow on the plane.
     const glm::dvec3 foot = centre - pl.normal * glm::dot(centre - pl.point, pl.normal);
     plane_built_.emplace_back(pl.point);
-    planes_.push_back(make_mesh(plane_mesh(glm::vec3(foot), glm::vec3(pl.normal), 3.f * scene_size_)));
+    planes_.push_back(make_mesh(plane_mesh(glm::vec3(foot), glm::vec3(pl.normal), floor_half_)));
   }
   for (size_t k = 0; k < scene.meshes.size(); ++k) {
     const MeshColliderParams& p = scene.meshes[k];
@@ -126,7 +127,6 @@ Renderer::Renderer(const std::filesystem::path& root, const Scene& scene, const 
   for (auto& sp : scene.spheres) lowest = std::min(lowest, sp.origin.y - sp.radius);
   for (auto& box : mesh_boxes_) lowest = std::min(lowest, double(box.first.y));
   floor_height_ = float(lowest) - 0.02f * scene_size_;
-  floor_half_ = 3.f * scene_size_;
   if (scene.planes.empty())
     floor_ = make_mesh(plane_mesh(glm::vec3(float(centre.x), floor_height_, float(centre.z)), glm::vec3(0, 1, 0), floor_half_));
   no_extras_.allocate(sizeof(layout::MeshVertex));
@@ -265,10 +265,10 @@ void Renderer::draw_objects(gl::Program& prog, const gl::Buffer& positions, cons
       // Fine lines a power of ten apart, some 10 to 100 across the cloth: 10 cm under a 1 m cloth.
       prog.set("u_grid", std::pow(10.f, std::floor(std::log10(scene_size_)) - 1.f));
     }
+    const glm::vec4 floor_colour = wire ? glm::vec4(0.4f, 0.4f, 0.4f, 1.f) : glm::vec4(0.3f, 0.31f, 0.33f, 1.f);
     if (look.show_planes)
-      for (size_t k = 0; k < planes_.size(); ++k)
-        draw_collider(*planes_[k], plane_now_[k] - plane_built_[k], wire ? glm::vec4(0.4f, 0.4f, 0.4f, 1.f) : glm::vec4(0.3f, 0.31f, 0.33f, 1.f));
-    if (floor_drawn) draw_collider(*floor_, glm::vec3(0.f), wire ? glm::vec4(0.4f, 0.4f, 0.4f, 1.f) : glm::vec4(0.3f, 0.31f, 0.33f, 1.f));
+      for (size_t k = 0; k < planes_.size(); ++k) draw_collider(*planes_[k], plane_now_[k] - plane_built_[k], floor_colour);
+    if (floor_drawn) draw_collider(*floor_, glm::vec3(0.f), floor_colour);
     if (shade) prog.set("u_is_floor", 0);
     glDisable(GL_POLYGON_OFFSET_FILL);
   }

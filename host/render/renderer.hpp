@@ -136,7 +136,8 @@ class Renderer {
   bool timing_ = false;
   RenderTimes times_;
   std::unique_ptr<Mesh> floor_;  // Appearance::floor (scenes without a plane)
-  float floor_height_ = 0, floor_half_ = 1;
+  float floor_height_ = 0;
+  float floor_half_ = 0;  // half the side of every drawn plane and of the floor: 3 scene sizes
   std::vector<float> sphere_radii_;
   std::vector<std::pair<glm::vec3, glm::vec3>> mesh_boxes_;  // as built
   std::unique_ptr<Mesh> cloth_;

@@ -15,8 +15,8 @@
 #include <imgui.h>
 
 #include "contacts.hpp"
+#include "context.hpp"
 #include "output_file.hpp"
-#include "frame_timer.hpp"
 #include "glfw_window.hpp"
 #include "gpu_simulator.hpp"
 #include "png.hpp"
@@ -75,9 +75,10 @@ class Viewer {
       handle_requests();
       if (!st_.paused || st_.step_once) {
         if (grab_.active()) session_.sim->hold_particle(grab_.particle, grab_target_);
-        sim_timer_.begin();
+        sim_timer_.mark(0);
         session_.sim->step_frame();
-        st_.stats.sim_ms = sim_timer_.end();
+        sim_timer_.mark(1);
+        st_.stats.sim_ms = sim_timer_.finish()[0];
         st_.step_once = false;
         ++frames_done;
       }
@@ -108,11 +109,12 @@ class Viewer {
     st_.camera.aspect = h > 0 ? float(w) / float(h) : 1.f;
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glViewport(0, 0, w, h);
-    render_timer_.begin();
+    render_timer_.mark(0);
     // Keyframed (or alt-dragged) colliders are drawn where the simulation has them now.
     session_.renderer->place_colliders(session_.sim->constants());
     session_.renderer->draw(session_.sim->positions(), session_.sim->normals(), st_.camera, st_.look);
-    st_.stats.render_ms = render_timer_.end();
+    render_timer_.mark(1);
+    st_.stats.render_ms = render_timer_.finish()[0];
     st_.stats.passes = session_.renderer->times();
     st_.stats.gpu_timers = sim_timer_.uses_queries();
     st_.stats.dispatches_per_frame = session_.sim->dispatches_per_substep() * st_.scene.simulation.simulation_steps +
@@ -204,7 +206,8 @@ class Viewer {
   std::unique_ptr<GlfwWindow> window_;
   ViewerState st_;
   Session session_;
-  FrameTimer sim_timer_, render_timer_;
+  // The renderer's pass clock, one span each (GL timestamps on a GPU, glFinish and a clock on llvmpipe).
+  PassClock<1> sim_timer_{gl::gl_renderer_is_llvmpipe()}, render_timer_{gl::gl_renderer_is_llvmpipe()};
   Grab grab_;
   glm::vec3 grab_target_{0};
   // Alt-drag of a sphere or a mesh collider: its origin (and keyframes) follow the mouse in the
