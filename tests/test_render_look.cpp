@@ -37,7 +37,7 @@ struct FloorStage {
     stage.camera.look_from({0.15f, 1.6f, 0.03f}, {0.15f, 1.f, 0.15f});
   }
   float floor_y() const { return 1.f - gap; }
-  glm::vec3 light() const { return stage.renderer.light_position(stage.camera); }
+  glm::vec3 light() const { return stage.renderer.light_position(stage.camera, Appearance{}); }
   // The floor's shadow of the cloth's -z edge (z = 0), by similar triangles from the light.
   float shadow_edge_z() const {
     const glm::vec3 l = light();
@@ -160,7 +160,7 @@ TEST_CASE("shadows put no pixel-scale acne on the lit side of a cloth draped ove
   Appearance normal = Appearance::classic(ShaderKind::Normal);
   normal.show_spheres = false;
   const Image normals = stage.draw(normal);
-  const glm::vec3 l = glm::normalize(stage.renderer.light_position(stage.camera) - glm::vec3(0.5f, 0.3f, 0.5f));
+  const glm::vec3 l = glm::normalize(stage.renderer.light_position(stage.camera, Appearance{}) - glm::vec3(0.5f, 0.3f, 0.5f));
   std::vector<glm::ivec2> lit;
   for (int y = 1; y + 1 < normals.h; ++y)
     for (int x = 1; x + 1 < normals.w; ++x) {

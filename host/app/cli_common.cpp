@@ -4,6 +4,8 @@
 
 #include <fmt/format.h>
 
+#include "checkpoint.hpp"
+
 namespace clothsim {
 
 void SceneOptions::add_to(CLI::App& cmd, bool positional_required) {
@@ -20,6 +22,28 @@ BackendKind parse_backend(const std::string& name) {
   if (name == "cpu") return BackendKind::Cpu;
   if (name == "gpu") return BackendKind::Gpu;
   throw ExitError(kExitBadInput, fmt::format("--backend: expected gpu or cpu, got '{}'", name));
+}
+
+// Reads and checks --load-state, then hands it to the backend; every failure is exit 2.
+int64_t load_state(const std::string& path, const Scene& scene, const ClothModel& model, Backend& backend) {
+  try {
+    const Checkpoint c = read_checkpoint(path);
+    check_fits(c, path, scene, model, backend.scalar_bytes(), backend.name());
+    backend.load_state(c.state);
+    fmt::print("loaded {}: frame {} ({:.4g} s simulated), saved by backend {} from {}\n", path, c.state.frame,
+               c.state.time, c.backend, c.scene);
+    // The displacements are per substep: another substep length rescales them (the cloth keeps
+    // its velocity); a version-1 file did not record its length, so it is taken as this one.
+    if (c.state.dt == 0)
+      fmt::print("  (a version-1 state, which does not record its substep length: taken as this scene's {:.6g} s)\n",
+                 scene.dt());
+    else if (c.state.dt != scene.dt())
+      fmt::print("  saved with substeps of {:.6g} s, this scene's are {:.6g} s: displacements scaled by {:.6g}\n",
+                 c.state.dt, scene.dt(), scene.dt() / c.state.dt);
+    return c.state.frame;
+  } catch (const CheckpointError& e) {
+    throw ExitError(kExitBadInput, fmt::format("--load-state {}", e.what()));
+  }
 }
 
 Progress::Progress(std::string label, int total)

@@ -39,6 +39,10 @@ std::unique_ptr<Backend> make_backend(BackendKind kind, const Scene& scene, cons
 // A headless GL 4.3 context, or ExitError with exit code 3 and what to do.
 std::unique_ptr<gl::GlContext> require_headless_context();
 
+// Reads and checks the state file of --load-state, loads it into the backend and returns its
+// frame; every failure is ExitError with exit code 2.
+int64_t load_state(const std::string& path, const Scene& scene, const ClothModel& model, Backend& backend);
+
 // "frame 120/300  45.1 frames/s  ETA 4 s" on one refreshed line of a terminal; silent when
 // stderr is not a TTY so logs and pipes stay clean.
 class Progress {

@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
   add_validate_command(app, run);
   add_render_command(app, run);
   add_bench_command(app, run);
+  add_static_command(app, run);
 #ifdef CLOTHSIM_WITH_VIEWER
   add_viewer_options(app, run);
 #else

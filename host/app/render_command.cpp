@@ -1,12 +1,13 @@
 // `clothsim render SCENE --frames N --out DIR|FILE.png|FILE.mp4|FILE.gif [--shader NAME] [--size WxH]
 // [--samples N] [--exposure E] [--every K] [--fps F] [--shadows on|off] [--ao on|off] [--studio on|off]
-// [--floor] [--back-tint R,G,B] [--stats]`: simulates and draws headless (EGL, an
-// offscreen multisampled framebuffer), frame by frame.
+// [--floor] [--back-tint R,G,B] [--light X,Y,Z] [--load-state FILE] [--stats]`: simulates and draws
+// headless (EGL, an offscreen multisampled framebuffer), frame by frame.
 #include <cstdio>
 #include <optional>
 #include <regex>
 
 #include <fmt/format.h>
+#include <glm/geometric.hpp>
 
 #include "cli_common.hpp"
 #include "commands.hpp"
@@ -30,12 +31,15 @@ struct Opts {
   std::string shadows = "on", occlusion = "on", studio = "on";
   bool floor = false, stats = false;
   std::vector<float> back_tint{0.7f, 0.78f, 0.95f};
+  std::vector<float> light;  // empty: Appearance's default
+  std::string load_path;     // --load-state: continue a saved run
 };
 
 // The cloth buffers to draw: the GPU simulator's own, or CPU results uploaded per frame
 // (--backend cpu, for comparison).
 struct FrameSource {
-  std::optional<GpuSimulator> gpu;
+  // The GPU backend without a context of its own: it shares the renderer's.
+  std::optional<GpuBackend> gpu;
   std::optional<CpuBackend<double>> cpu;
   gl::Buffer cpu_positions{"cpu positions"}, cpu_normals{"cpu normals"};
 
@@ -49,11 +53,12 @@ struct FrameSource {
   }
   // This frame's divergence check. Waiting for it costs nothing here: reading the image back
   // waits for the frame anyway.
-  std::vector<FrameCheck> take_checks() { return gpu ? gpu->divergence().take(true) : cpu->take_checks(true); }
+  std::vector<FrameCheck> take_checks() { return gpu ? gpu->take_checks(true) : cpu->take_checks(true); }
   // Keyframed colliders move with the simulated time: draw them where this frame left them.
-  void place_colliders(Renderer& r) const { gpu ? r.place_colliders(gpu->constants()) : r.place_colliders(cpu->constants()); }
-  const gl::Buffer& positions() const { return gpu ? gpu->positions() : cpu_positions; }
-  const gl::Buffer& normals() const { return gpu ? gpu->normals() : cpu_normals; }
+  void place_colliders(Renderer& r) const { gpu ? r.place_colliders(gpu->simulator().constants()) : r.place_colliders(cpu->constants()); }
+  const gl::Buffer& positions() const { return gpu ? gpu->simulator().positions() : cpu_positions; }
+  const gl::Buffer& normals() const { return gpu ? gpu->simulator().normals() : cpu_normals; }
+  Backend& backend() { return gpu ? static_cast<Backend&>(*gpu) : *cpu; }
 };
 
 int run_render(const Opts& o) {
@@ -71,6 +76,14 @@ int run_render(const Opts& o) {
     throw ExitError(kExitBadInput, fmt::format("--every {}: more than --frames {}, so no frame would be kept", o.every, o.frames));
   if (o.camera.size() != 0 && o.camera.size() != 6)
     throw ExitError(kExitBadInput, "--camera: expected six numbers: eye x,y,z then target x,y,z");
+  Appearance look;
+  if (!o.light.empty()) {
+    const glm::vec3 l(o.light[0], o.light[1], o.light[2]);
+    if (!(glm::length(l) > 1e-6f))
+      throw ExitError(kExitBadInput, "--light: expected a direction X,Y,Z from the target to the light, not 0,0,0");
+    // Only the direction is the user's: the light stays as far away as the default one.
+    look.light = glm::normalize(l) * glm::length(look.light);
+  }
 
   const Scene scene = o.scene.load();
   const double fps = o.fps > 0 ? o.fps : scene.simulation.frames_per_sec / o.every;
@@ -87,13 +100,13 @@ int run_render(const Opts& o) {
   }
 
   FrameSource source;
-  if (kind == BackendKind::Gpu) source.gpu.emplace(scene, model, root / "compute");
+  if (kind == BackendKind::Gpu) source.gpu.emplace(nullptr, scene, model, root / "compute");
   else source.cpu.emplace(scene, model);
+  if (!o.load_path.empty()) load_state(o.load_path, scene, model, source.backend());
   Renderer renderer(root, scene, model, {o.lat, o.lon});
   OrbitCamera camera = default_camera(scene, model, float(w) / float(h));
   if (o.camera.size() == 6)
     camera.look_from({o.camera[0], o.camera[1], o.camera[2]}, {o.camera[3], o.camera[4], o.camera[5]});
-  Appearance look;
   look.shader = *shader;
   look.exposure = o.exposure;
   look.shadows = o.shadows == "on";
@@ -195,6 +208,10 @@ void add_render_command(CLI::App& app, std::function<int()>& run) {
       ->expected(3)
       ->check(CLI::Range(0.f, 4.f))
       ->capture_default_str();
+  cmd->add_option("--light", o->light, "direction X,Y,Z from the camera's target to the key light (world axes)")
+      ->delimiter(',')
+      ->expected(3);
+  cmd->add_option("--load-state", o->load_path, "start from a state saved by simulate --save-state (--frames more)");
   cmd->add_flag("--stats", o->stats, "time the drawing's passes and print their mean per frame");
   cmd->add_option("-r,--root", o->root, "project root (shaders/, compute/, textures/)");
   cmd->callback([o, &run] { run = [o] { return run_render(*o); }; });

@@ -188,6 +188,7 @@ class GpuBackend final : public Backend {
   int scalar_bytes() const override { return int(sizeof(float)); }
   double time() const override { return sim_->time(); }
   GpuSimulator& simulator() { return *sim_; }
+  const GpuSimulator& simulator() const { return *sim_; }
 
  private:
   std::unique_ptr<gl::GlContext> context_;

@@ -167,8 +167,8 @@ void Renderer::draw_mesh(const Mesh& mesh, gl::Program& prog, bool lines, GLsize
   glBindVertexArray(0);
 }
 
-glm::vec3 Renderer::light_position(const OrbitCamera& camera) const {
-  return camera.target + glm::vec3(0.6f, 1.4f, 0.9f) * std::max(camera.distance, scene_size_);
+glm::vec3 Renderer::light_position(const OrbitCamera& camera, const Appearance& look) const {
+  return camera.target + look.light * std::max(camera.distance, scene_size_);
 }
 
 std::pair<glm::vec3, glm::vec3> Renderer::collider_box(const Appearance& look) const {
@@ -290,7 +290,7 @@ void Renderer::draw(const gl::Buffer& positions, const gl::Buffer& normals, cons
   // A light above, behind and to the side of the camera: irradiance 0.8 at the target. Cloth
   // nearer to it gets more, which the tone map rolls off instead of clipping.
   const glm::vec3 eye = camera.eye();
-  const glm::vec3 light = light_position(camera);
+  const glm::vec3 light = light_position(camera, look);
   const float d2 = glm::dot(light - camera.target, light - camera.target);
 
   // The shadow pass: the casters from the light, into a map fitted to them this frame.

@@ -47,6 +47,10 @@ struct Appearance {
   bool studio = true;
   bool floor = false;  // a studio floor under a scene that has no plane (drawn only: it does not collide)
   glm::vec3 back_tint{0.7f, 0.78f, 0.95f};  // multiplies the albedo of the cloth's back; (1, 1, 1): no tint
+  // Where the key light stands: the camera's target plus this times the larger of the camera's
+  // distance and the scene's size (world axes). The default is above, to the right of and in
+  // front of the target; a raking light (small z, large x) shows shallow pleats (--light).
+  glm::vec3 light{0.6f, 1.4f, 0.9f};
 
   // The classic app's look: one unshadowed light, a flat background, both sides alike.
   static Appearance classic(ShaderKind shader = ShaderKind::Phong) {
@@ -103,7 +107,7 @@ class Renderer {
   void set_timing(bool on) { timing_ = on; }
   const RenderTimes& times() const { return times_; }
   // The key light for `camera`: above, behind and to the side of its target.
-  glm::vec3 light_position(const OrbitCamera& camera) const;
+  glm::vec3 light_position(const OrbitCamera& camera, const Appearance& look) const;
   // The shadow map of the last draw with shadows (null before one): for tests.
   const ShadowMap* shadow_map() const { return shadow_.get(); }
   // Where the studio floor of a scene without a plane lies (Appearance::floor): y, m.
