@@ -7,6 +7,7 @@
 #include "cli_common.hpp"
 #include "commands.hpp"
 #include "diagnostics.hpp"
+#include "divergence.hpp"
 #include "static_solve.hpp"
 
 namespace clothsim {
@@ -30,11 +31,11 @@ int run_static(const Opts& o) {
     // Colliders, wind or self-collision: what the solve leaves out is the scene's, so exit 2.
     throw ExitError(kExitBadInput, fmt::format("{}: {}", scene.source, e.what()));
   }
-  ClothSnapshot snap;
-  for (int i = 0; i < model.count(); ++i) {
-    snap.pos.emplace_back(eq.pos[size_t(i)], model.pinned[size_t(i)] ? 0.0 : 1.0 / model.mass[size_t(i)]);
-    snap.disp.emplace_back(0.0);
-  }
+  // At rest (no displacement), with normals for the OBJ: the divergence guard's snapshot of positions.
+  std::vector<glm::dvec4> pos;
+  for (int i = 0; i < model.count(); ++i)
+    pos.emplace_back(eq.pos[size_t(i)], model.pinned[size_t(i)] ? 0.0 : 1.0 / model.mass[size_t(i)]);
+  const ClothSnapshot snap = snapshot_of_positions(model, pos);
   const ClothStats st = measure(scene, model, snap);
   fmt::print("newton steps      {}\n", eq.iterations);
   fmt::print("largest net force {:.3g} N (tolerance {:.3g} N)\n", eq.residual, o.tolerance);

@@ -287,7 +287,8 @@ void Renderer::draw(const gl::Buffer& positions, const gl::Buffer& normals, cons
   glEnable(GL_MULTISAMPLE);
   const bool lit = is_lit(look.shader);
   const bool shadows = lit && look.shadows, occlusion = lit && look.ambient_occlusion;
-  // A light above, behind and to the side of the camera: irradiance 0.8 at the target. Cloth
+  // The key light (Appearance::light, by default above, right of and in front of the target):
+  // irradiance 0.8 at the target. Cloth
   // nearer to it gets more, which the tone map rolls off instead of clipping.
   const glm::vec3 eye = camera.eye();
   const glm::vec3 light = light_position(camera, look);

@@ -106,7 +106,7 @@ class Renderer {
   // Times every draw's passes from now on (off: no timing, nothing waits).
   void set_timing(bool on) { timing_ = on; }
   const RenderTimes& times() const { return times_; }
-  // The key light for `camera`: above, behind and to the side of its target.
+  // The key light for `camera`: where `look.light` puts it from the camera's target.
   glm::vec3 light_position(const OrbitCamera& camera, const Appearance& look) const;
   // The shadow map of the last draw with shadows (null before one): for tests.
   const ShadowMap* shadow_map() const { return shadow_.get(); }
