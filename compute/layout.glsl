@@ -63,6 +63,11 @@ using uint = uint32_t;
 #define BINDING_MULTIPLIERS 25
 #define BINDING_MESHES 26  // MeshCollider[] (the passes read them through TEXTURE_MESHES)
 #define BINDING_SDF 27     // float per field node, every mesh collider's field in turn
+// The multigrid solver's scratch (docs/model.md, host/core/hierarchy.hpp), vec4 each.
+#define BINDING_MG_RESIDUALS 28  // per particle its residual force (w its mass), then per coarse vertex its coarse residual (w the mass it stands for)
+#define BINDING_MG_OFFSET 29     // per particle: xyz its move since the prediction (x - y)
+#define BINDING_MG_RHS 30        // per coarse vertex: xyz the restricted force, w the mass it stands for
+#define BINDING_MG_CORR 31       // per coarse vertex: xyz its correction
 // Texture units of the read-only texel views (GL_TEXTURE_BUFFER) of the simulation's buffers,
 // through which the hot passes read (compute/particle_views.glsl says why). Above the units
 // the renderer uses (0-2: fabric, height map, sky), so drawing a frame leaves them bound.
@@ -86,6 +91,12 @@ using uint = uint32_t;
 #define TEXTURE_MULTIPLIERS 24       // RGBA32F, per spring: BINDING_MULTIPLIERS, read by predict and the sweep
 #define TEXTURE_MESHES 25            // RGBA32F, MESH_TEXELS per MeshCollider
 #define TEXTURE_SDF 26               // R32F, one texel per field node (BINDING_SDF)
+// The multigrid hierarchy (Hierarchy in host/core/hierarchy.hpp), static over a run, and one view of its scratch.
+#define TEXTURE_MG_VERTICES 27       // RGBA32UI, per coarse vertex + 1: x its particle, y its first child, z its first parent, w its first spring (entries of TEXTURE_MG_LISTS)
+#define TEXTURE_MG_LISTS 28          // RGBA32UI, MultigridEntry: the children, then the parents, the springs, the particles' parents
+#define TEXTURE_MG_FINE 29           // R32UI, per particle + 1: its first parent (an entry of TEXTURE_MG_LISTS)
+#define TEXTURE_MG_ORDER 30          // R32UI: the particles by colour, then every level's coarse vertices by colour
+#define TEXTURE_MG_CORR 31           // RGBA32F, per coarse vertex: BINDING_MG_CORR, read by its neighbours
 // RGBA32F texels per struct in the views above: member m of element k is texel
 // k * STRUCT_TEXELS + m (tests/test_gpu_layout.cpp checks these against the std430 strides).
 #define MATERIAL_TEXELS 2
@@ -105,6 +116,13 @@ using uint = uint32_t;
 // (type as SpringType: 0 structural, 1 shearing, 2 bending).
 struct SpringTexel {
   uvec4 ends_rest_code;
+};
+
+// One entry of the multigrid hierarchy's lists: x an index (a child's residual, a parent, a
+// spring's other end), y a weight's float bits (a child's, a parent's) or a spring's rest
+// length's, z a spring's stiffness's bits.
+struct MultigridEntry {
+  uvec4 index_weight;
 };
 
 // One cloth's material (MaterialC in host/core/reference.hpp).
@@ -190,7 +208,8 @@ struct ShadowFrame {
   F(uint, bounded_contact)     /* 1 = xpbd's self-contact (docs/model.md) */               \
   F(float, max_step)           /* m, predict's displacement limit per substep (0: none) */ \
   F(uint, coulomb_friction)    /* 1 = contacts take Coulomb friction (xpbd), 0 the CS184 blend */ \
-  F(uint, mesh_count)          /* MeshCollider entries in use */
+  F(uint, mesh_count)          /* MeshCollider entries in use */                         \
+  F(float, inv_dt2)            /* 1/s^2, 1 / dt^2: a mass's inertia per kg (multigrid) */
 #define STEP_PARAMS_DECLARE(type, name) type name;
 // std140 rounds the block's size up to 16 bytes; alignas makes sizeof agree.
 STRUCT_ALIGN16 StepParams { STEP_PARAMS_FIELDS(STEP_PARAMS_DECLARE) };

@@ -132,7 +132,14 @@ template <class R> Constants<R> make_constants(const Scene& scene, const ClothMo
   }
   // From the scene, so a live density edit takes effect.
   for (double m : particle_masses(scene, model)) c.mass.push_back(R(m));
-  c.xpbd = sp.solver == Solver::Xpbd;
+  c.xpbd = sp.solver == Solver::Xpbd || sp.solver == Solver::Multigrid;
+  c.multigrid = sp.solver == Solver::Multigrid;
+  c.inv_dt2 = R(1.0 / (dt * dt));
+  if (c.multigrid) {
+    std::vector<double> ks;
+    for (const ClothParams* k : scene.cloths()) ks.push_back(k->ks);
+    c.hierarchy = std::make_shared<const Hierarchy>(build_hierarchy(model, ks));
+  }
   c.tether_limit = R(1.0 + sp.tether_stretch);
   c.iterations = sp.constraint_iterations;
   c.self_collision = sp.self_collision;

@@ -13,6 +13,7 @@
 #include <glm/vec4.hpp>
 
 #include "cloth.hpp"
+#include "hierarchy.hpp"
 #include "scene.hpp"
 #include "spatial_hash.hpp"
 
@@ -108,7 +109,13 @@ template <class R> struct Constants {
   std::vector<R> mass;  // kg, per particle (particle_masses: follows a live density edit)
   int iterations;
   bool self_collision;
-  bool xpbd;            // simulation.solver
+  // simulation.solver: xpbd for both position-based solvers (they share predict, the bounded
+  // self-contact and Coulomb friction); multigrid for the multigrid one, whose solve replaces
+  // xpbd's sweep (docs/model.md) and whose hierarchy (hierarchy.hpp) is built once here.
+  bool xpbd;
+  bool multigrid = false;
+  R inv_dt2 = 0;        // 1 / dt^2, the inertia of a mass per kg in the multigrid solve
+  std::shared_ptr<const Hierarchy> hierarchy;
   std::vector<SphereC<R>> spheres;
   std::vector<PlaneC<R>> planes;
   std::vector<MeshC<R>> meshes;
@@ -153,6 +160,12 @@ template <class R> struct State {
   // them as the springs' forces of the last substep, the sweep starts from them (docs/model.md,
   // "Warm-started multipliers"). Zero at the start and for the classic solver.
   std::vector<Vec4<R>> lambda;
+  // The multigrid solve's scratch (reference_multigrid.cpp), sized on first use. residual: per
+  // particle the residual force (w: its mass), then per coarse vertex (at particle count + its
+  // global index) the coarse residual (w: the mass it stands for); offset: per particle x - y,
+  // its move since the prediction; per coarse vertex the restricted force (w: the mass) and
+  // the correction.
+  std::vector<Vec4<R>> residual, offset, coarse_rhs, coarse_corr;
 };
 
 template <class R> State<R> initial_state(const ClothModel& model);
@@ -202,6 +215,22 @@ template <class R> void predict(const ClothModel& m, const Constants<R>& c, Stat
 template <class R> void solve_distance_constraint_colour(const ClothModel& m, const Constants<R>& c, int colour, State<R>& s);
 template <class R> void solve_distance_constraints(const ClothModel& m, const Constants<R>& c, State<R>& s);
 
+// The multigrid solver (docs/model.md, "One substep (multigrid solver)"), after predict and the
+// contacts: compute_residuals (the springs' force on every mass), then a V-cycle over the
+// hierarchy's levels (restrict_residuals, smooth_corrections colour by colour,
+// compute_coarse_residuals on the way down; prolong_corrections, smooth_corrections on the way
+// up), prolong_to_cloth, and relax_vertices colour by colour. solve_multigrid runs them in order.
+inline constexpr int kLevelSweeps = 1;     // Gauss-Seidel sweeps per level, down and up
+inline constexpr int kCoarsestSweeps = 4;  // on the coarsest level
+template <class R> void compute_residuals(const ClothModel& m, const Constants<R>& c, State<R>& s);
+template <class R> void restrict_residuals(const Constants<R>& c, int level, State<R>& s);
+template <class R> void smooth_corrections(const Constants<R>& c, int level, int colour, State<R>& s);
+template <class R> void compute_coarse_residuals(const Constants<R>& c, int level, State<R>& s);
+template <class R> void prolong_corrections(const Constants<R>& c, int level, State<R>& s);
+template <class R> void prolong_to_cloth(const ClothModel& m, const Constants<R>& c, State<R>& s);
+template <class R> void relax_vertices(const ClothModel& m, const Constants<R>& c, int colour, State<R>& s);
+template <class R> void solve_multigrid(const ClothModel& m, const Constants<R>& c, State<R>& s);
+
 // One substep: the pass list of DESIGN.md §1, or of docs/model.md for xpbd.
 template <class R> void step(const ClothModel& m, const Constants<R>& c, State<R>& s) {
   if (c.wind.enabled) compute_wind_forces(m, c, s);  // advance or predict add them
@@ -209,7 +238,8 @@ template <class R> void step(const ClothModel& m, const Constants<R>& c, State<R
     predict(m, c, s);
     if (c.self_collision) collide_self(c, s);
     collide_objects(c, s);
-    solve_distance_constraints(m, c, s);
+    if (c.multigrid) solve_multigrid(m, c, s);
+    else solve_distance_constraints(m, c, s);
     return;
   }
   advance(m, c, s);

@@ -61,7 +61,7 @@ void visit_cloths(Scene& s, const ParamInfo& info, ParamVisitor& v) {
   v.list(info, l);
 }
 
-const char* const kSolvers[] = {"classic", "xpbd"};
+const char* const kSolvers[] = {"classic", "xpbd", "multigrid"};
 const char* const kMassLumpings[] = {"area", "uniform"};
 
 const ParamInfo kFriction{.key = "friction", .required = true, .lo = 0, .hi = 1,
@@ -251,7 +251,9 @@ const Param<SimulationParams> kSimulation[] = {
                                             .widget = kCheckbox}),
     row<&SimulationParams::solver>({.key = "solver",
                                     .meaning = "classic: mass-spring + Verlet + Provot (CS184); xpbd: springs as XPBD "
-                                               "distance constraints, one iteration per substep (docs/model.md)",
+                                               "distance constraints, one iteration per substep; multigrid: implicit "
+                                               "Euler, a coarse-grid correction and a vertex sweep per substep, as stiff "
+                                               "at any resolution (docs/model.md)",
                                     .widget = {.style = Widget::Drag},  // a combo box
                                     .choices = kSolvers}),
     row<&SimulationParams::tether_stretch>(

@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "gpu_memory.hpp"
+#include "gpu_multigrid.hpp"
 
 namespace clothsim {
 namespace {
@@ -78,6 +79,7 @@ layout::StepParams make_step_params(const Constants<float>& c, const ClothModel&
   p.gust_inv_length3 = w.gust_inv_length3;
   p.pins_moving = c.moving_pins();
   p.coulomb_friction = c.xpbd;
+  p.inv_dt2 = c.inv_dt2;
   p.pin_offset = glm::vec3(c.pin_offset.x, c.pin_offset.y, c.pin_offset.z);
   return p;
 }
@@ -130,6 +132,7 @@ GpuSimulator::GpuSimulator(const Scene& scene, const ClothModel& model, const st
   sorted_positions_.allocate(n * sizeof(glm::vec4));
   normals_.allocate(n * sizeof(glm::vec4));
   upload(initial_state<float>(model));  // attaches the views
+  ensure_multigrid();
   compute_normals();
 }
 
@@ -216,7 +219,7 @@ size_t GpuSimulator::memory_bytes() const {
                               &particles_, &materials_, &corner_start_, &corner_triangles_, &triangles_, &rest_positions_,
                               &multipliers_, &meshes_, &sdf_})
     total += b->size();
-  return total + scan_.memory_bytes() + guard_.memory_bytes();
+  return total + scan_.memory_bytes() + guard_.memory_bytes() + multigrid_memory_bytes();
 }
 
 void GpuSimulator::bind_all() const {
@@ -256,6 +259,7 @@ void GpuSimulator::bind_all() const {
   meshes_view_.bind(TEXTURE_MESHES);
   sdf_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_SDF);
   sdf_view_.bind(TEXTURE_SDF);
+  bind_multigrid();
 }
 
 void GpuSimulator::attach_views() {

@@ -20,10 +20,13 @@
 
 namespace clothsim {
 
+struct GpuMultigrid;  // the multigrid solver's programs and buffers (gpu_multigrid.cpp)
+
 class GpuSimulator {
  public:
   // Needs a current GL 4.3 context. `compute_dir` holds the .comp files.
   GpuSimulator(const Scene& scene, const ClothModel& model, const std::filesystem::path& compute_dir);
+  ~GpuSimulator();
 
   // The passes, one dispatch each (the length constraint: one per colour and iteration),
   // each named like its .comp file and its CPU twin in host/core/reference.hpp. step() runs
@@ -44,6 +47,23 @@ class GpuSimulator {
   void predict(bool then_collide_objects = false);
   void solve_distance_constraint_colour(int colour);
   void solve_distance_constraints();
+  // The multigrid solver's passes (docs/model.md; gpu_multigrid.cpp): step() runs predict,
+  // [collide_self], then solve_multigrid: compute_residuals, the V-cycle (restrict_residuals,
+  // smooth_corrections per colour, compute_coarse_residuals down; prolong_corrections,
+  // smooth_corrections up), prolong_to_cloth, relax_vertices per colour. Levels count from 0,
+  // the first coarse one (Hierarchy::levels).
+  void compute_residuals();
+  void restrict_residuals(int level);
+  void smooth_corrections(int level, int colour);
+  void compute_coarse_residuals(int level);
+  void prolong_corrections(int level);
+  void prolong_to_cloth();
+  void relax_vertices(int colour);
+  void solve_multigrid();
+  int multigrid_dispatches() const;  // of one solve_multigrid
+  // The multigrid scratch (State::residual, offset, coarse_rhs, coarse_corr), for the pass checks.
+  void download_multigrid(State<float>& state);
+  void upload_multigrid(const State<float>& state);
 
   // The stages of collide_self, named like their shaders and CPU twins (spatial_hash.hpp).
   void count_cells();
@@ -105,6 +125,12 @@ class GpuSimulator {
   void upload_colliders();  // from constants_
   void upload_anchors();    // from constants_ (one dummy element without pinned_motion)
   void upload_rest_positions();  // Constants::rest (the bounded contact), or one dummy texel
+  // The multigrid solver's programs and hierarchy buffers, made (or re-uploaded after an edit
+  // rebuilt the hierarchy) before its first pass; nothing without the multigrid solver.
+  void ensure_multigrid();
+  void bind_multigrid() const;
+  size_t multigrid_memory_bytes() const;
+  void dispatch_range(gl::Program& program, uint32_t first, uint32_t count);
   // xpbd's carried multipliers, one per spring (missing ones zero, one dummy without springs).
   void upload_multipliers(std::vector<Vec4<float>> multipliers);
   void upload_model();      // the cloth model's lists (springs, gather, triangles, corners, tethers)
@@ -166,6 +192,7 @@ class GpuSimulator {
   ColourUniforms length_colour_, distance_colour_;
   PrefixScan scan_;
   GpuDivergenceGuard guard_;
+  std::unique_ptr<GpuMultigrid> multigrid_;
 };
 
 // The parameter block of a substep, from the same Constants<float> the reference uses.

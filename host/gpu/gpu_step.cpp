@@ -189,6 +189,7 @@ void GpuSimulator::step() {
   const bool colliders = constants_.has_colliders();
   // Moving colliders, pins and gusts: the small parameter upload of this substep's time.
   if (constants_.timeline.moves()) apply_substep_time();
+  ensure_multigrid();  // (after a live edit rebuilt the hierarchy) before the bindings
   bind_all();  // once: nothing in the step binds over these (swap_positions rebinds its two)
   {
   const ScopedFlag in_step(in_step_);
@@ -197,7 +198,8 @@ void GpuSimulator::step() {
   if (constants_.xpbd) {
     predict(objects_first);
     if (constants_.self_collision) collide_self(colliders);
-    solve_distance_constraints();
+    if (constants_.multigrid) solve_multigrid();
+    else solve_distance_constraints();
   } else {
     advance(objects_first);
     if (constants_.self_collision) collide_self(colliders);
@@ -211,7 +213,10 @@ std::string GpuSimulator::pass_list() const {
   std::string passes = constants_.wind.enabled ? "compute_wind_forces, " : "";
   passes += constants_.xpbd ? "predict" : "advance";
   if (constants_.self_collision) passes += ", collide_self (count_cells, scan_cells, fill_cells, sort_cells, resolve_self_contacts)";
-  passes += constants_.xpbd ? ", solve_distance_constraints" : ", solve_length_constraints";
+  passes += constants_.multigrid ? ", solve_multigrid (compute_residuals, restrict_residuals, smooth_corrections, "
+                                   "compute_coarse_residuals, prolong_corrections, prolong_to_cloth, relax_vertices)"
+             : constants_.xpbd   ? ", solve_distance_constraints"
+                                 : ", solve_length_constraints";
   return passes;
 }
 
@@ -249,6 +254,7 @@ int GpuSimulator::dispatches_per_substep() const {
   const int self = constants_.self_collision ? 4 + scan_.dispatches(table_size_) : 0;  // count, fill, sort, collide + scan
   // xpbd: predict, then one solve of every enabled colour; classic: advance, then the colours
   // once per constraint iteration; with wind, its pass first.
+  if (constants_.multigrid) return 1 + int(constants_.wind.enabled) + self + multigrid_dispatches();
   return 1 + int(constants_.wind.enabled) + self + (constants_.xpbd ? 1 : constants_.iterations) * enabled_colours;
 }
 

@@ -1,0 +1,36 @@
+// Reads positions (through the views); writes the residuals of the particles. One invocation
+// per particle, the multigrid solve's first pass (docs/model.md): right after the prediction
+// x = y, so the residual of the implicit step is the springs' force alone, summed in the gather
+// order; w its mass (0 for a pinned or held mass, which does not take part). The CPU twin is
+// compute_residuals in host/core/reference_multigrid.cpp.
+#include "layout.glsl"
+#include "common.glsl"
+#include "particle_views.glsl"
+
+layout(local_size_x = WORKGROUP_SIZE) in;
+layout(std430, binding = BINDING_MG_RESIDUALS) writeonly buffer Residuals { vec4 residual[]; };
+
+void main() {
+  int i = int(gl_GlobalInvocationID.x);
+  if (i >= int(particle_count())) return;
+  vec4 p = position_of(i);
+  if (p.w == 0.0) {
+    residual[i] = vec4(0.0);
+    return;
+  }
+  Material mat = material_of(i);
+  precise vec3 f = vec3(0.0);
+  uint first = texelFetch(gather_start_view, i).x, last = texelFetch(gather_start_view, i + 1).x;
+  for (uint g = first; g < last; ++g) {
+    uvec2 entry = texelFetch(gather_view, int(g)).xy;  // x: the other end | type << 30, y: rest bits
+    uint type = entry.x >> 30;
+    if (!type_enabled(mat, type)) continue;
+    precise vec3 e = position_of(int(entry.x & 0x3FFFFFFFu)).xyz - p.xyz;
+    float len = length3(e);
+    if (len > 0.0) {
+      precise float magnitude = stiffness(mat, type) * (len - uintBitsToFloat(entry.y)) * (1.0 / len);
+      f = f + e * magnitude;
+    }
+  }
+  residual[i] = vec4(f, mass_of(i));
+}

@@ -1,0 +1,32 @@
+// Reads positions and displacements (through the views) and the first level's corrections;
+// writes positions, displacements and the offsets. One invocation per particle: its parents'
+// corrections, weighted, moved by (x and d alike, x - d stays the previous position), and kept
+// as x - y for the sweep's inertia. The CPU twin is prolong_to_cloth in
+// host/core/reference_multigrid.cpp.
+#include "layout.glsl"
+#include "common.glsl"
+#include "multigrid.glsl"
+
+layout(local_size_x = WORKGROUP_SIZE) in;
+layout(std430, binding = BINDING_POSITIONS) writeonly buffer Positions { vec4 pos[]; };
+layout(std430, binding = BINDING_DISPLACEMENT) writeonly buffer Displacements { vec4 disp[]; };
+layout(std430, binding = BINDING_MG_OFFSET) writeonly buffer Offsets { vec4 offset[]; };
+
+void main() {
+  int i = int(gl_GlobalInvocationID.x);
+  if (i >= int(particle_count())) return;
+  vec4 p = position_of(i);
+  precise vec3 e = vec3(0.0);
+  if (p.w != 0.0) {
+    uint first = texelFetch(mg_fine_view, i).x, last = texelFetch(mg_fine_view, i + 1).x;
+    for (uint k = first; k < last; ++k) {
+      uvec4 q = mg_entry(k);  // x the parent, y its weight's bits
+      e = e + texelFetch(mg_corr_view, int(q.x)).xyz * uintBitsToFloat(q.y);
+    }
+  }
+  precise vec3 x = p.xyz + e;
+  precise vec3 d = displacement_of(i).xyz + e;
+  pos[i] = vec4(x, p.w);
+  disp[i] = vec4(d, 0.0);
+  offset[i] = vec4(e, 0.0);
+}

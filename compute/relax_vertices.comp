@@ -1,0 +1,69 @@
+// Reads positions and displacements (through the views) and the offsets; writes positions,
+// displacements and offsets of one colour of particles. One invocation per particle of the
+// colour (entries [u_first, u_first + u_count) of the order): a Newton step of the implicit
+// step's energy on the mass's 3x3 block, f = -m/dt^2 (x - y) + its springs' forces, H = m/dt^2 I
+// + their Hessians; then max_stretch as a hard limit and the colliders' push-out. No spring
+// joins two particles of a colour, so the writes never race with a read. The CPU twin is
+// relax_vertices in host/core/reference_multigrid.cpp.
+#include "layout.glsl"
+#include "common.glsl"
+#include "collide_objects.glsl"
+#include "multigrid.glsl"
+
+layout(local_size_x = WORKGROUP_SIZE) in;
+layout(std430, binding = BINDING_POSITIONS) writeonly buffer Positions { vec4 pos[]; };
+layout(std430, binding = BINDING_DISPLACEMENT) writeonly buffer Displacements { vec4 disp[]; };
+layout(std430, binding = BINDING_MG_OFFSET) buffer Offsets { vec4 offset[]; };
+
+void main() {
+  if (gl_GlobalInvocationID.x >= u_count) return;
+  int i = int(texelFetch(mg_order_view, int(u_first + gl_GlobalInvocationID.x)).x);
+  vec4 p = position_of(i);
+  float wi = p.w;
+  if (wi == 0.0) return;
+  precise vec3 x = p.xyz, d = displacement_of(i).xyz, off = offset[i].xyz;
+  Material mat = material_of(i);
+  precise float inertia = mass_of(i) * params.inv_dt2;
+  precise vec3 f = off * -inertia;
+  Sym3 hess = sym3_diagonal(inertia);
+  uint first = texelFetch(gather_start_view, i).x, last = texelFetch(gather_start_view, i + 1).x;
+  for (uint g = first; g < last; ++g) {
+    uvec2 entry = texelFetch(gather_view, int(g)).xy;  // x: the other end | type << 30, y: rest bits
+    uint type = entry.x >> 30;
+    if (!type_enabled(mat, type)) continue;
+    float rest = uintBitsToFloat(entry.y), k = stiffness(mat, type);
+    vec3 n;
+    float len, sa, sd;
+    if (!spring_terms(x, position_of(int(entry.x & 0x3FFFFFFFu)).xyz, rest, k, n, len, sa, sd)) continue;
+    precise float magnitude = k * (len - rest);
+    f = f + n * magnitude;
+    hess = add_spring_hessian(hess, n, sa, sd);
+  }
+  vec3 step;
+  if (solve3(hess, f, step)) {
+    x = x + step;
+    d = d + step;
+    off = off + step;
+  }
+  // max_stretch as a hard limit: each spring still longer than (1 + max_stretch) rest pulls
+  // this mass its share of the way back (Provot's projection, one end at a time).
+  for (uint g = first; g < last; ++g) {
+    uvec2 entry = texelFetch(gather_view, int(g)).xy;
+    uint type = entry.x >> 30;
+    if (!type_enabled(mat, type)) continue;
+    vec4 q = position_of(int(entry.x & 0x3FFFFFFFu));
+    precise vec3 e = q.xyz - x;
+    float len = length3(e);
+    precise float limit = params.stretch_limit * uintBitsToFloat(entry.y);
+    if (!(len > limit)) continue;
+    precise float scale = (len - limit) * (1.0 / len) * (wi * (1.0 / (wi + q.w)));
+    precise vec3 corr = e * scale;
+    x = x + corr;
+    d = d + corr;
+  }
+  // A correction must not push a mass into a collider or through a plane (as in xpbd's sweep).
+  if (params.sphere_count + params.plane_count + params.mesh_count > 0u) collide_with_objects_friction(x, d, false);
+  pos[i] = vec4(x, wi);
+  disp[i] = vec4(d, 0.0);
+  offset[i] = vec4(off, 0.0);
+}

@@ -1,0 +1,37 @@
+// The multigrid solver's GPU resources (gpu_multigrid.cpp): its passes' programs, the
+// hierarchy's lists and the scratch of a solve, with their views.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "gpu_simulator.hpp"
+
+namespace clothsim {
+
+inline gl::Program load_multigrid_pass(const std::filesystem::path& dir, const char* name) {
+  return gl::Program::compute(dir / (std::string(name) + ".comp"), {{"WORKGROUP_SIZE", std::to_string(WORKGROUP_SIZE)}});
+}
+
+struct GpuMultigrid {
+  explicit GpuMultigrid(const std::filesystem::path& dir)
+      : compute_residuals(load_multigrid_pass(dir, "compute_residuals")),
+        restrict_residuals(load_multigrid_pass(dir, "restrict_residuals")),
+        smooth_corrections(load_multigrid_pass(dir, "smooth_corrections")),
+        compute_coarse_residuals(load_multigrid_pass(dir, "compute_coarse_residuals")),
+        prolong_corrections(load_multigrid_pass(dir, "prolong_corrections")),
+        prolong_to_cloth(load_multigrid_pass(dir, "prolong_to_cloth")),
+        relax_vertices(load_multigrid_pass(dir, "relax_vertices")) {}
+  gl::Program compute_residuals, restrict_residuals, smooth_corrections, compute_coarse_residuals, prolong_corrections,
+      prolong_to_cloth, relax_vertices;
+  // The hierarchy (layout.glsl: TEXTURE_MG_VERTICES, _LISTS, _FINE, _ORDER), static over a run.
+  gl::Buffer vertices{"multigrid vertices"}, lists{"multigrid lists"}, fine{"multigrid fine parents"}, order{"multigrid order"};
+  // A solve's scratch (BINDING_MG_RESIDUALS, _OFFSET, _RHS, _CORR).
+  gl::Buffer residuals{"multigrid residuals"}, offset{"multigrid offsets"}, rhs{"multigrid rhs"}, corr{"multigrid corrections"};
+  gl::BufferTexture vertices_view{"multigrid vertices view"}, lists_view{"multigrid lists view"};
+  gl::BufferTexture fine_view{"multigrid fine parents view"}, order_view{"multigrid order view"};
+  gl::BufferTexture corr_view{"multigrid corrections view"};
+  std::shared_ptr<const Hierarchy> hierarchy;  // what the buffers hold (Constants::hierarchy)
+};
+
+}  // namespace clothsim
