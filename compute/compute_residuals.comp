@@ -1,7 +1,6 @@
 // Reads positions (through the views); writes the residuals of the particles. One invocation
-// per particle, the multigrid solve's first pass (docs/model.md): right after the prediction
-// x = y, so the residual of the implicit step is the springs' force alone, summed in the gather
-// order; w its mass (0 for a pinned or held mass, which does not take part). The CPU twin is
+// per particle, the multigrid solve's first pass (docs/model.md): the residual force of the
+// implicit step, -m/dt^2 (x - y) + the springs' forces summed in the gather order; w its mass (0 for a pinned or held mass, which does not take part). The CPU twin is
 // compute_residuals in host/core/reference_multigrid.cpp.
 #include "layout.glsl"
 #include "common.glsl"
@@ -9,6 +8,7 @@
 
 layout(local_size_x = WORKGROUP_SIZE) in;
 layout(std430, binding = BINDING_MG_RESIDUALS) writeonly buffer Residuals { vec4 residual[]; };
+layout(std430, binding = BINDING_MG_OFFSET) readonly buffer Offsets { vec4 offset[]; };
 
 void main() {
   int i = int(gl_GlobalInvocationID.x);
@@ -19,7 +19,9 @@ void main() {
     return;
   }
   Material mat = material_of(i);
-  precise vec3 f = vec3(0.0);
+  // -m/dt^2 (x - y) + the springs' force (compute_residuals in host/core/reference_multigrid.cpp).
+  precise float inertia = mass_of(i) * params.inv_dt2;
+  precise vec3 f = offset[i].xyz * -inertia;
   uint first = texelFetch(gather_start_view, i).x, last = texelFetch(gather_start_view, i + 1).x;
   for (uint g = first; g < last; ++g) {
     uvec2 entry = texelFetch(gather_view, int(g)).xy;  // x: the other end | type << 30, y: rest bits

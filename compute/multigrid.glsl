@@ -78,12 +78,18 @@ bool solve3(Sym3 h, vec3 f, out vec3 x) {
 uvec4 mg_vertex(uint g) { return texelFetch(mg_vertices_view, int(g)); }
 uvec4 mg_entry(uint k) { return texelFetch(mg_lists_view, int(k)); }
 
+// How a pass reads a correction: through the view, unless it defines MG_CORR_OF first (the one
+// pass that reads what it wrote itself, solve_coarsest, reads its storage buffer).
+#ifndef MG_CORR_OF
+#define MG_CORR_OF(g) texelFetch(mg_corr_view, int(g))
+#endif
+
 // b - A e at coarse vertex g (its vertex row v, its restricted force and mass b), and A's
 // diagonal block there: A = M / dt^2 + the coarse springs' Hessians at the current positions
-// (coarse_residual). The corrections are read through their view.
+// (coarse_residual).
 vec3 coarse_residual(uint g, uvec4 v, vec4 b, out Sym3 diag) {
   precise float inertia = b.w * params.inv_dt2;
-  vec3 e = texelFetch(mg_corr_view, int(g)).xyz;
+  vec3 e = MG_CORR_OF(g).xyz;
   vec3 p = position_of(int(v.x)).xyz;
   precise vec3 r = b.xyz - e * inertia;
   diag = sym3_diagonal(inertia);
@@ -95,7 +101,7 @@ vec3 coarse_residual(uint g, uvec4 v, vec4 b, out Sym3 diag) {
     if (!spring_terms(p, position_of(int(mg_vertex(s.x).x)).xyz, uintBitsToFloat(s.y), uintBitsToFloat(s.z), n, len, sa,
                       sd))
       continue;
-    precise vec3 dv = e - texelFetch(mg_corr_view, int(s.x)).xyz;
+    precise vec3 dv = e - MG_CORR_OF(s.x).xyz;
     precise vec3 hv = n * (sa * dot3(n, dv)) + dv * sd;
     r = r - hv;
     diag = add_spring_hessian(diag, n, sa, sd);
@@ -104,3 +110,4 @@ vec3 coarse_residual(uint g, uvec4 v, vec4 b, out Sym3 diag) {
 }
 
 #endif
+

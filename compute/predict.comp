@@ -13,6 +13,7 @@ layout(local_size_x = WORKGROUP_SIZE) in;
 layout(std430, binding = BINDING_POSITIONS) writeonly buffer Positions { vec4 pos[]; };
 layout(std430, binding = BINDING_DISPLACEMENT) writeonly buffer Displacements { vec4 disp[]; };
 layout(std430, binding = BINDING_WIND_FORCES) readonly buffer WindForces { vec4 wind_force[]; };
+layout(std430, binding = BINDING_MG_OFFSET) writeonly buffer Offsets { vec4 offset[]; };  // multigrid only
 
 uniform bool u_collide_objects;
 
@@ -40,8 +41,10 @@ void main() {
   if (params.wind_enabled != 0u) acc = acc + wind_force[i].xyz * p.w;  // compute_wind_forces ran before
   // The springs' multipliers of the last substep, as their forces over this one (times dt^2):
   // -n lambda on a spring's i end, +n lambda on its j end, in the gather order.
+  // (The multigrid solver carries none: its springs act in its own solve.)
   precise vec3 warm = vec3(0.0);
   uint first = texelFetch(gather_start_view, i).x, last = texelFetch(gather_start_view, i + 1).x;
+  if (params.carry_multipliers == 0u) last = first;
   for (uint g = first; g < last; ++g) {
     uvec4 entry = texelFetch(gather_view, int(g));  // z: the spring, w: 1 if i is its i end
     vec4 l = texelFetch(multipliers_view, int(entry.z));
@@ -58,6 +61,14 @@ void main() {
     if (len > params.max_step) d = limited;
   }
   precise vec3 next = p.xyz + d;
+  if (params.multigrid != 0u) {
+    // The multigrid solve starts from the inertial position less the external forces' share
+    // and solves for them with the springs (predict in host/core/reference_forces.cpp).
+    precise vec3 applied = acc * params.dt2;
+    next = next - applied;
+    d = d - applied;
+    offset[i] = vec4(-applied, 0.0);
+  }
   // The tether to the nearest pin (long-range attachments, host/core/tethers.cpp).
   vec4 tether = texelFetch(tethers_view, i);
   if (tether.x >= 0.0) {

@@ -10,7 +10,7 @@
 layout(local_size_x = WORKGROUP_SIZE) in;
 layout(std430, binding = BINDING_POSITIONS) writeonly buffer Positions { vec4 pos[]; };
 layout(std430, binding = BINDING_DISPLACEMENT) writeonly buffer Displacements { vec4 disp[]; };
-layout(std430, binding = BINDING_MG_OFFSET) writeonly buffer Offsets { vec4 offset[]; };
+layout(std430, binding = BINDING_MG_OFFSET) buffer Offsets { vec4 offset[]; };
 
 void main() {
   int i = int(gl_GlobalInvocationID.x);
@@ -28,5 +28,6 @@ void main() {
   precise vec3 d = displacement_of(i).xyz + e;
   pos[i] = vec4(x, p.w);
   disp[i] = vec4(d, 0.0);
-  offset[i] = vec4(e, 0.0);
+  precise vec3 moved = offset[i].xyz + e;
+  offset[i] = vec4(moved, 0.0);
 }

@@ -150,3 +150,29 @@ TEST_CASE("xpbd: a chain at rest saved and resumed with twice the substeps stays
   INFO("the same with the multipliers unscaled: max speed " << kicked << " m/s");
   CHECK(kicked > 2e-5);  // 1.3e-4 m/s
 }
+
+// The multigrid solver solves implicit Euler itself, so its rest state is the static solve's
+// whatever the stiffness: the same three checks.
+TEST_CASE("multigrid: a chain stretched into its lowest mode and released swings at its frequency, within 5 %",
+          "[closed-form]") {
+  int periods = 0;
+  const double omega = mode_omega<double>("multigrid", &periods);
+  INFO("omega " << omega << " rad/s over " << periods << " periods; the mode's " << test::chain_mode_omega());
+  CHECK(omega == Approx(test::chain_mode_omega()).epsilon(0.05));
+}
+
+TEMPLATE_TEST_CASE("multigrid: a hanging chain at rest stretches each link by the weight below it over ks, within 1 %",
+                   "[closed-form]", float, double) {
+  const double e = chain_error<TestType>("multigrid");
+  INFO("largest relative error of a link's stretch: " << e);
+  CHECK(e <= 0.01);
+}
+
+TEMPLATE_TEST_CASE("multigrid: a sheet pinned along its border rests under its weight where the static solve puts it, "
+                   "within 1 mm",
+                   "[closed-form]", float, double) {
+  double sag = 0;
+  const double e = sheet_error<TestType>("multigrid", &sag);
+  INFO("static sag " << sag << " m; largest distance from it after 300 frames " << e << " m");
+  CHECK(e <= 1e-3);
+}

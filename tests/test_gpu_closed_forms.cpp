@@ -65,19 +65,19 @@ double gpu_sheet_error(const std::string& solver) {
 
 }  // namespace
 
-TEST_CASE("on the GPU a hanging chain's links stretch by the weight below over ks, within 1 %, either solver", "[gpu]") {
+TEST_CASE("on the GPU a hanging chain's links stretch by the weight below over ks, within 1 %, every solver", "[gpu]") {
   REQUIRE_GL_CONTEXT();
-  const std::string solver = GENERATE("classic", "xpbd");
+  const std::string solver = GENERATE("classic", "xpbd", "multigrid");
   const double e = gpu_chain_error(solver);
   INFO(solver << ": largest relative error of a link's stretch: " << e);
   CHECK(e <= 0.01);
   CHECK_NO_GL_ERRORS();
 }
 
-TEST_CASE("on the GPU a chain released from its lowest mode swings at its frequency, within 5 %, either solver",
+TEST_CASE("on the GPU a chain released from its lowest mode swings at its frequency, within 5 %, every solver",
           "[gpu]") {
   REQUIRE_GL_CONTEXT();
-  const std::string solver = GENERATE("classic", "xpbd");
+  const std::string solver = GENERATE("classic", "xpbd", "multigrid");
   int periods = 0;
   const double omega = gpu_mode_omega(solver, &periods);
   INFO(solver << ": omega " << omega << " rad/s over " << periods << " periods; the mode's " << test::chain_mode_omega());
@@ -85,10 +85,10 @@ TEST_CASE("on the GPU a chain released from its lowest mode swings at its freque
   CHECK_NO_GL_ERRORS();
 }
 
-TEST_CASE("on the GPU a sheet pinned along its border rests where the static solve puts it, within 1 mm, either solver",
+TEST_CASE("on the GPU a sheet pinned along its border rests where the static solve puts it, within 1 mm, every solver",
           "[gpu]") {
   REQUIRE_GL_CONTEXT();
-  const std::string solver = GENERATE("classic", "xpbd");
+  const std::string solver = GENERATE("classic", "xpbd", "multigrid");
   const double e = gpu_sheet_error(solver);
   INFO(solver << ": largest distance from the static solve after 300 frames " << e << " m");
   CHECK(e <= 1e-3);

@@ -69,9 +69,14 @@ std::map<std::string, double> time_passes_with_queries(int substeps, const PassL
 
 }  // namespace
 
+const char* solver_name(Solver solver) {
+  return solver == Solver::Multigrid ? "multigrid" : solver == Solver::Xpbd ? "xpbd" : "classic";
+}
+
 Scene bench_scene(int n, bool self_collision, Solver solver) {
   const double spacing = 1.0 / (n - 1), classic_spacing = 1.0 / 49;
-  const bool xpbd = solver == Solver::Xpbd;
+  // Both position-based solvers take fabric values; the classic one needs softer, heavier cloth.
+  const bool xpbd = solver != Solver::Classic;
   const double ks = xpbd ? 5000.0 : 5000.0 * (spacing / classic_spacing) * (spacing / classic_spacing);
   const std::string json = fmt::format(
       R"({{"cloth": {{"width": 1, "height": 1, "num_width_points": {0}, "num_height_points": {0},
@@ -80,8 +85,8 @@ Scene bench_scene(int n, bool self_collision, Solver solver) {
          "plane": {{"point": [0, 0, 0], "normal": [0, 1, 0], "friction": 0.5}},
          "simulation": {{"self_collision": {4}, "solver": "{6}"}}}})",
       n, 0.0095 / classic_spacing * spacing, ks, n - 1, self_collision ? "true" : "false", xpbd ? 0.15 : 150.0,
-      xpbd ? "xpbd" : "classic");
-  return parse_scene(json, fmt::format("<bench {}x{}{}>", n, n, xpbd ? " xpbd" : ""));
+      solver_name(solver));
+  return parse_scene(json, fmt::format("<bench {}x{}{}>", n, n, xpbd ? std::string(" ") + solver_name(solver) : ""));
 }
 
 BenchRunner::BenchRunner(const std::string& root, int frames)
@@ -109,18 +114,27 @@ BenchResult BenchRunner::run_gpu(const Scene& scene) {
   // fused into advance or resolve_self_contacts.
   const bool sc = scene.simulation.self_collision, xpbd = sim.constants().xpbd;
   const bool colliders = sim.constants().has_colliders();
+  std::vector<Pass> solve;  // the solver's passes, each timed on its own
+  if (sim.constants().multigrid)
+    solve = {{"compute_residuals", [&] { sim.compute_residuals(); }},
+             {"cycle_levels", [&] { sim.cycle_levels(); }},
+             {"prolong_to_cloth", [&] { sim.prolong_to_cloth(); }},
+             {"relax_vertices", [&] {
+                for (int k = 0; k < sim.constants().hierarchy->fine_colours(); ++k) sim.relax_vertices(k);
+              }}};
+  else if (xpbd) solve = {{"solve_distance_constraints", [&] { sim.solve_distance_constraints(); }}};
+  else solve = {{"solve_length_constraints", [&] { sim.solve_length_constraints(); }}};
   PassList passes{{{xpbd ? "predict" : "advance",
                     [&] { xpbd ? sim.predict(colliders && !sc) : sim.advance(colliders && !sc); }},
                    {"count_cells", [&] { if (sc) sim.count_cells(); }},
                    {"scan_cells", [&] { if (sc) sim.scan_cells(); }},
                    {"fill_cells", [&] { if (sc) sim.fill_cells(); }},
                    {"sort_cells", [&] { if (sc) sim.sort_cells(); }},
-                   {"resolve_self_contacts", [&] { if (sc) sim.resolve_self_contacts(colliders); }},
-                   {xpbd ? "solve_distance_constraints" : "solve_length_constraints",
-                    [&] { xpbd ? sim.solve_distance_constraints() : sim.solve_length_constraints(); }}},
+                   {"resolve_self_contacts", [&] { if (sc) sim.resolve_self_contacts(colliders); }}},
                   {{"compute_normals", [&] { sim.compute_normals(); }},
                    // The divergence guard: its reduction and the copy of a passing frame.
                    {"check_divergence", [&] { sim.divergence().check(sim.positions()); }}}};
+  passes.step.insert(passes.step.end(), solve.begin(), solve.end());
   // Per-pass times come from a separate frame (stalls or queries would distort the run above):
   // GPU timer queries where the driver has them, else (llvmpipe) glFinish around each pass.
   const int substeps = scene.simulation.simulation_steps;
@@ -148,16 +162,25 @@ BenchResult BenchRunner::run_cpu(const Scene& scene) {
   r.ms_per_frame = ms_since(t) / frames_;
   const auto& c = cpu.constants();
   auto& s = cpu.state();
+  std::vector<Pass> solve;  // the solver's passes, each timed on its own
+  if (c.multigrid)
+    solve = {{"compute_residuals", [&] { compute_residuals(model, c, s); }},
+             {"cycle_levels", [&] { cycle_levels(c, s); }},
+             {"prolong_to_cloth", [&] { prolong_to_cloth(model, c, s); }},
+             {"relax_vertices", [&] {
+                for (int k = 0; k < c.hierarchy->fine_colours(); ++k) relax_vertices(model, c, k, s);
+              }}};
+  else if (c.xpbd) solve = {{"solve_distance_constraints", [&] { solve_distance_constraints(model, c, s); }}};
+  else solve = {{"solve_length_constraints", [&] { solve_length_constraints(model, c, s); }}};
   PassList passes{{{c.xpbd ? "predict" : "advance", [&] { c.xpbd ? predict(model, c, s) : advance(model, c, s); }},
                    {"collide_self", [&] { if (c.self_collision) collide_self(c, s); }},
-                   {"collide_objects", [&] { collide_objects(c, s); }},
-                   {c.xpbd ? "solve_distance_constraints" : "solve_length_constraints",
-                    [&] { c.xpbd ? solve_distance_constraints(model, c, s) : solve_length_constraints(model, c, s); }}},
+                   {"collide_objects", [&] { collide_objects(c, s); }}},
                   {{"compute_normals", [&] { compute_normals(model, s); }},
                    {"check_divergence", [&] {
                       KeptFrame<float> kept;
                       keep_last_good(check_divergence(s.pos), divergence_limits(scene, model), 1, s.pos, kept);
                     }}}};
+  passes.step.insert(passes.step.end(), solve.begin(), solve.end());
   r.pass_ms = time_passes(scene.simulation.simulation_steps, passes, [] {});
   r.pass_timing = "steady clock around each pass (CPU reference, float)";
   r.particles = model.count();

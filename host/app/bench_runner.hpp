@@ -27,6 +27,7 @@ struct BenchResult {
 // sqrt(ks / mass) so every size is as stable as the classic scene at 30 substeps; xpbd:
 // physical values at every size (fabric density 0.15 kg/m^2, ks 5000 N/m).
 Scene bench_scene(int n, bool self_collision, Solver solver = Solver::Classic);
+const char* solver_name(Solver solver);  // as the scene key spells it
 
 class BenchRunner {
  public:

@@ -217,18 +217,22 @@ template <class R> void solve_distance_constraints(const ClothModel& m, const Co
 
 // The multigrid solver (docs/model.md, "One substep (multigrid solver)"), after predict and the
 // contacts: compute_residuals (the springs' force on every mass), then a V-cycle over the
-// hierarchy's levels (restrict_residuals, smooth_corrections colour by colour,
-// compute_coarse_residuals on the way down; prolong_corrections, smooth_corrections on the way
-// up), prolong_to_cloth, and relax_vertices colour by colour. solve_multigrid runs them in order.
-inline constexpr int kLevelSweeps = 1;     // Gauss-Seidel sweeps per level, down and up
-inline constexpr int kCoarsestSweeps = 4;  // on the coarsest level
+// hierarchy's levels (cycle_levels: restrict_residuals level by level down, solve_coarsest,
+// then prolong_corrections and smooth_corrections colour by colour up), prolong_to_cloth, and
+// relax_vertices colour by colour. solve_multigrid runs them in order.
+inline constexpr int kLevelSweeps = 1;     // Gauss-Seidel sweeps per level on the way up
+inline constexpr int kCoarsestSweeps = 4;  // on the coarsest level (solve_coarsest)
+// The GPU's solve_coarsest takes the coarsest level's colour starts as a uniform array of this
+// size + 1 (COARSEST_COLOURS_MAX in compute/solve_coarsest.comp).
+inline constexpr uint32_t kCoarsestColoursMax = 32;
 template <class R> void compute_residuals(const ClothModel& m, const Constants<R>& c, State<R>& s);
 template <class R> void restrict_residuals(const Constants<R>& c, int level, State<R>& s);
 template <class R> void smooth_corrections(const Constants<R>& c, int level, int colour, State<R>& s);
-template <class R> void compute_coarse_residuals(const Constants<R>& c, int level, State<R>& s);
+template <class R> void solve_coarsest(const Constants<R>& c, State<R>& s);
 template <class R> void prolong_corrections(const Constants<R>& c, int level, State<R>& s);
 template <class R> void prolong_to_cloth(const ClothModel& m, const Constants<R>& c, State<R>& s);
 template <class R> void relax_vertices(const ClothModel& m, const Constants<R>& c, int colour, State<R>& s);
+template <class R> void cycle_levels(const Constants<R>& c, State<R>& s);
 template <class R> void solve_multigrid(const ClothModel& m, const Constants<R>& c, State<R>& s);
 
 // One substep: the pass list of DESIGN.md §1, or of docs/model.md for xpbd.

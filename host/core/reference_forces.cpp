@@ -121,6 +121,7 @@ template <class R> void integrate(const ClothModel& m, const Constants<R>& c, St
 }
 
 template <class R> void predict(const ClothModel& m, const Constants<R>& c, State<R>& s) {
+  if (c.multigrid && s.offset.size() != s.pos.size()) s.offset.assign(s.pos.size(), Vec4<R>(0));
   // Where pin k is at the end of this substep; a moving one from its anchor (as on the GPU,
   // where predict writes the pins while it reads them for the tethers).
   auto pin_position = [&](int k) {
@@ -137,8 +138,9 @@ template <class R> void predict(const ClothModel& m, const Constants<R>& c, Stat
     if (c.wind.enabled) acc = acc + Vec3<R>(s.wind[i]) * w;  // compute_wind_forces ran before
     // The springs' multipliers of the last substep, as their forces over this one (times dt^2):
     // -n lambda on the spring's i end, +n lambda on its j end, in the gather order.
+    // (The multigrid solver carries none: its springs act in its own solve.)
     Vec3<R> warm(0);
-    for (uint32_t k = m.gather_start[i]; k < m.gather_start[i + 1]; ++k) {
+    for (uint32_t k = m.gather_start[i]; k < (c.multigrid ? m.gather_start[i] : m.gather_start[i + 1]); ++k) {
       const uint32_t sk = m.gather[k];
       const Vec4<R>& l = s.lambda[sk];
       const Vec3<R> f = Vec3<R>(l) * l.w;
@@ -151,6 +153,15 @@ template <class R> void predict(const ClothModel& m, const Constants<R>& c, Stat
       if (len > c.max_step) d = d * (c.max_step * (R(1) / len));
     }
     Vec3<R> x = Vec3<R>(s.pos[i]) + d;
+    if (c.multigrid) {
+      // The multigrid solve starts from the inertial position less the external forces' share
+      // and solves for them with the springs, so a cloth at rest starts where it rests and stays
+      // exactly there (docs/model.md): x - y, the offset from the prediction, is that share.
+      const Vec3<R> external = acc * c.dt2;
+      x = x - external;
+      d = d - external;
+      s.offset[i] = Vec4<R>(-external, R(0));
+    }
     if (const int pin = m.tether_pin[i]; pin >= 0) {
       const Vec3<R> e = x - pin_position(pin);
       const R len = length3(e);

@@ -57,9 +57,10 @@ template <class R> bool solve3(const Sym3<R>& h, const Vec3<R>& f, Vec3<R>& x) {
 
 template <class R> void ensure_sized(const ClothModel& m, const Hierarchy& h, State<R>& s) {
   const size_t n = size_t(m.count()), coarse = h.coarse_count();
-  if (s.residual.size() != n + coarse || s.offset.size() != n || s.coarse_corr.size() != coarse) {
-    s.residual.assign(n + coarse, Vec4<R>(0));
-    s.offset.assign(n, Vec4<R>(0));
+  // (predict sized and wrote the offsets already.)
+  if (s.offset.size() != n) s.offset.assign(n, Vec4<R>(0));
+  if (s.residual.size() != n + coarse) s.residual.assign(n + coarse, Vec4<R>(0));
+  if (s.coarse_corr.size() != coarse) {
     s.coarse_rhs.assign(coarse, Vec4<R>(0));
     s.coarse_corr.assign(coarse, Vec4<R>(0));
   }
@@ -99,9 +100,10 @@ template <class R> void compute_residuals(const ClothModel& m, const Constants<R
       s.residual[i] = Vec4<R>(0);
       continue;
     }
-    // Right after the prediction x = y: the residual of the step is the springs' force alone.
+    // -m/dt^2 (x - y) + the springs' force: right after predict x - y is minus the external
+    // forces' share, so this is the classic force, gravity and the wind included.
     const Vec3<R> xi(s.pos[i]);
-    Vec3<R> f(0);
+    Vec3<R> f = Vec3<R>(s.offset[i]) * -(c.mass[i] * c.inv_dt2);
     for (uint32_t g = m.gather_start[i]; g < m.gather_start[i + 1]; ++g) {
       const Spring& sp = m.springs[m.gather[g]];
       if (!c.enabled(sp)) continue;
@@ -122,6 +124,8 @@ template <class R> void restrict_residuals(const Constants<R>& c, int level, Sta
     for (uint32_t k = h.child_start[g]; k < h.child_start[g + 1]; ++k) b += s.residual[h.child[k]] * R(h.child_weight[k]);
     s.coarse_rhs[g] = b;  // xyz: the force; w: the mass the vertex stands for
     s.coarse_corr[g] = Vec4<R>(0);
+    // With the correction at zero the level's residual is b itself: the next level restricts it.
+    s.residual[s.pos.size() + g] = b;
   }
 }
 
@@ -135,20 +139,6 @@ template <class R> void smooth_corrections(const Constants<R>& c, int level, int
     const Vec3<R> r = coarse_residual(h, c, s, g, diag);
     Vec3<R> step;
     if (solve3(diag, r, step)) s.coarse_corr[g] = Vec4<R>(Vec3<R>(s.coarse_corr[g]) + step, R(0));
-  }
-}
-
-template <class R> void compute_coarse_residuals(const Constants<R>& c, int level, State<R>& s) {
-  const Hierarchy& h = *c.hierarchy;
-  const HierarchyLevel& l = h.levels[size_t(level)];
-  const size_t n = s.pos.size();
-  for (uint32_t g = l.first; g < l.first + l.count; ++g) {
-    if (held(s.pos[h.particle[g]].w)) {
-      s.residual[n + g] = Vec4<R>(0);
-      continue;
-    }
-    Sym3<R> diag;
-    s.residual[n + g] = Vec4<R>(coarse_residual(h, c, s, g, diag), s.coarse_rhs[g].w);
   }
 }
 
@@ -173,7 +163,7 @@ template <class R> void prolong_to_cloth(const ClothModel& m, const Constants<R>
         e += Vec3<R>(s.coarse_corr[h.fine_parent[k]]) * R(h.fine_parent_weight[k]);
     s.pos[i] = Vec4<R>(Vec3<R>(s.pos[i]) + e, s.pos[i].w);
     s.disp[i] = Vec4<R>(Vec3<R>(s.disp[i]) + e, R(0));
-    s.offset[i] = Vec4<R>(e, R(0));  // x - y, the inertia term of the sweep
+    s.offset[i] = Vec4<R>(Vec3<R>(s.offset[i]) + e, R(0));  // x - y, the inertia term of the sweep
   }
 }
 
@@ -228,38 +218,44 @@ template <class R> void relax_vertices(const ClothModel& m, const Constants<R>& 
   }
 }
 
-template <class R> void solve_multigrid(const ClothModel& m, const Constants<R>& c, State<R>& s) {
+template <class R> void solve_coarsest(const Constants<R>& c, State<R>& s) {
+  const int l = int(c.hierarchy->levels.size()) - 1;
+  for (int it = 0; it < kCoarsestSweeps; ++it)
+    for (int k = 0; k + 1 < int(c.hierarchy->levels[size_t(l)].colour_start.size()); ++k) smooth_corrections(c, l, k, s);
+}
+
+template <class R> void cycle_levels(const Constants<R>& c, State<R>& s) {
   const Hierarchy& h = *c.hierarchy;
   const int levels = int(h.levels.size());
-  compute_residuals(m, c, s);
-  if (levels > 0) {
-    // Down: restrict, smooth, pass the residual on; the coarsest level is smoothed longer.
-    for (int l = 0; l < levels; ++l) {
-      restrict_residuals(c, l, s);
-      const int sweeps = l + 1 == levels ? kCoarsestSweeps : kLevelSweeps;
-      for (int it = 0; it < sweeps; ++it)
-        for (int k = 0; k + 1 < int(h.levels[size_t(l)].colour_start.size()); ++k) smooth_corrections(c, l, k, s);
-      if (l + 1 < levels) compute_coarse_residuals(c, l, s);
-    }
-    // Up: add each level's correction to the finer one, smooth it there.
-    for (int l = levels - 2; l >= 0; --l) {
-      prolong_corrections(c, l, s);
-      for (int it = 0; it < kLevelSweeps; ++it)
-        for (int k = 0; k + 1 < int(h.levels[size_t(l)].colour_start.size()); ++k) smooth_corrections(c, l, k, s);
-    }
+  if (levels == 0) return;
+  // Down: the force restricted level by level (no smoothing on the way down: the correction
+  // is zero there, so each level's residual is its right-hand side).
+  for (int l = 0; l < levels; ++l) restrict_residuals(c, l, s);
+  solve_coarsest(c, s);
+  // Up: add each level's correction to the finer one, smooth it there.
+  for (int l = levels - 2; l >= 0; --l) {
+    prolong_corrections(c, l, s);
+    for (int it = 0; it < kLevelSweeps; ++it)
+      for (int k = 0; k + 1 < int(h.levels[size_t(l)].colour_start.size()); ++k) smooth_corrections(c, l, k, s);
   }
+}
+
+template <class R> void solve_multigrid(const ClothModel& m, const Constants<R>& c, State<R>& s) {
+  compute_residuals(m, c, s);
+  cycle_levels(c, s);
   prolong_to_cloth(m, c, s);
-  for (int k = 0; k < h.fine_colours(); ++k) relax_vertices(m, c, k, s);
+  for (int k = 0; k < c.hierarchy->fine_colours(); ++k) relax_vertices(m, c, k, s);
 }
 
 #define CLOTHSIM_INSTANTIATE(R) \
   template void compute_residuals<R>(const ClothModel&, const Constants<R>&, State<R>&); \
   template void restrict_residuals<R>(const Constants<R>&, int, State<R>&); \
   template void smooth_corrections<R>(const Constants<R>&, int, int, State<R>&); \
-  template void compute_coarse_residuals<R>(const Constants<R>&, int, State<R>&); \
   template void prolong_corrections<R>(const Constants<R>&, int, State<R>&); \
   template void prolong_to_cloth<R>(const ClothModel&, const Constants<R>&, State<R>&); \
   template void relax_vertices<R>(const ClothModel&, const Constants<R>&, int, State<R>&); \
+  template void solve_coarsest<R>(const Constants<R>&, State<R>&); \
+  template void cycle_levels<R>(const Constants<R>&, State<R>&); \
   template void solve_multigrid<R>(const ClothModel&, const Constants<R>&, State<R>&);
 CLOTHSIM_INSTANTIATE(float)
 CLOTHSIM_INSTANTIATE(double)

@@ -5,6 +5,8 @@
 
 #include <bit>
 
+#include <fmt/format.h>
+
 namespace clothsim {
 
 namespace {
@@ -63,7 +65,12 @@ void GpuSimulator::ensure_multigrid() {
 }
 
 void GpuSimulator::bind_multigrid() const {
-  if (!multigrid_) return;
+  if (!multigrid_) {
+    // predict declares the offsets (it writes them only for the multigrid solver): a binding
+    // of one element stands in for them.
+    no_offsets_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_MG_OFFSET);
+    return;
+  }
   const GpuMultigrid& g = *multigrid_;
   g.residuals.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_MG_RESIDUALS);
   g.offset.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_MG_OFFSET);
@@ -112,13 +119,24 @@ void GpuSimulator::smooth_corrections(int level, int colour) {
   barrier(kComputeReads);
 }
 
-void GpuSimulator::compute_coarse_residuals(int level) {
+void GpuSimulator::solve_coarsest() {
   ensure_multigrid();
   bind_for_pass();
-  const HierarchyLevel& l = constants_.hierarchy->levels[size_t(level)];
-  dispatch_range(multigrid_->compute_coarse_residuals, l.first, l.count);
-  // The next level's restrict_residuals reads them next.
-  barrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  const HierarchyLevel& l = constants_.hierarchy->levels.back();
+  const uint32_t colours = uint32_t(l.colour_start.size()) - 1;
+  if (colours > kCoarsestColoursMax)
+    throw std::runtime_error(fmt::format("solve_coarsest: the coarsest level has {} colours, more than {}", colours,
+                                  kCoarsestColoursMax));
+  gl::Program& p = multigrid_->solve_coarsest;
+  std::vector<GLuint> starts;
+  for (uint32_t s : l.colour_start) starts.push_back(uint32_t(model_.count()) + s);
+  glProgramUniform1uiv(p.id(), p.location("u_starts[0]"), GLsizei(starts.size()), starts.data());
+  p.set("u_count", colours);
+  p.set("u_sweeps", unsigned(kCoarsestSweeps));
+  p.dispatch(1);  // one workgroup: its barriers order the colours
+  dispatched(p);
+  // prolong_corrections (or prolong_to_cloth) reads the corrections through their view next.
+  barrier(kComputeReads);
 }
 
 void GpuSimulator::prolong_corrections(int level) {
@@ -148,36 +166,33 @@ void GpuSimulator::relax_vertices(int colour) {
   barrier(kComputeReads);
 }
 
-void GpuSimulator::solve_multigrid() {
+void GpuSimulator::cycle_levels() {
   const Hierarchy& h = *constants_.hierarchy;
   const int levels = int(h.levels.size());
-  auto sweep = [&](int l, int sweeps) {
-    for (int it = 0; it < sweeps; ++it)
-      for (int k = 0; k + 1 < int(h.levels[size_t(l)].colour_start.size()); ++k) smooth_corrections(l, k);
-  };
-  compute_residuals();
-  for (int l = 0; l < levels; ++l) {
-    restrict_residuals(l);
-    sweep(l, l + 1 == levels ? kCoarsestSweeps : kLevelSweeps);
-    if (l + 1 < levels) compute_coarse_residuals(l);
-  }
+  if (levels == 0) return;
+  for (int l = 0; l < levels; ++l) restrict_residuals(l);
+  solve_coarsest();
   for (int l = levels - 2; l >= 0; --l) {
     prolong_corrections(l);
-    sweep(l, kLevelSweeps);
+    for (int it = 0; it < kLevelSweeps; ++it)
+      for (int k = 0; k + 1 < int(h.levels[size_t(l)].colour_start.size()); ++k) smooth_corrections(l, k);
   }
+}
+
+void GpuSimulator::solve_multigrid() {
+  compute_residuals();
+  cycle_levels();
   prolong_to_cloth();
-  for (int k = 0; k < h.fine_colours(); ++k) relax_vertices(k);
+  for (int k = 0; k < constants_.hierarchy->fine_colours(); ++k) relax_vertices(k);
 }
 
 int GpuSimulator::multigrid_dispatches() const {
   const Hierarchy& h = *constants_.hierarchy;
   const int levels = int(h.levels.size());
   int count = 2 + h.fine_colours();  // compute_residuals, prolong_to_cloth, the sweep's colours
-  for (int l = 0; l < levels; ++l) {
-    const int colours = int(h.levels[size_t(l)].colour_start.size()) - 1;
-    count += 1 + colours * (l + 1 == levels ? kCoarsestSweeps : kLevelSweeps);  // restrict, smooth
-    if (l + 1 < levels) count += 1 + 1 + colours * kLevelSweeps;  // residuals; prolong, smooth on the way up
-  }
+  if (levels > 0) count += levels + 1;  // restrict_residuals per level, solve_coarsest
+  for (int l = 0; l + 1 < levels; ++l)
+    count += 1 + (int(h.levels[size_t(l)].colour_start.size()) - 1) * kLevelSweeps;  // prolong, smooth
   return count;
 }
 

@@ -18,11 +18,11 @@ struct GpuMultigrid {
       : compute_residuals(load_multigrid_pass(dir, "compute_residuals")),
         restrict_residuals(load_multigrid_pass(dir, "restrict_residuals")),
         smooth_corrections(load_multigrid_pass(dir, "smooth_corrections")),
-        compute_coarse_residuals(load_multigrid_pass(dir, "compute_coarse_residuals")),
+        solve_coarsest(load_multigrid_pass(dir, "solve_coarsest")),
         prolong_corrections(load_multigrid_pass(dir, "prolong_corrections")),
         prolong_to_cloth(load_multigrid_pass(dir, "prolong_to_cloth")),
         relax_vertices(load_multigrid_pass(dir, "relax_vertices")) {}
-  gl::Program compute_residuals, restrict_residuals, smooth_corrections, compute_coarse_residuals, prolong_corrections,
+  gl::Program compute_residuals, restrict_residuals, smooth_corrections, solve_coarsest, prolong_corrections,
       prolong_to_cloth, relax_vertices;
   // The hierarchy (layout.glsl: TEXTURE_MG_VERTICES, _LISTS, _FINE, _ORDER), static over a run.
   gl::Buffer vertices{"multigrid vertices"}, lists{"multigrid lists"}, fine{"multigrid fine parents"}, order{"multigrid order"};

@@ -80,6 +80,8 @@ layout::StepParams make_step_params(const Constants<float>& c, const ClothModel&
   p.pins_moving = c.moving_pins();
   p.coulomb_friction = c.xpbd;
   p.inv_dt2 = c.inv_dt2;
+  p.carry_multipliers = c.xpbd && !c.multigrid;
+  p.multigrid = c.multigrid;
   p.pin_offset = glm::vec3(c.pin_offset.x, c.pin_offset.y, c.pin_offset.z);
   return p;
 }
@@ -131,6 +133,7 @@ GpuSimulator::GpuSimulator(const Scene& scene, const ClothModel& model, const st
   cell_entries_.allocate(n * sizeof(uint32_t));
   sorted_positions_.allocate(n * sizeof(glm::vec4));
   normals_.allocate(n * sizeof(glm::vec4));
+  no_offsets_.allocate(sizeof(glm::vec4));
   upload(initial_state<float>(model));  // attaches the views
   ensure_multigrid();
   compute_normals();

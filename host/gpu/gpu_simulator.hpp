@@ -48,17 +48,18 @@ class GpuSimulator {
   void solve_distance_constraint_colour(int colour);
   void solve_distance_constraints();
   // The multigrid solver's passes (docs/model.md; gpu_multigrid.cpp): step() runs predict,
-  // [collide_self], then solve_multigrid: compute_residuals, the V-cycle (restrict_residuals,
-  // smooth_corrections per colour, compute_coarse_residuals down; prolong_corrections,
-  // smooth_corrections up), prolong_to_cloth, relax_vertices per colour. Levels count from 0,
-  // the first coarse one (Hierarchy::levels).
+  // [collide_self], then solve_multigrid: compute_residuals, the V-cycle (cycle_levels:
+  // restrict_residuals per level down, solve_coarsest, then prolong_corrections and
+  // smooth_corrections per colour up), prolong_to_cloth, relax_vertices per colour. Levels
+  // count from 0, the first coarse one (Hierarchy::levels).
   void compute_residuals();
   void restrict_residuals(int level);
   void smooth_corrections(int level, int colour);
-  void compute_coarse_residuals(int level);
+  void solve_coarsest();
   void prolong_corrections(int level);
   void prolong_to_cloth();
   void relax_vertices(int colour);
+  void cycle_levels();  // the V-cycle: every pass between compute_residuals and prolong_to_cloth
   void solve_multigrid();
   int multigrid_dispatches() const;  // of one solve_multigrid
   // The multigrid scratch (State::residual, offset, coarse_rhs, coarse_corr), for the pass checks.
@@ -193,6 +194,7 @@ class GpuSimulator {
   PrefixScan scan_;
   GpuDivergenceGuard guard_;
   std::unique_ptr<GpuMultigrid> multigrid_;
+  gl::Buffer no_offsets_{"no multigrid offsets"};  // one element, bound in their place without multigrid
 };
 
 // The parameter block of a substep, from the same Constants<float> the reference uses.

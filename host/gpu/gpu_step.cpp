@@ -214,7 +214,7 @@ std::string GpuSimulator::pass_list() const {
   passes += constants_.xpbd ? "predict" : "advance";
   if (constants_.self_collision) passes += ", collide_self (count_cells, scan_cells, fill_cells, sort_cells, resolve_self_contacts)";
   passes += constants_.multigrid ? ", solve_multigrid (compute_residuals, restrict_residuals, smooth_corrections, "
-                                   "compute_coarse_residuals, prolong_corrections, prolong_to_cloth, relax_vertices)"
+                                   "solve_coarsest, prolong_corrections, prolong_to_cloth, relax_vertices)"
              : constants_.xpbd   ? ", solve_distance_constraints"
                                  : ", solve_length_constraints";
   return passes;

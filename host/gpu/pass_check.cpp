@@ -5,6 +5,8 @@
 #include <cstring>
 #include <functional>
 
+#include <fmt/format.h>
+
 namespace clothsim {
 namespace {
 
@@ -76,6 +78,68 @@ void check_self_collision_stages(const Constants<float>& c, State<float>& s, Gpu
   };
   const Deviation d = deviation(both(r), both(s));
   out.push_back({"resolve_self_contacts", d.max, d.bitwise});
+}
+
+// The multigrid solver's passes (a multigrid scene only: the others have no hierarchy), each
+// from the CPU's state and scratch before it, in solve_multigrid's order; judged on positions,
+// displacements and the scratch, forces as the displacement they cause over a substep.
+void check_multigrid_passes(const ClothModel& model, const Constants<float>& c, State<float>& s, GpuSimulator& gpu,
+                            std::vector<PassError>& out) {
+  const Hierarchy& h = *c.hierarchy;
+  auto as_displacement = [&](Vec4<float> f) { return f.w > 0.f ? Vec4<float>(Vec3<float>(f) * (c.dt2 / f.w), 0.f) : Vec4<float>(0); };
+  auto stream = [&](const State<float>& st) {
+    auto v = st.pos;
+    v.insert(v.end(), st.disp.begin(), st.disp.end());
+    v.insert(v.end(), st.offset.begin(), st.offset.end());
+    v.insert(v.end(), st.coarse_corr.begin(), st.coarse_corr.end());
+    for (const auto& r : st.residual) v.push_back(as_displacement(r));
+    for (const auto& r : st.coarse_rhs) v.push_back(as_displacement(r));
+    return v;
+  };
+  State<float> g;
+  auto check = [&](const std::string& name, const std::function<void()>& on_cpu, const std::function<void()>& on_gpu) {
+    gpu.upload(s);
+    gpu.upload_multigrid(s);
+    on_cpu();
+    on_gpu();
+    gpu.download(g);
+    gpu.download_multigrid(g);
+    const Deviation d = deviation(stream(g), stream(s));
+    out.push_back({name, d.max, d.bitwise});
+  };
+  check("compute_residuals", [&] { compute_residuals(model, c, s); }, [&] { gpu.compute_residuals(); });
+  const int levels = int(h.levels.size());
+  auto sweep = [&](int l, int sweeps) {
+    const int colours = int(h.levels[size_t(l)].colour_start.size()) - 1;
+    check(fmt::format("smooth_corrections (level {}, {} x {} colours)", l + 1, sweeps, colours),
+          [&] {
+            for (int it = 0; it < sweeps; ++it)
+              for (int k = 0; k < colours; ++k) smooth_corrections(c, l, k, s);
+          },
+          [&] {
+            for (int it = 0; it < sweeps; ++it)
+              for (int k = 0; k < colours; ++k) gpu.smooth_corrections(l, k);
+          });
+  };
+  for (int l = 0; l < levels; ++l)
+    check(fmt::format("restrict_residuals (level {})", l + 1), [&] { restrict_residuals(c, l, s); },
+          [&] { gpu.restrict_residuals(l); });
+  if (levels > 0)
+    check(fmt::format("solve_coarsest (level {}, {} sweeps)", levels, kCoarsestSweeps), [&] { solve_coarsest(c, s); },
+          [&] { gpu.solve_coarsest(); });
+  for (int l = levels - 2; l >= 0; --l) {
+    check(fmt::format("prolong_corrections (level {})", l + 1), [&] { prolong_corrections(c, l, s); },
+          [&] { gpu.prolong_corrections(l); });
+    sweep(l, kLevelSweeps);
+  }
+  check("prolong_to_cloth", [&] { prolong_to_cloth(model, c, s); }, [&] { gpu.prolong_to_cloth(); });
+  check(fmt::format("relax_vertices ({} colours)", h.fine_colours()),
+        [&] {
+          for (int k = 0; k < h.fine_colours(); ++k) relax_vertices(model, c, k, s);
+        },
+        [&] {
+          for (int k = 0; k < h.fine_colours(); ++k) gpu.relax_vertices(k);
+        });
 }
 
 }  // namespace
@@ -176,6 +240,7 @@ std::vector<PassError> check_passes(const Scene& scene, const ClothModel& model,
   // Predict again, now from the multipliers that sweep carried (a classic scene has none
   // before it): their forces in the gather order.
   check("predict (the sweep's multipliers carried)", [&] { predict(model, c, s); }, [&] { gpu.predict(); }, both);
+  if (c.multigrid) check_multigrid_passes(model, c, s, gpu, out);
   check("compute_normals", [&] { compute_normals(model, s); }, [&] { gpu.compute_normals(); },
         [](const State<float>& st) { return st.normal; });
   return out;

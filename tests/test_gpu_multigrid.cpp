@@ -1,0 +1,66 @@
+// The multigrid solver on the GPU (issue 22; docs/model.md): each of its passes against its
+// CPU twin from an identical state (bit for bit on llvmpipe), on a grid with two coarse levels
+// and on the two-cloth mesh scene (self-collision, a sphere), and whole runs in lock step.
+// The physics checks (closed forms) run in test_gpu_closed_forms.cpp.
+#include "gpu_pass_fixtures.hpp"
+
+namespace {
+
+void check_multigrid_passes(const Scene& scene, int warmup) {
+  const ClothModel model = build_cloth(scene);
+  GpuSimulator gpu(scene, model, compute_dir());
+  const std::vector<PassError> errors = check_passes(scene, model, gpu, warmup);
+  int multigrid_passes = 0;
+  for (const PassError& e : errors) {
+    INFO(e.pass << ": max |GPU - CPU| = " << e.max_error << " m" << (e.bitwise ? " (bitwise equal)" : ""));
+    if (gl::gl_renderer_is_llvmpipe()) CHECK(e.bitwise);
+    else CHECK(e.max_error <= kPassTolerance);
+    for (const char* pass : {"compute_residuals", "restrict_residuals", "solve_coarsest", "prolong_corrections",
+                             "smooth_corrections", "prolong_to_cloth", "relax_vertices"})
+      multigrid_passes += e.pass.rfind(pass, 0) == 0;
+  }
+  // Every pass of the cycle was checked: one restriction per level, one prolongation and one
+  // smoothing per level but the coarsest.
+  const int levels = int(gpu.constants().hierarchy->levels.size());
+  REQUIRE(levels >= 2);
+  CHECK(multigrid_passes == 1 + levels + 1 + 2 * (levels - 1) + 1 + 1);
+}
+
+}  // namespace
+
+TEST_CASE("each multigrid pass matches the reference from an identical state on a 33x17 cloth (two coarse levels)",
+          "[gpu]") {
+  REQUIRE_GL_CONTEXT();
+  check_multigrid_passes(pressed_cloth(33, 17, {"simulation.solver=\"multigrid\""}), kWarmupFrames);
+  CHECK_NO_GL_ERRORS();
+}
+
+TEST_CASE("each multigrid pass matches the reference on the two-cloth mesh scene (self-collision, a sphere)", "[gpu]") {
+  REQUIRE_GL_CONTEXT();
+  check_multigrid_passes(load_scene(test::source_path("scenes/two_cloths.json"), {"simulation.solver=\"multigrid\""}), 2);
+  CHECK_NO_GL_ERRORS();
+}
+
+TEST_CASE("a multigrid run on the GPU follows the reference frame by frame, and counts its dispatches", "[gpu]") {
+  REQUIRE_GL_CONTEXT();
+  const Scene scene = pressed_cloth(33, 17, {"simulation.solver=\"multigrid\""}, kTwoSpheresTwoPlanes);
+  const ClothModel model = build_cloth(scene);
+  GpuSimulator gpu(scene, model, compute_dir());
+  CpuBackend<float> cpu(scene, model);
+  const GpuCounters before = gpu.counters();
+  gpu.step_frame();
+  const GpuCounters after = gpu.counters();
+  // The substeps' dispatches, then the frame's own: normals and the divergence guard's two.
+  CHECK(after.dispatches - before.dispatches ==
+        uint64_t(scene.simulation.simulation_steps * gpu.dispatches_per_substep() + 3));
+  cpu.step_frame();
+  for (int f = 1; f < 4; ++f) {
+    gpu.step_frame();
+    cpu.step_frame();
+  }
+  State<float> g;
+  gpu.download(g);
+  check_same("positions after 4 frames", g.pos, cpu.state().pos, kRunTolerance);
+  check_same("displacements after 4 frames", g.disp, cpu.state().disp, kRunTolerance);
+  CHECK_NO_GL_ERRORS();
+}
