@@ -80,7 +80,7 @@ layout::StepParams make_step_params(const Constants<float>& c, const ClothModel&
   p.pins_moving = c.moving_pins();
   p.coulomb_friction = c.xpbd;
   p.inv_dt2 = c.inv_dt2;
-  p.carry_multipliers = c.xpbd && !c.multigrid;
+  p.carry_multipliers = !c.multigrid;  // (a classic run never calls predict but the pass check does)
   p.multigrid = c.multigrid;
   p.pin_offset = glm::vec3(c.pin_offset.x, c.pin_offset.y, c.pin_offset.z);
   return p;
