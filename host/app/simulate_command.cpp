@@ -1,6 +1,6 @@
 // `clothsim simulate SCENE --frames N [--backend gpu|cpu] [--export FILE.obj|FILE.pc2|DIR/]
 //  [--export-every K] [--export-mesh FILE.obj] [--load-state FILE] [--save-state FILE] [--stats]
-//  [--intersections-every K]`
+//  [--intersections-every K] [--stretch-every K]`
 // Every output replaces the file it names only once complete (docs/export.md).
 #include <algorithm>
 #include <unistd.h>
@@ -86,6 +86,7 @@ void add_simulate_command(CLI::App& app, std::function<int()>& run) {
     int export_every = 1;
     bool stats = false;
     int intersections_every = 0;
+    int stretch_every = 0;
   };
   auto o = std::make_shared<Opts>();
   CLI::App* cmd = app.add_subcommand("simulate", "run a scene headless and report or export the result");
@@ -107,6 +108,9 @@ void add_simulate_command(CLI::App& app, std::function<int()>& run) {
   cmd->add_flag("--stats", o->stats, "print frames, timing, stretch, energy, clearances, self-intersections");
   cmd->add_option("--intersections-every", o->intersections_every,
                   "every K-th frame print the exact self-intersection count (CPU, reads the frame back)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--stretch-every", o->stretch_every,
+                  "every K-th frame print the largest and the 99th-percentile spring stretch (reads the frame back)")
       ->check(CLI::PositiveNumber);
   cmd->callback([o, &run] {
     run = [o]() -> int {
@@ -184,6 +188,12 @@ void add_simulate_command(CLI::App& app, std::function<int()>& run) {
           progress.finish();  // clears the progress line; update() redraws it
           fmt::print("frame {} self-intersections {}\n", frame, count_self_intersections(model, backend->snapshot()));
           std::fflush(stdout);  // a script reading a pipe sees each line as it comes
+        }
+        if (o->stretch_every > 0 && f % o->stretch_every == 0) {
+          progress.finish();
+          const ClothStats st = measure(scene, model, backend->snapshot(), backend->time());
+          fmt::print("frame {} max stretch {:.4f} p99 {:.4f}\n", frame, st.max_stretch_ratio, st.p99_stretch_ratio);
+          std::fflush(stdout);
         }
         progress.update(f);
       }
