@@ -1,10 +1,13 @@
-// Reads positions (through the views); writes the residuals of the particles. One invocation
+// Reads positions (through the views) and the offsets; writes the residuals of the particles. One invocation
 // per particle, the multigrid solve's first pass (docs/model.md): the residual force of the
-// implicit step, -m/dt^2 (x - y) + the springs' forces summed in the gather order; w its mass (0 for a pinned or held mass, which does not take part). The CPU twin is
+// implicit step at the start x = y + offset (predict's offset: minus the external forces'
+// share), -m/dt^2 (x - y) + the springs' forces summed in the gather order; w its mass (0 for a pinned or held mass, which does not take part). The CPU twin is
 // compute_residuals in host/core/reference_multigrid.cpp.
 #include "layout.glsl"
 #include "common.glsl"
 #include "particle_views.glsl"
+#include "collide_objects.glsl"
+#include "multigrid.glsl"
 
 layout(local_size_x = WORKGROUP_SIZE) in;
 layout(std430, binding = BINDING_MG_RESIDUALS) writeonly buffer Residuals { vec4 residual[]; };
@@ -21,13 +24,21 @@ void main() {
   Material mat = material_of(i);
   // -m/dt^2 (x - y) + the springs' force (compute_residuals in host/core/reference_multigrid.cpp).
   precise float inertia = mass_of(i) * params.inv_dt2;
-  precise vec3 f = offset[i].xyz * -inertia;
+  vec3 off = offset[i].xyz;
+  precise vec3 xi = p.xyz + off;
+  // A mass a collider holds stays out of the coarse problem (touches_colliders).
+  if (params.sphere_count + params.plane_count + params.mesh_count > 0u && touches_colliders(xi)) {
+    residual[i] = vec4(0.0, 0.0, 0.0, mass_of(i));
+    return;
+  }
+  precise vec3 f = off * -inertia;
   uint first = texelFetch(gather_start_view, i).x, last = texelFetch(gather_start_view, i + 1).x;
   for (uint g = first; g < last; ++g) {
     uvec2 entry = texelFetch(gather_view, int(g)).xy;  // x: the other end | type << 30, y: rest bits
     uint type = entry.x >> 30;
     if (!type_enabled(mat, type)) continue;
-    precise vec3 e = position_of(int(entry.x & 0x3FFFFFFFu)).xyz - p.xyz;
+    int j = int(entry.x & 0x3FFFFFFFu);
+    precise vec3 e = (position_of(j).xyz + offset[j].xyz) - xi;
     float len = length3(e);
     if (len > 0.0) {
       precise float magnitude = stiffness(mat, type) * (len - uintBitsToFloat(entry.y)) * (1.0 / len);

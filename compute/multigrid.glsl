@@ -74,6 +74,34 @@ bool solve3(Sym3 h, vec3 f, out vec3 x) {
   return true;
 }
 
+// A mass at x within CONTACT_REACH of a collider's surface, which holds it with a force the
+// coarse problem does not know (touches_colliders in host/core/reference_multigrid.cpp). The
+// pass includes collide_objects.glsl first (spheres, planes, meshes).
+#ifdef CLOTHSIM_COLLIDE_OBJECTS_GLSL
+bool touches_colliders(vec3 x) {
+  float reach = CONTACT_REACH;
+  for (int s = 0; s < int(params.sphere_count); ++s) {
+    vec4 origin_radius = texelFetch(spheres_view, SPHERE_TEXELS * s);
+    precise float within = origin_radius.w + reach;
+    if (length3(x - origin_radius.xyz) < within) return true;
+  }
+  for (int k = 0; k < int(params.plane_count); ++k) {
+    vec4 point_front = texelFetch(planes_view, PLANE_TEXELS * k);
+    vec3 n = texelFetch(planes_view, PLANE_TEXELS * k + 1).xyz;
+    precise float ahead = dot3(x - point_front.xyz, n) * point_front.w;
+    if (ahead < reach) return true;
+  }
+  for (int k = 0; k < int(params.mesh_count); ++k) {
+    MeshField m = mesh_field(k);
+    float phi;
+    vec3 grad;
+    precise float within = m.thickness + reach;
+    if (sample_mesh_field(m, mesh_local(m, x - m.origin), phi, grad) && phi < within) return true;
+  }
+  return false;
+}
+#endif
+
 // Coarse vertex g: its particle, and its entries' ranges [first, last) in the lists.
 uvec4 mg_vertex(uint g) { return texelFetch(mg_vertices_view, int(g)); }
 uvec4 mg_entry(uint k) { return texelFetch(mg_lists_view, int(k)); }

@@ -29,6 +29,7 @@ void main() {
   if (i >= int(particle_count())) return;
   vec4 p = position_of(i);
   if (p.w == 0.0) {
+    if (params.multigrid != 0u) offset[i] = vec4(0.0);
     vec4 next;
     vec3 moved;
     if (move_pinned(i, p, next, moved)) {
@@ -61,12 +62,10 @@ void main() {
     if (len > params.max_step) d = limited;
   }
   precise vec3 next = p.xyz + d;
+  // The multigrid solve's offset: the external forces' share, which it applies with the
+  // springs (predict in host/core/reference_forces.cpp).
   if (params.multigrid != 0u) {
-    // The multigrid solve starts from the inertial position less the external forces' share
-    // and solves for them with the springs (predict in host/core/reference_forces.cpp).
     precise vec3 applied = acc * params.dt2;
-    next = next - applied;
-    d = d - applied;
     offset[i] = vec4(-applied, 0.0);
   }
   // The tether to the nearest pin (long-range attachments, host/core/tethers.cpp).

@@ -5,6 +5,7 @@
 // host/core/reference_multigrid.cpp.
 #include "layout.glsl"
 #include "common.glsl"
+#include "collide_objects.glsl"
 #include "multigrid.glsl"
 
 layout(local_size_x = WORKGROUP_SIZE) in;
@@ -16,18 +17,22 @@ void main() {
   int i = int(gl_GlobalInvocationID.x);
   if (i >= int(particle_count())) return;
   vec4 p = position_of(i);
+  vec3 off = offset[i].xyz;
+  precise vec3 start = p.xyz + off;
+  bool touching = params.sphere_count + params.plane_count + params.mesh_count > 0u && touches_colliders(start);
   precise vec3 e = vec3(0.0);
-  if (p.w != 0.0) {
+  if (p.w != 0.0 && !touching) {
     uint first = texelFetch(mg_fine_view, i).x, last = texelFetch(mg_fine_view, i + 1).x;
     for (uint k = first; k < last; ++k) {
       uvec4 q = mg_entry(k);  // x the parent, y its weight's bits
       e = e + texelFetch(mg_corr_view, int(q.x)).xyz * uintBitsToFloat(q.y);
     }
   }
-  precise vec3 x = p.xyz + e;
-  precise vec3 d = displacement_of(i).xyz + e;
+  // From the prediction to the start (the offset predict left) plus the correction.
+  precise vec3 x = (p.xyz + off) + e;
+  precise vec3 d = (displacement_of(i).xyz + off) + e;
+  precise vec3 moved = off + e;
   pos[i] = vec4(x, p.w);
   disp[i] = vec4(d, 0.0);
-  precise vec3 moved = offset[i].xyz + e;
   offset[i] = vec4(moved, 0.0);
 }

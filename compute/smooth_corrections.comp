@@ -16,9 +16,10 @@ void main() {
   if (gl_GlobalInvocationID.x >= u_count) return;
   uint g = texelFetch(mg_order_view, int(u_first + gl_GlobalInvocationID.x)).x;
   uvec4 v = mg_vertex(g);
-  if (position_of(int(v.x)).w == 0.0) return;  // a pinned or held vertex does not move
+  vec4 b = rhs[g];
+  if (b.w < 0.0) return;  // a fixed vertex does not move (restrict_residuals)
   Sym3 diag;
-  vec3 r = coarse_residual(g, v, rhs[g], diag);
+  vec3 r = coarse_residual(g, v, b, diag);
   vec3 step;
   if (solve3(diag, r, step)) {
     precise vec3 e = texelFetch(mg_corr_view, int(g)).xyz + step;

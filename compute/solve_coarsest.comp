@@ -26,9 +26,10 @@ void main() {
       for (uint e = u_starts[k] + gl_LocalInvocationID.x; e < u_starts[k + 1u]; e += uint(WORKGROUP_SIZE)) {
         uint g = texelFetch(mg_order_view, int(e)).x;
         uvec4 v = mg_vertex(g);
-        if (position_of(int(v.x)).w == 0.0) continue;  // a pinned or held vertex does not move
+        vec4 b = rhs[g];
+        if (b.w < 0.0) continue;  // a fixed vertex does not move (restrict_residuals)
         Sym3 diag;
-        vec3 r = coarse_residual(g, v, rhs[g], diag);
+        vec3 r = coarse_residual(g, v, b, diag);
         vec3 step;
         if (solve3(diag, r, step)) {
           precise vec3 next = corr[g].xyz + step;

@@ -221,6 +221,10 @@ template <class R> void solve_distance_constraints(const ClothModel& m, const Co
 // then prolong_corrections and smooth_corrections colour by colour up), prolong_to_cloth, and
 // relax_vertices colour by colour. solve_multigrid runs them in order.
 inline constexpr int kLevelSweeps = 1;     // Gauss-Seidel sweeps per level on the way up
+// A mass this close to a collider's surface (m) is held by it: left out of the coarse problem.
+inline constexpr double kContactReach = 1e-3;
+// A coarse spring shorter than this times its rest length marks a fold: its ends are fixed.
+inline constexpr double kFoldedChord = 0.95;
 inline constexpr int kCoarsestSweeps = 4;  // on the coarsest level (solve_coarsest)
 // The GPU's solve_coarsest takes the coarsest level's colour starts as a uniform array of this
 // size + 1 (COARSEST_COLOURS_MAX in compute/solve_coarsest.comp).

@@ -132,6 +132,7 @@ template <class R> void predict(const ClothModel& m, const Constants<R>& c, Stat
     const R w = s.pos[i].w;
     if (w == R(0)) {
       move_pinned(c, i, s);
+      if (c.multigrid) s.offset[i] = Vec4<R>(0);
       continue;
     }
     Vec3<R> acc = c.gravity;
@@ -153,15 +154,11 @@ template <class R> void predict(const ClothModel& m, const Constants<R>& c, Stat
       if (len > c.max_step) d = d * (c.max_step * (R(1) / len));
     }
     Vec3<R> x = Vec3<R>(s.pos[i]) + d;
-    if (c.multigrid) {
-      // The multigrid solve starts from the inertial position less the external forces' share
-      // and solves for them with the springs, so a cloth at rest starts where it rests and stays
-      // exactly there (docs/model.md): x - y, the offset from the prediction, is that share.
-      const Vec3<R> external = acc * c.dt2;
-      x = x - external;
-      d = d - external;
-      s.offset[i] = Vec4<R>(-external, R(0));
-    }
+    // The multigrid solve starts from the inertial position without the external forces' share
+    // and applies it with the springs, so a cloth at rest starts where it rests and stays
+    // exactly there (docs/model.md). The contacts still see the full prediction (Coulomb
+    // friction takes its depth from it); prolong_to_cloth moves the masses by the offset.
+    if (c.multigrid) s.offset[i] = Vec4<R>(-(acc * c.dt2), R(0));
     if (const int pin = m.tether_pin[i]; pin >= 0) {
       const Vec3<R> e = x - pin_position(pin);
       const R len = length3(e);

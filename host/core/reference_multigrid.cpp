@@ -91,6 +91,37 @@ Vec3<R> coarse_residual(const Hierarchy& h, const Constants<R>& c, const State<R
 bool held(float w) { return w == 0.0f; }
 bool held(double w) { return w == 0.0; }
 
+// A mass at x within kContactReach of a collider's surface (inside a sphere or within the
+// reach of it, behind a plane's front or within the reach in front, within a mesh's thickness
+// plus the reach). The collider holds it with whatever force it takes, a force the coarse
+// problem does not know: such a mass neither gives its residual to the coarse levels nor takes
+// their correction, and the sweep alone moves it (docs/model.md). The GLSL twin is
+// touches_colliders in compute/multigrid.glsl.
+template <class R> bool touches_colliders(const Constants<R>& c, const Vec3<R>& x) {
+  const R reach = R(kContactReach);
+  for (const SphereC<R>& sp : c.spheres)
+    if (length3(x - sp.origin) < sp.radius + reach) return true;
+  for (const PlaneC<R>& pl : c.planes)
+    if (dot3(x - pl.point, pl.normal) * pl.front < reach) return true;
+  for (const MeshC<R>& m : c.meshes) {
+    R phi;
+    Vec3<R> grad;
+    if (sample_mesh_at(m, c.sdf->data(), x, phi, grad) && phi < m.thickness + reach) return true;
+  }
+  return false;
+}
+
+// Coarse vertex g in a fold: one of its coarse springs is shorter than kFoldedChord of its rest
+// length, the cloth between its ends buckled or folded. A coarse spring's chord says nothing of
+// the cloth there, and the local sweep does well where the cloth is slack: such a vertex is
+// fixed in the coarse problem, which carries tension where the cloth is taut.
+template <class R> bool folded(const Hierarchy& h, const State<R>& s, uint32_t g) {
+  const Vec3<R> p(s.pos[h.particle[g]]);
+  for (uint32_t k = h.spring_start[g]; k < h.spring_start[g + 1]; ++k)
+    if (length3(Vec3<R>(s.pos[h.particle[h.spring_other[k]]]) - p) < R(kFoldedChord) * R(h.spring_rest[k])) return true;
+  return false;
+}
+
 }  // namespace
 
 template <class R> void compute_residuals(const ClothModel& m, const Constants<R>& c, State<R>& s) {
@@ -100,15 +131,20 @@ template <class R> void compute_residuals(const ClothModel& m, const Constants<R
       s.residual[i] = Vec4<R>(0);
       continue;
     }
-    // -m/dt^2 (x - y) + the springs' force: right after predict x - y is minus the external
-    // forces' share, so this is the classic force, gravity and the wind included.
-    const Vec3<R> xi(s.pos[i]);
-    Vec3<R> f = Vec3<R>(s.offset[i]) * -(c.mass[i] * c.inv_dt2);
+    // -m/dt^2 (x - y) + the springs' force at the start x = y + offset, the prediction less
+    // the external forces' share: the classic force, gravity and the wind included.
+    const Vec3<R> off(s.offset[i]);
+    const Vec3<R> xi = Vec3<R>(s.pos[i]) + off;
+    if (c.has_colliders() && touches_colliders(c, xi)) {
+      s.residual[i] = Vec4<R>(Vec3<R>(0), c.mass[i]);
+      continue;
+    }
+    Vec3<R> f = off * -(c.mass[i] * c.inv_dt2);
     for (uint32_t g = m.gather_start[i]; g < m.gather_start[i + 1]; ++g) {
       const Spring& sp = m.springs[m.gather[g]];
       if (!c.enabled(sp)) continue;
       const uint32_t j = sp.i == i ? sp.j : sp.i;
-      const Vec3<R> e = Vec3<R>(s.pos[j]) - xi;
+      const Vec3<R> e = (Vec3<R>(s.pos[j]) + Vec3<R>(s.offset[j])) - xi;
       const R len = length3(e);
       if (len > R(0)) f += e * (c.materials[sp.material].stiffness(sp.type) * (len - R(sp.rest)) * (R(1) / len));
     }
@@ -120,10 +156,18 @@ template <class R> void restrict_residuals(const Constants<R>& c, int level, Sta
   const Hierarchy& h = *c.hierarchy;
   const HierarchyLevel& l = h.levels[size_t(level)];
   for (uint32_t g = l.first; g < l.first + l.count; ++g) {
+    s.coarse_corr[g] = Vec4<R>(0);
+    const uint32_t p = h.particle[g];
+    if (held(s.pos[p].w) || (c.has_colliders() && touches_colliders(c, Vec3<R>(s.pos[p]) + Vec3<R>(s.offset[p]))) ||
+        folded(h, s, g)) {
+      // Pinned, held, or held by a collider: fixed in the coarse problem (w -1 says so).
+      s.coarse_rhs[g] = Vec4<R>(0, 0, 0, -1);
+      s.residual[s.pos.size() + g] = Vec4<R>(0);
+      continue;
+    }
     Vec4<R> b(0);
     for (uint32_t k = h.child_start[g]; k < h.child_start[g + 1]; ++k) b += s.residual[h.child[k]] * R(h.child_weight[k]);
     s.coarse_rhs[g] = b;  // xyz: the force; w: the mass the vertex stands for
-    s.coarse_corr[g] = Vec4<R>(0);
     // With the correction at zero the level's residual is b itself: the next level restricts it.
     s.residual[s.pos.size() + g] = b;
   }
@@ -134,7 +178,7 @@ template <class R> void smooth_corrections(const Constants<R>& c, int level, int
   const HierarchyLevel& l = h.levels[size_t(level)];
   for (uint32_t k = l.colour_start[size_t(colour)]; k < l.colour_start[size_t(colour) + 1]; ++k) {
     const uint32_t g = h.order[k];
-    if (held(s.pos[h.particle[g]].w)) continue;  // a pinned or held vertex does not move
+    if (s.coarse_rhs[g].w < R(0)) continue;  // a fixed vertex does not move (restrict_residuals)
     Sym3<R> diag;
     const Vec3<R> r = coarse_residual(h, c, s, g, diag);
     Vec3<R> step;
@@ -146,7 +190,7 @@ template <class R> void prolong_corrections(const Constants<R>& c, int level, St
   const Hierarchy& h = *c.hierarchy;
   const HierarchyLevel& l = h.levels[size_t(level)];
   for (uint32_t g = l.first; g < l.first + l.count; ++g) {
-    if (held(s.pos[h.particle[g]].w)) continue;
+    if (s.coarse_rhs[g].w < R(0)) continue;
     Vec3<R> e(0);
     for (uint32_t k = h.parent_start[g]; k < h.parent_start[g + 1]; ++k)
       e += Vec3<R>(s.coarse_corr[h.parent[k]]) * R(h.parent_weight[k]);
@@ -157,13 +201,15 @@ template <class R> void prolong_corrections(const Constants<R>& c, int level, St
 template <class R> void prolong_to_cloth(const ClothModel& m, const Constants<R>& c, State<R>& s) {
   const Hierarchy& h = *c.hierarchy;
   for (uint32_t i = 0; i < uint32_t(m.count()); ++i) {
+    // From the prediction to the start (the offset predict left) plus the correction.
+    const Vec3<R> off(s.offset[i]);
     Vec3<R> e(0);
-    if (!held(s.pos[i].w))
+    if (!held(s.pos[i].w) && !(c.has_colliders() && touches_colliders(c, Vec3<R>(s.pos[i]) + off)))
       for (uint32_t k = h.fine_parent_start[i]; k < h.fine_parent_start[i + 1]; ++k)
         e += Vec3<R>(s.coarse_corr[h.fine_parent[k]]) * R(h.fine_parent_weight[k]);
-    s.pos[i] = Vec4<R>(Vec3<R>(s.pos[i]) + e, s.pos[i].w);
-    s.disp[i] = Vec4<R>(Vec3<R>(s.disp[i]) + e, R(0));
-    s.offset[i] = Vec4<R>(Vec3<R>(s.offset[i]) + e, R(0));  // x - y, the inertia term of the sweep
+    s.pos[i] = Vec4<R>((Vec3<R>(s.pos[i]) + off) + e, s.pos[i].w);
+    s.disp[i] = Vec4<R>((Vec3<R>(s.disp[i]) + off) + e, R(0));
+    s.offset[i] = Vec4<R>(off + e, R(0));  // x - y, the inertia term of the sweep
   }
 }
 

@@ -5,12 +5,17 @@
 #include <memory>
 #include <string>
 
+#include <fmt/format.h>
+
 #include "gpu_simulator.hpp"
 
 namespace clothsim {
 
 inline gl::Program load_multigrid_pass(const std::filesystem::path& dir, const char* name) {
-  return gl::Program::compute(dir / (std::string(name) + ".comp"), {{"WORKGROUP_SIZE", std::to_string(WORKGROUP_SIZE)}});
+  return gl::Program::compute(dir / (std::string(name) + ".comp"),
+                              {{"WORKGROUP_SIZE", std::to_string(WORKGROUP_SIZE)},
+                               {"CONTACT_REACH", fmt::format("{:.9e}", float(kContactReach))},
+                               {"FOLDED_CHORD", fmt::format("{:.9e}", float(kFoldedChord))}});
 }
 
 struct GpuMultigrid {
