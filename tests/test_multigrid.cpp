@@ -155,9 +155,12 @@ TEST_CASE("multigrid: a cloth hung from two corners is as stiff at 65² and 129�
   }
 }
 
-TEST_CASE("multigrid: an unpinned 65² cloth dropped onto a sphere stretches at most 5 % with no Provot limit",
+// At 129², where the coarse levels matter: without its two rules (a mass a collider holds, and a
+// coarse vertex in a fold, stay out of the coarse problem) this run diverged at frame 12, and
+// with the first alone it stretched its folds to 1.2-1.4 and slid off the sphere.
+TEST_CASE("multigrid: an unpinned 129² cloth dropped onto a sphere stretches at most 5 % with no Provot limit",
           "[multigrid][slow]") {
-  const Scene s = test::make_scene(65, 65, 0,
+  const Scene s = test::make_scene(129, 129, 0,
                              {"cloth.density=0.15", "cloth.ks=5000", "cloth.damping=0.2", "cloth.pinned=[]",
                               "simulation.max_stretch=10", "simulation.self_collision=false",
                               "simulation.solver=\"multigrid\""},
@@ -171,8 +174,9 @@ TEST_CASE("multigrid: an unpinned 65² cloth dropped onto a sphere stretches at 
   }
   const ClothStats st = measure(s, m, cpu.snapshot());
   INFO("largest stretch at the end " << st.max_stretch_ratio << ", at any tenth frame " << worst
-                                     << " (xpbd: 1.073 at the end)");
+                                     << " (xpbd: 1.191 at the end)");
   CHECK(st.max_stretch_ratio <= 1.05);
   CHECK(worst <= 1.05);
   CHECK(st.sphere_clearance[0] > -1e-3);  // it lies on the sphere, not through it
+  CHECK(st.sphere_clearance[0] < 1e-3);   // and has not slid off it
 }
