@@ -232,6 +232,8 @@ inline constexpr uint32_t kCoarsestColoursMax = 32;
 template <class R> void compute_residuals(const ClothModel& m, const Constants<R>& c, State<R>& s);
 template <class R> void restrict_residuals(const Constants<R>& c, int level, State<R>& s);
 template <class R> void smooth_corrections(const Constants<R>& c, int level, int colour, State<R>& s);
+// `sweeps` Gauss-Seidel sweeps of one level, colour by colour (smooth_corrections).
+template <class R> void smooth_level(const Constants<R>& c, int level, int sweeps, State<R>& s);
 template <class R> void solve_coarsest(const Constants<R>& c, State<R>& s);
 template <class R> void prolong_corrections(const Constants<R>& c, int level, State<R>& s);
 template <class R> void prolong_to_cloth(const ClothModel& m, const Constants<R>& c, State<R>& s);

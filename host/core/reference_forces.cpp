@@ -141,7 +141,8 @@ template <class R> void predict(const ClothModel& m, const Constants<R>& c, Stat
     // -n lambda on the spring's i end, +n lambda on its j end, in the gather order.
     // (The multigrid solver carries none: its springs act in its own solve.)
     Vec3<R> warm(0);
-    for (uint32_t k = m.gather_start[i]; k < (c.multigrid ? m.gather_start[i] : m.gather_start[i + 1]); ++k) {
+    const uint32_t last = c.multigrid ? m.gather_start[i] : m.gather_start[i + 1];
+    for (uint32_t k = m.gather_start[i]; k < last; ++k) {
       const uint32_t sk = m.gather[k];
       const Vec4<R>& l = s.lambda[sk];
       const Vec3<R> f = Vec3<R>(l) * l.w;

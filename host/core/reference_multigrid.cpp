@@ -19,7 +19,7 @@ template <class R> struct Sym3 {
 };
 
 // k (n n^T (1 - t) + t I), t = max(0, 1 - rest/len): a spring's Hessian with its compressive
-// part dropped (positive semi-definite), added to h. The same t and s serve hessian_times.
+// part dropped (positive semi-definite), added to h as s n n^T + d I (spring_terms gives s, d).
 template <class R> void add_spring_hessian(Sym3<R>& h, const Vec3<R>& n, R s, R d) {
   h.xx = h.xx + (s * n.x * n.x + d);
   h.xy = h.xy + s * n.x * n.y;
@@ -88,9 +88,6 @@ Vec3<R> coarse_residual(const Hierarchy& h, const Constants<R>& c, const State<R
   return r;
 }
 
-bool held(float w) { return w == 0.0f; }
-bool held(double w) { return w == 0.0; }
-
 // A mass at x within kContactReach of a collider's surface (inside a sphere or within the
 // reach of it, behind a plane's front or within the reach in front, within a mesh's thickness
 // plus the reach). The collider holds it with whatever force it takes, a force the coarse
@@ -127,7 +124,7 @@ template <class R> bool folded(const Hierarchy& h, const State<R>& s, uint32_t g
 template <class R> void compute_residuals(const ClothModel& m, const Constants<R>& c, State<R>& s) {
   ensure_sized(m, *c.hierarchy, s);
   for (uint32_t i = 0; i < uint32_t(m.count()); ++i) {
-    if (held(s.pos[i].w)) {
+    if (s.pos[i].w == R(0)) {
       s.residual[i] = Vec4<R>(0);
       continue;
     }
@@ -158,9 +155,9 @@ template <class R> void restrict_residuals(const Constants<R>& c, int level, Sta
   for (uint32_t g = l.first; g < l.first + l.count; ++g) {
     s.coarse_corr[g] = Vec4<R>(0);
     const uint32_t p = h.particle[g];
-    if (held(s.pos[p].w) || (c.has_colliders() && touches_colliders(c, Vec3<R>(s.pos[p]) + Vec3<R>(s.offset[p]))) ||
+    if (s.pos[p].w == R(0) || (c.has_colliders() && touches_colliders(c, Vec3<R>(s.pos[p]) + Vec3<R>(s.offset[p]))) ||
         folded(h, s, g)) {
-      // Pinned, held, or held by a collider: fixed in the coarse problem (w -1 says so).
+      // Pinned, held, held by a collider or in a fold: fixed in the coarse problem (w -1 says so).
       s.coarse_rhs[g] = Vec4<R>(0, 0, 0, -1);
       s.residual[s.pos.size() + g] = Vec4<R>(0);
       continue;
@@ -204,7 +201,7 @@ template <class R> void prolong_to_cloth(const ClothModel& m, const Constants<R>
     // From the prediction to the start (the offset predict left) plus the correction.
     const Vec3<R> off(s.offset[i]);
     Vec3<R> e(0);
-    if (!held(s.pos[i].w) && !(c.has_colliders() && touches_colliders(c, Vec3<R>(s.pos[i]) + off)))
+    if (!s.pos[i].w == R(0) && !(c.has_colliders() && touches_colliders(c, Vec3<R>(s.pos[i]) + off)))
       for (uint32_t k = h.fine_parent_start[i]; k < h.fine_parent_start[i + 1]; ++k)
         e += Vec3<R>(s.coarse_corr[h.fine_parent[k]]) * R(h.fine_parent_weight[k]);
     s.pos[i] = Vec4<R>((Vec3<R>(s.pos[i]) + off) + e, s.pos[i].w);
@@ -218,7 +215,7 @@ template <class R> void relax_vertices(const ClothModel& m, const Constants<R>& 
   for (uint32_t k = h.fine_colour_start[size_t(colour)]; k < h.fine_colour_start[size_t(colour) + 1]; ++k) {
     const uint32_t i = h.fine_order[k];
     const R wi = s.pos[i].w;
-    if (held(wi)) continue;
+    if (wi == R(0)) continue;
     Vec3<R> x(s.pos[i]), d(s.disp[i]), off(s.offset[i]);
     const R inertia = c.mass[i] * c.inv_dt2;
     // Newton on this mass's block: f = -m/dt^2 (x - y) + the springs' forces, H = m/dt^2 I + their Hessians.
@@ -264,15 +261,18 @@ template <class R> void relax_vertices(const ClothModel& m, const Constants<R>& 
   }
 }
 
+template <class R> void smooth_level(const Constants<R>& c, int level, int sweeps, State<R>& s) {
+  const int colours = int(c.hierarchy->levels[size_t(level)].colour_start.size()) - 1;
+  for (int it = 0; it < sweeps; ++it)
+    for (int k = 0; k < colours; ++k) smooth_corrections(c, level, k, s);
+}
+
 template <class R> void solve_coarsest(const Constants<R>& c, State<R>& s) {
-  const int l = int(c.hierarchy->levels.size()) - 1;
-  for (int it = 0; it < kCoarsestSweeps; ++it)
-    for (int k = 0; k + 1 < int(c.hierarchy->levels[size_t(l)].colour_start.size()); ++k) smooth_corrections(c, l, k, s);
+  smooth_level(c, int(c.hierarchy->levels.size()) - 1, kCoarsestSweeps, s);
 }
 
 template <class R> void cycle_levels(const Constants<R>& c, State<R>& s) {
-  const Hierarchy& h = *c.hierarchy;
-  const int levels = int(h.levels.size());
+  const int levels = int(c.hierarchy->levels.size());
   if (levels == 0) return;
   // Down: the force restricted level by level (no smoothing on the way down: the correction
   // is zero there, so each level's residual is its right-hand side).
@@ -281,8 +281,7 @@ template <class R> void cycle_levels(const Constants<R>& c, State<R>& s) {
   // Up: add each level's correction to the finer one, smooth it there.
   for (int l = levels - 2; l >= 0; --l) {
     prolong_corrections(c, l, s);
-    for (int it = 0; it < kLevelSweeps; ++it)
-      for (int k = 0; k + 1 < int(h.levels[size_t(l)].colour_start.size()); ++k) smooth_corrections(c, l, k, s);
+    smooth_level(c, l, kLevelSweeps, s);
   }
 }
 
@@ -300,6 +299,7 @@ template <class R> void solve_multigrid(const ClothModel& m, const Constants<R>&
   template void prolong_corrections<R>(const Constants<R>&, int, State<R>&); \
   template void prolong_to_cloth<R>(const ClothModel&, const Constants<R>&, State<R>&); \
   template void relax_vertices<R>(const ClothModel&, const Constants<R>&, int, State<R>&); \
+  template void smooth_level<R>(const Constants<R>&, int, int, State<R>&); \
   template void solve_coarsest<R>(const Constants<R>&, State<R>&); \
   template void cycle_levels<R>(const Constants<R>&, State<R>&); \
   template void solve_multigrid<R>(const ClothModel&, const Constants<R>&, State<R>&);

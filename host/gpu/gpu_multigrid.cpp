@@ -60,6 +60,20 @@ void GpuSimulator::ensure_multigrid() {
   g.fine_view.attach(g.fine, GL_R32UI);
   g.order_view.attach(g.order, GL_R32UI);
   g.corr_view.attach(g.corr, GL_RGBA32F);
+  if (!h.levels.empty()) {
+    // solve_coarsest's uniforms: the coarsest level's colours, fixed with the hierarchy.
+    const HierarchyLevel& l = h.levels.back();
+    const uint32_t colours = uint32_t(l.colour_start.size()) - 1;
+    if (colours > kCoarsestColoursMax)
+      throw std::runtime_error(fmt::format("solve_coarsest: the coarsest level has {} colours, more than {}", colours,
+                                           kCoarsestColoursMax));
+    std::vector<GLuint> starts;
+    for (uint32_t start : l.colour_start) starts.push_back(n + start);
+    gl::Program& p = g.solve_coarsest;
+    glProgramUniform1uiv(p.id(), p.location("u_starts[0]"), GLsizei(starts.size()), starts.data());
+    p.set("u_count", colours);
+    p.set("u_sweeps", unsigned(kCoarsestSweeps));
+  }
   g.hierarchy = constants_.hierarchy;
   bind_multigrid();
 }
@@ -83,13 +97,14 @@ void GpuSimulator::bind_multigrid() const {
   g.corr_view.bind(TEXTURE_MG_CORR);
 }
 
-// One dispatch of a multigrid pass over items [first, first + count) (u_first, u_count).
-void GpuSimulator::dispatch_range(gl::Program& program, uint32_t first, uint32_t count) {
+// One dispatch of a multigrid pass over items [first, first + count) (u_first, u_count, their
+// locations looked up once in GpuMultigrid).
+void GpuSimulator::dispatch_range(GpuMultigridPass& pass, uint32_t first, uint32_t count) {
   if (count == 0) return;
-  program.set("u_first", first);
-  program.set("u_count", count);
-  program.dispatch(gl::workgroups_for(count, WORKGROUP_SIZE));
-  dispatched(program);
+  pass.program.set(pass.first, first);
+  pass.program.set(pass.count, count);
+  pass.program.dispatch(gl::workgroups_for(count, WORKGROUP_SIZE));
+  dispatched(pass.program);
 }
 
 void GpuSimulator::compute_residuals() {
@@ -104,7 +119,7 @@ void GpuSimulator::restrict_residuals(int level) {
   ensure_multigrid();
   bind_for_pass();
   const HierarchyLevel& l = constants_.hierarchy->levels[size_t(level)];
-  dispatch_range(multigrid_->restrict_residuals, l.first, l.count);
+  dispatch_range(multigrid_->restrict_residuals_range, l.first, l.count);
   // smooth_corrections reads the right-hand sides and the zeroed corrections next.
   barrier(kComputeReads);
 }
@@ -114,7 +129,7 @@ void GpuSimulator::smooth_corrections(int level, int colour) {
   bind_for_pass();
   const HierarchyLevel& l = constants_.hierarchy->levels[size_t(level)];
   const uint32_t first = l.colour_start[size_t(colour)], last = l.colour_start[size_t(colour) + 1];
-  dispatch_range(multigrid_->smooth_corrections, uint32_t(model_.count()) + first, last - first);
+  dispatch_range(multigrid_->smooth_corrections_range, uint32_t(model_.count()) + first, last - first);
   // The next colour reads these corrections through their view.
   barrier(kComputeReads);
 }
@@ -122,17 +137,8 @@ void GpuSimulator::smooth_corrections(int level, int colour) {
 void GpuSimulator::solve_coarsest() {
   ensure_multigrid();
   bind_for_pass();
-  const HierarchyLevel& l = constants_.hierarchy->levels.back();
-  const uint32_t colours = uint32_t(l.colour_start.size()) - 1;
-  if (colours > kCoarsestColoursMax)
-    throw std::runtime_error(fmt::format("solve_coarsest: the coarsest level has {} colours, more than {}", colours,
-                                  kCoarsestColoursMax));
+  // Its colour starts, colour count and sweeps are set with the hierarchy (ensure_multigrid).
   gl::Program& p = multigrid_->solve_coarsest;
-  std::vector<GLuint> starts;
-  for (uint32_t s : l.colour_start) starts.push_back(uint32_t(model_.count()) + s);
-  glProgramUniform1uiv(p.id(), p.location("u_starts[0]"), GLsizei(starts.size()), starts.data());
-  p.set("u_count", colours);
-  p.set("u_sweeps", unsigned(kCoarsestSweeps));
   p.dispatch(1);  // one workgroup: its barriers order the colours
   dispatched(p);
   // prolong_corrections (or prolong_to_cloth) reads the corrections through their view next.
@@ -143,7 +149,7 @@ void GpuSimulator::prolong_corrections(int level) {
   ensure_multigrid();
   bind_for_pass();
   const HierarchyLevel& l = constants_.hierarchy->levels[size_t(level)];
-  dispatch_range(multigrid_->prolong_corrections, l.first, l.count);
+  dispatch_range(multigrid_->prolong_corrections_range, l.first, l.count);
   // smooth_corrections reads the corrections through their view next.
   barrier(kComputeReads);
 }
@@ -161,21 +167,25 @@ void GpuSimulator::relax_vertices(int colour) {
   bind_for_pass();
   const Hierarchy& h = *constants_.hierarchy;
   const uint32_t first = h.fine_colour_start[size_t(colour)], last = h.fine_colour_start[size_t(colour) + 1];
-  dispatch_range(multigrid_->relax_vertices, first, last - first);
+  dispatch_range(multigrid_->relax_vertices_range, first, last - first);
   // The next colour (or the next substep's first pass) reads these positions and displacements.
   barrier(kComputeReads);
 }
 
+void GpuSimulator::smooth_level(int level, int sweeps) {
+  const int colours = int(constants_.hierarchy->levels[size_t(level)].colour_start.size()) - 1;
+  for (int it = 0; it < sweeps; ++it)
+    for (int k = 0; k < colours; ++k) smooth_corrections(level, k);
+}
+
 void GpuSimulator::cycle_levels() {
-  const Hierarchy& h = *constants_.hierarchy;
-  const int levels = int(h.levels.size());
+  const int levels = int(constants_.hierarchy->levels.size());
   if (levels == 0) return;
   for (int l = 0; l < levels; ++l) restrict_residuals(l);
   solve_coarsest();
   for (int l = levels - 2; l >= 0; --l) {
     prolong_corrections(l);
-    for (int it = 0; it < kLevelSweeps; ++it)
-      for (int k = 0; k + 1 < int(h.levels[size_t(l)].colour_start.size()); ++k) smooth_corrections(l, k);
+    smooth_level(l, kLevelSweeps);
   }
 }
 

@@ -18,6 +18,13 @@ inline gl::Program load_multigrid_pass(const std::filesystem::path& dir, const c
                                {"FOLDED_CHORD", fmt::format("{:.9e}", float(kFoldedChord))}});
 }
 
+// A pass dispatched over a range (u_first, u_count): its uniforms' locations, looked up once.
+struct GpuMultigridPass {
+  gl::Program& program;
+  GLint first, count;
+  explicit GpuMultigridPass(gl::Program& p) : program(p), first(p.location("u_first")), count(p.location("u_count")) {}
+};
+
 struct GpuMultigrid {
   explicit GpuMultigrid(const std::filesystem::path& dir)
       : compute_residuals(load_multigrid_pass(dir, "compute_residuals")),
@@ -29,6 +36,8 @@ struct GpuMultigrid {
         relax_vertices(load_multigrid_pass(dir, "relax_vertices")) {}
   gl::Program compute_residuals, restrict_residuals, smooth_corrections, solve_coarsest, prolong_corrections,
       prolong_to_cloth, relax_vertices;
+  GpuMultigridPass restrict_residuals_range{restrict_residuals}, smooth_corrections_range{smooth_corrections};
+  GpuMultigridPass prolong_corrections_range{prolong_corrections}, relax_vertices_range{relax_vertices};
   // The hierarchy (layout.glsl: TEXTURE_MG_VERTICES, _LISTS, _FINE, _ORDER), static over a run.
   gl::Buffer vertices{"multigrid vertices"}, lists{"multigrid lists"}, fine{"multigrid fine parents"}, order{"multigrid order"};
   // A solve's scratch (BINDING_MG_RESIDUALS, _OFFSET, _RHS, _CORR).

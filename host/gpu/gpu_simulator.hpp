@@ -21,6 +21,7 @@
 namespace clothsim {
 
 struct GpuMultigrid;  // the multigrid solver's programs and buffers (gpu_multigrid.cpp)
+struct GpuMultigridPass;
 
 class GpuSimulator {
  public:
@@ -59,6 +60,7 @@ class GpuSimulator {
   void prolong_corrections(int level);
   void prolong_to_cloth();
   void relax_vertices(int colour);
+  void smooth_level(int level, int sweeps);  // `sweeps` sweeps of smooth_corrections, colour by colour
   void cycle_levels();  // the V-cycle: every pass between compute_residuals and prolong_to_cloth
   void solve_multigrid();
   int multigrid_dispatches() const;  // of one solve_multigrid
@@ -131,7 +133,7 @@ class GpuSimulator {
   void ensure_multigrid();
   void bind_multigrid() const;
   size_t multigrid_memory_bytes() const;
-  void dispatch_range(gl::Program& program, uint32_t first, uint32_t count);
+  void dispatch_range(GpuMultigridPass& pass, uint32_t first, uint32_t count);
   // xpbd's carried multipliers, one per spring (missing ones zero, one dummy without springs).
   void upload_multipliers(std::vector<Vec4<float>> multipliers);
   void upload_model();      // the cloth model's lists (springs, gather, triangles, corners, tethers)

@@ -112,14 +112,7 @@ void check_multigrid_passes(const ClothModel& model, const Constants<float>& c, 
   auto sweep = [&](int l, int sweeps) {
     const int colours = int(h.levels[size_t(l)].colour_start.size()) - 1;
     check(fmt::format("smooth_corrections (level {}, {} x {} colours)", l + 1, sweeps, colours),
-          [&] {
-            for (int it = 0; it < sweeps; ++it)
-              for (int k = 0; k < colours; ++k) smooth_corrections(c, l, k, s);
-          },
-          [&] {
-            for (int it = 0; it < sweeps; ++it)
-              for (int k = 0; k < colours; ++k) gpu.smooth_corrections(l, k);
-          });
+          [&] { smooth_level(c, l, sweeps, s); }, [&] { gpu.smooth_level(l, sweeps); });
   };
   for (int l = 0; l < levels; ++l)
     check(fmt::format("restrict_residuals (level {})", l + 1), [&] { restrict_residuals(c, l, s); },
