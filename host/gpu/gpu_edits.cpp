@@ -89,7 +89,7 @@ void GpuSimulator::set_parameters(const Scene& scene) {
   // xpbd's carried multipliers hold the springs' forces: a switch of solver or of a spring type
   // makes them meaningless, so they start over from zero (as at the start of a run).
   auto springs_in_play = [](const Constants<float>& c) {
-    std::vector<int> v{int(c.xpbd)};
+    std::vector<int> v{int(c.xpbd), int(c.multigrid)};  // multigrid leaves the multipliers stale
     for (const auto& m : c.materials) v.insert(v.end(), {m.enabled[0], m.enabled[1], m.enabled[2]});
     return v;
   };
