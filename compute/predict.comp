@@ -68,9 +68,10 @@ void main() {
     precise vec3 applied = acc * params.dt2;
     offset[i] = vec4(-applied, 0.0);
   }
-  // The tether to the nearest pin (long-range attachments, host/core/tethers.cpp).
+  // The tether to the nearest pin (long-range attachments, host/core/tethers.cpp): xpbd's only,
+  // the multigrid solve needs none (docs/solvers.md).
   vec4 tether = texelFetch(tethers_view, i);
-  if (tether.x >= 0.0) {
+  if (tether.x >= 0.0 && params.multigrid == 0u) {
     precise vec3 e = next - pin_position(int(tether.x));
     float len = length3(e);
     precise float limit = params.tether_limit * tether.y;

@@ -223,8 +223,11 @@ template <class R> void solve_distance_constraints(const ClothModel& m, const Co
 inline constexpr int kLevelSweeps = 1;     // Gauss-Seidel sweeps per level on the way up
 // A mass this close to a collider's surface (m) is held by it: left out of the coarse problem.
 inline constexpr double kContactReach = 1e-3;
-// A coarse spring shorter than this times its rest length marks a fold: its ends are fixed.
-inline constexpr double kFoldedChord = 0.95;
+// A coarse spring shorter than this times its rest length marks a fold: the cloth between its
+// ends may have buckled, so the coarse vertex is fixed. 0.95 let the 513² hang's buckling top
+// edge fold the cloth up; 1 (any slack chord) also fixes the slightly compressed lower cloth
+// and slows its hanging (docs/solvers.md).
+inline constexpr double kFoldedChord = 0.99;
 inline constexpr int kCoarsestSweeps = 4;  // on the coarsest level (solve_coarsest)
 // The GPU's solve_coarsest takes the coarsest level's colour starts as a uniform array of this
 // size + 1 (COARSEST_COLOURS_MAX in compute/solve_coarsest.comp).

@@ -160,7 +160,9 @@ template <class R> void predict(const ClothModel& m, const Constants<R>& c, Stat
     // exactly there (docs/model.md). The contacts still see the full prediction (Coulomb
     // friction takes its depth from it); prolong_to_cloth moves the masses by the offset.
     if (c.multigrid) s.offset[i] = Vec4<R>(-(acc * c.dt2), R(0));
-    if (const int pin = m.tether_pin[i]; pin >= 0) {
+    // The tether to the nearest pin: xpbd's, whose sweep alone cannot carry the pins' pull
+    // across a fine cloth; the multigrid solve does (docs/solvers.md), and takes none.
+    if (const int pin = c.multigrid ? -1 : m.tether_pin[i]; pin >= 0) {
       const Vec3<R> e = x - pin_position(pin);
       const R len = length3(e);
       const R limit = c.tether_limit * R(m.tether_rest[i]);

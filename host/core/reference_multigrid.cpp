@@ -201,7 +201,7 @@ template <class R> void prolong_to_cloth(const ClothModel& m, const Constants<R>
     // From the prediction to the start (the offset predict left) plus the correction.
     const Vec3<R> off(s.offset[i]);
     Vec3<R> e(0);
-    if (!s.pos[i].w == R(0) && !(c.has_colliders() && touches_colliders(c, Vec3<R>(s.pos[i]) + off)))
+    if (s.pos[i].w != R(0) && !(c.has_colliders() && touches_colliders(c, Vec3<R>(s.pos[i]) + off)))
       for (uint32_t k = h.fine_parent_start[i]; k < h.fine_parent_start[i + 1]; ++k)
         e += Vec3<R>(s.coarse_corr[h.fine_parent[k]]) * R(h.fine_parent_weight[k]);
     s.pos[i] = Vec4<R>((Vec3<R>(s.pos[i]) + off) + e, s.pos[i].w);

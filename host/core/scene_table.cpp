@@ -258,7 +258,7 @@ const Param<SimulationParams> kSimulation[] = {
                                     .choices = kSolvers}),
     row<&SimulationParams::tether_stretch>(
         {.key = "tether_stretch", .lo = 0, .expected = "a stretch ratio >= 0",
-         .meaning = "xpbd only: no mass gets further than (1 + tether_stretch) · its rest distance from its nearest "
+         .meaning = "xpbd only (multigrid needs none): no mass gets further than (1 + tether_stretch) · its rest distance from its nearest "
                     "pin (long-range attachments); a large value turns them off",
          .widget = drag(0.001f, 0.0, 10.0, "%.3f")}),
 };
