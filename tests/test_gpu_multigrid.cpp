@@ -51,7 +51,7 @@ TEST_CASE("a multigrid run on the GPU follows the reference frame by frame, and 
   gpu.step_frame();
   const GpuCounters after = gpu.counters();
   // The substeps' dispatches, then the frame's own: normals and the divergence guard's two.
-  CHECK(after.dispatches - before.dispatches ==
+  CHECK(uint64_t(after.dispatches - before.dispatches) ==
         uint64_t(scene.simulation.simulation_steps * gpu.dispatches_per_substep() + 3));
   cpu.step_frame();
   for (int f = 1; f < 4; ++f) {

@@ -59,6 +59,7 @@ void colour_vertices(const Graph& g, uint32_t base, std::vector<uint32_t>& order
 
 Hierarchy build_hierarchy(const ClothModel& m, const std::vector<double>& ks) {
   Hierarchy h;
+  h.ks = ks;
   colour_vertices(spring_graph(m, true), 0, h.fine_order, h.fine_colour_start);
   // The current level: its vertices' particles and their graph (structural and shearing springs
   // on the cloth itself, the coarse springs further down).

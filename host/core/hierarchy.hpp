@@ -46,6 +46,7 @@ struct Hierarchy {
   std::vector<uint32_t> order;  // every level's vertices by colour (HierarchyLevel::colour_start)
 
   std::vector<HierarchyLevel> levels;  // levels[0] is level 1, the first coarse one
+  std::vector<double> ks;  // the cloths' ks it was built for (its coarse springs follow them)
 
   uint32_t coarse_count() const { return uint32_t(particle.size()); }
   int fine_colours() const { return int(fine_colour_start.size()) - 1; }

@@ -102,7 +102,8 @@ template <class R> void set_substep_time(Constants<R>& c, double t) {
   if (tl.gust_period > 0) c.wind.gust_phase = R(gust_phase(t, tl.gust_period));
 }
 
-template <class R> Constants<R> make_constants(const Scene& scene, const ClothModel& model) {
+template <class R>
+Constants<R> make_constants(const Scene& scene, const ClothModel& model, std::shared_ptr<const Hierarchy> reuse) {
   const ClothParams& cp = scene.cloth;
   const SimulationParams& sp = scene.simulation;
   Constants<R> c{};
@@ -138,7 +139,7 @@ template <class R> Constants<R> make_constants(const Scene& scene, const ClothMo
   if (c.multigrid) {
     std::vector<double> ks;
     for (const ClothParams* k : scene.cloths()) ks.push_back(k->ks);
-    c.hierarchy = std::make_shared<const Hierarchy>(build_hierarchy(model, ks));
+    c.hierarchy = reuse && reuse->ks == ks ? std::move(reuse) : std::make_shared<const Hierarchy>(build_hierarchy(model, ks));
   }
   c.tether_limit = R(1.0 + sp.tether_stretch);
   c.iterations = sp.constraint_iterations;
@@ -185,7 +186,7 @@ template <class R> State<R> initial_state(const ClothModel& m) {
 }
 
 #define CLOTHSIM_INSTANTIATE(R) \
-  template Constants<R> make_constants<R>(const Scene&, const ClothModel&); \
+  template Constants<R> make_constants<R>(const Scene&, const ClothModel&, std::shared_ptr<const Hierarchy>); \
   template State<R> initial_state<R>(const ClothModel&); \
   template void set_substep_time<R>(Constants<R>&, double);
 CLOTHSIM_INSTANTIATE(float)

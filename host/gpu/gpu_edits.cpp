@@ -94,7 +94,7 @@ void GpuSimulator::set_parameters(const Scene& scene) {
     return v;
   };
   const std::vector<int> had_springs = springs_in_play(constants_);
-  constants_ = make_constants<float>(scene, model_);
+  constants_ = make_constants<float>(scene, model_, constants_.hierarchy);  // the hierarchy kept while ks is
   masses_ = particle_masses(scene, model_);
   if (constants_.timeline.moves()) set_substep_time(constants_, time_);
   if (constants_.moving_pins() != had_anchors) upload_anchors();
