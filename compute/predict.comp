@@ -70,8 +70,8 @@ void main() {
   }
   // The tether to the nearest pin (long-range attachments, host/core/tethers.cpp): xpbd's only,
   // the multigrid solve needs none (docs/solvers.md).
-  vec4 tether = texelFetch(tethers_view, i);
-  if (tether.x >= 0.0 && params.multigrid == 0u) {
+  vec4 tether = params.multigrid == 0u ? texelFetch(tethers_view, i) : vec4(-1.0);
+  if (tether.x >= 0.0) {
     precise vec3 e = next - pin_position(int(tether.x));
     float len = length3(e);
     precise float limit = params.tether_limit * tether.y;

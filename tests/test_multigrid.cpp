@@ -198,7 +198,6 @@ TEST_CASE("multigrid takes no tethers: tether_stretch 0 and 100 give the same bi
   CHECK(run(Solver::Xpbd, 0) != run(Solver::Xpbd, 100));  // the tethers do engage on this cloth
 }
 
-
 // A live edit makes the constants anew: the hierarchy (0.4 s to build at 513², and a re-upload on
 // the GPU) is kept unless the stiffness its coarse springs follow changed.
 TEST_CASE("multigrid: new constants keep the hierarchy built for the same ks and rebuild it for another",
@@ -232,9 +231,10 @@ TEST_CASE("multigrid at 120 substeps: a 65² heap collapses within its Provot li
   size_t intersecting = 0;
   for (int f = 1; f <= 150; ++f) {
     cpu.step_frame();
-    const double stretch = measure(s, m, cpu.snapshot()).max_stretch_ratio;
+    const ClothSnapshot frame = cpu.snapshot();
+    const double stretch = measure(s, m, frame).max_stretch_ratio;
     if (stretch > worst) worst = stretch, worst_frame = f;
-    if (f % 10 == 0) intersecting = std::max(intersecting, count_self_intersections(m, cpu.snapshot()));
+    if (f % 10 == 0) intersecting = std::max(intersecting, count_self_intersections(m, frame));
   }
   double top = -1e9;
   for (auto& p : cpu.snapshot().pos) top = std::max(top, double(p.y));
