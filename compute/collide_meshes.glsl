@@ -27,7 +27,7 @@ MeshField mesh_field(int k) {
   m.rows[1] = r1.xyz;
   m.rows[2] = r2.xyz;
   m.origin = vec3(r0.w, r1.w, r2.w);
-  m.motion = motion.xyz;
+  m.motion = collider_motion(motion.xyz);
   m.keep = motion.w;
   m.mu = material.x;
   m.thickness = material.y;
@@ -164,7 +164,7 @@ void collide_with_mesh(int k, bool friction, inout vec3 x, inout vec3 d) {
       n = along;
     }
   }
-  respond_to_contact(friction && params.coulomb_friction != 0u, t_minus_x, n, friction ? m.keep : 1.0, m.mu, m.motion,
+  respond_to_contact(friction && COULOMB_FRICTION, t_minus_x, n, friction ? m.keep : 1.0, m.mu, m.motion,
                      x, d);
   keep_out_of_mesh(m, x, d);
 }

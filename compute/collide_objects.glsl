@@ -7,6 +7,7 @@
 #define CLOTHSIM_COLLIDE_OBJECTS_GLSL
 
 #include "particle_views.glsl"
+#include "features.glsl"
 
 // The friction blend x' = x_prev + keep (t - x_prev), as d' = keep ((t - x) + d),
 // x' = x + (d' - d): only small differences are rounded.
@@ -146,11 +147,11 @@ void respond_to_contact(bool coulomb, vec3 t_minus_x, vec3 n, float keep, float 
 }
 
 // One sphere contact's response (respond_to_sphere in the reference): xpbd's Coulomb friction
-// (params.coulomb_friction, with friction on), else the CS184 blend, in the sphere's frame when
+// (COULOMB_FRICTION, with friction on), else the CS184 blend, in the sphere's frame when
 // it moves.
 void respond_to_sphere(bool friction, vec3 o, float keep, float mu, vec3 m, vec3 t_minus_x, inout vec3 x,
                        inout vec3 d) {
-  if (friction && params.coulomb_friction != 0u) coulomb_respond(t_minus_x, sphere_normal(o, x, t_minus_x), mu, m, x, d);
+  if (friction && COULOMB_FRICTION) coulomb_respond(t_minus_x, sphere_normal(o, x, t_minus_x), mu, m, x, d);
   else if (any(notEqual(m, vec3(0.0)))) blend_to_moving(t_minus_x, keep, m, x, d);
   else blend_to(t_minus_x, keep, x, d);
 }
@@ -161,11 +162,11 @@ void respond_to_sphere(bool friction, vec3 o, float keep, float mu, vec3 m, vec3
 // push-out that xpbd's constraint pass applies after each correction (docs/model.md); applying
 // it twice changes nothing.
 void collide_with_objects_friction(inout vec3 x, inout vec3 d, bool friction) {
-  for (int s = 0; s < int(params.sphere_count); ++s) {
+  for (int s = 0; s < sphere_count(); ++s) {
     vec4 origin_radius = texelFetch(spheres_view, SPHERE_TEXELS * s);
     vec4 keep_mu = texelFetch(spheres_view, SPHERE_TEXELS * s + 1);
     float keep = friction ? keep_mu.x : 1.0;
-    vec3 m = texelFetch(spheres_view, SPHERE_TEXELS * s + 2).xyz;
+    vec3 m = collider_motion(texelFetch(spheres_view, SPHERE_TEXELS * s + 2).xyz);
     float r = origin_radius.w;
     vec3 e = x - origin_radius.xyz;
     float dist = length3(e);
@@ -199,14 +200,14 @@ void collide_with_objects_friction(inout vec3 x, inout vec3 d, bool friction) {
     respond_to_sphere(friction, origin_radius.xyz, keep, keep_mu.y, vec3(0.0), t_minus_x, x, d);
     keep_out_of_sphere(origin_radius.xyz, r, x, d);
   }
-  for (int k = 0; k < int(params.plane_count); ++k) {
+  for (int k = 0; k < plane_count(); ++k) {
     vec4 point_front = texelFetch(planes_view, PLANE_TEXELS * k);
     vec4 normal_keep = texelFetch(planes_view, PLANE_TEXELS * k + 1);
     vec4 motion_mu = texelFetch(planes_view, PLANE_TEXELS * k + 2);
-    vec3 m = motion_mu.xyz;
+    vec3 m = collider_motion(motion_mu.xyz);
     vec3 n = normal_keep.xyz;
     float front = point_front.w;
-    bool coulomb = friction && params.coulomb_friction != 0u;
+    bool coulomb = friction && COULOMB_FRICTION;
     if (!friction) normal_keep.w = 1.0;
     // The classic crossing test (in the plane's frame, x_prev - p_prev = (x - p) - (d - m), so a
     // sweep is seen at any speed), and a mass found behind the front at both ends of the
@@ -231,7 +232,7 @@ void collide_with_objects_friction(inout vec3 x, inout vec3 d, bool friction) {
     // The blend of a mass found behind starts from x_prev, behind too: it can end behind.
     if (side == front) keep_in_front_of_plane(point_front.xyz, n, front, x, d);
   }
-  for (int k = 0; k < int(params.mesh_count); ++k) collide_with_mesh(k, friction, x, d);
+  for (int k = 0; k < mesh_count(); ++k) collide_with_mesh(k, friction, x, d);
 }
 
 void collide_with_objects(inout vec3 x, inout vec3 d) { collide_with_objects_friction(x, d, true); }
@@ -239,16 +240,16 @@ void collide_with_objects(inout vec3 x, inout vec3 d) { collide_with_objects_fri
 // A mass deeper than 0.1 mm inside a sphere, or behind a plane's front, goes back to the
 // surface without friction (keep_out_of_colliders in host/core/reference_collisions.cpp).
 void keep_out_of_colliders(inout vec3 x, inout vec3 d) {
-  for (int s = 0; s < int(params.sphere_count); ++s) {
+  for (int s = 0; s < sphere_count(); ++s) {
     vec4 origin_radius = texelFetch(spheres_view, SPHERE_TEXELS * s);
     keep_out_of_sphere(origin_radius.xyz, origin_radius.w, x, d);
   }
-  for (int k = 0; k < int(params.plane_count); ++k) {
+  for (int k = 0; k < plane_count(); ++k) {
     vec4 point_front = texelFetch(planes_view, PLANE_TEXELS * k);
     vec3 n = texelFetch(planes_view, PLANE_TEXELS * k + 1).xyz;
     keep_in_front_of_plane(point_front.xyz, n, point_front.w, x, d);
   }
-  for (int k = 0; k < int(params.mesh_count); ++k) {
+  for (int k = 0; k < mesh_count(); ++k) {
     MeshField m = mesh_field(k);
     keep_out_of_mesh(m, x, d);
   }

@@ -27,7 +27,7 @@ void main() {
   vec3 off = offset[i].xyz;
   precise vec3 xi = p.xyz + off;
   // A mass a collider holds stays out of the coarse problem (touches_colliders).
-  if (params.sphere_count + params.plane_count + params.mesh_count > 0u && touches_colliders(xi)) {
+  if (has_colliders() && touches_colliders(xi)) {
     residual[i] = vec4(0.0, 0.0, 0.0, mass_of(i));
     return;
   }

@@ -80,18 +80,18 @@ bool solve3(Sym3 h, vec3 f, out vec3 x) {
 #ifdef CLOTHSIM_COLLIDE_OBJECTS_GLSL
 bool touches_colliders(vec3 x) {
   float reach = CONTACT_REACH;
-  for (int s = 0; s < int(params.sphere_count); ++s) {
+  for (int s = 0; s < sphere_count(); ++s) {
     vec4 origin_radius = texelFetch(spheres_view, SPHERE_TEXELS * s);
     precise float within = origin_radius.w + reach;
     if (length3(x - origin_radius.xyz) < within) return true;
   }
-  for (int k = 0; k < int(params.plane_count); ++k) {
+  for (int k = 0; k < plane_count(); ++k) {
     vec4 point_front = texelFetch(planes_view, PLANE_TEXELS * k);
     vec3 n = texelFetch(planes_view, PLANE_TEXELS * k + 1).xyz;
     precise float ahead = dot3(x - point_front.xyz, n) * point_front.w;
     if (ahead < reach) return true;
   }
-  for (int k = 0; k < int(params.mesh_count); ++k) {
+  for (int k = 0; k < mesh_count(); ++k) {
     MeshField m = mesh_field(k);
     float phi;
     vec3 grad;

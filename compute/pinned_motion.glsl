@@ -5,12 +5,14 @@
 #ifndef CLOTHSIM_PINNED_MOTION_GLSL
 #define CLOTHSIM_PINNED_MOTION_GLSL
 
+#include "features.glsl"
+
 layout(std430, binding = BINDING_ANCHORS) readonly buffer Anchors { vec4 anchor[]; };
 
 // Where pinned mass k is at the end of this substep, if it follows pinned_motion.
 bool moving_pin_position(int k, out vec3 x) {
   x = vec3(0.0);
-  if (params.pins_moving == 0u) return false;
+  if (!PINS_MOVE) return false;
   vec4 a = anchor[k];
   if (a.w == 0.0) return false;
   precise vec3 moved_to = a.xyz + params.pin_offset;

@@ -29,7 +29,7 @@ void main() {
   if (i >= int(particle_count())) return;
   vec4 p = position_of(i);
   if (p.w == 0.0) {
-    if (params.multigrid != 0u) offset[i] = vec4(0.0);
+    if (MULTIGRID_SOLVER) offset[i] = vec4(0.0);
     vec4 next;
     vec3 moved;
     if (move_pinned(i, p, next, moved)) {
@@ -45,7 +45,7 @@ void main() {
   // (The multigrid solver carries none: its springs act in its own solve.)
   precise vec3 warm = vec3(0.0);
   uint first = texelFetch(gather_start_view, i).x, last = texelFetch(gather_start_view, i + 1).x;
-  if (params.carry_multipliers == 0u) last = first;
+  if (MULTIGRID_SOLVER || params.carry_multipliers == 0u) last = first;  // (the same: carry = !multigrid)
   for (uint g = first; g < last; ++g) {
     uvec4 entry = texelFetch(gather_view, int(g));  // z: the spring, w: 1 if i is its i end
     vec4 l = texelFetch(multipliers_view, int(entry.z));
@@ -64,13 +64,13 @@ void main() {
   precise vec3 next = p.xyz + d;
   // The multigrid solve's offset: the external forces' share, which it applies with the
   // springs (predict in host/core/reference_forces.cpp).
-  if (params.multigrid != 0u) {
+  if (MULTIGRID_SOLVER) {
     precise vec3 applied = acc * params.dt2;
     offset[i] = vec4(-applied, 0.0);
   }
   // The tether to the nearest pin (long-range attachments, host/core/tethers.cpp): xpbd's only,
   // the multigrid solve needs none (docs/solvers.md).
-  vec4 tether = params.multigrid == 0u ? texelFetch(tethers_view, i) : vec4(-1.0);
+  vec4 tether = MULTIGRID_SOLVER ? vec4(-1.0) : texelFetch(tethers_view, i);
   if (tether.x >= 0.0) {
     precise vec3 e = next - pin_position(int(tether.x));
     float len = length3(e);

@@ -19,7 +19,7 @@ void main() {
   vec4 p = position_of(i);
   vec3 off = offset[i].xyz;
   precise vec3 start = p.xyz + off;
-  bool touching = params.sphere_count + params.plane_count + params.mesh_count > 0u && touches_colliders(start);
+  bool touching = has_colliders() && touches_colliders(start);
   precise vec3 e = vec3(0.0);
   if (p.w != 0.0 && !touching) {
     uint first = texelFetch(mg_fine_view, i).x, last = texelFetch(mg_fine_view, i + 1).x;

@@ -62,7 +62,7 @@ void main() {
     d = d + corr;
   }
   // A correction must not push a mass into a collider or through a plane (as in xpbd's sweep).
-  if (params.sphere_count + params.plane_count + params.mesh_count > 0u) collide_with_objects_friction(x, d, false);
+  if (has_colliders()) collide_with_objects_friction(x, d, false);
   pos[i] = vec4(x, wi);
   disp[i] = vec4(d, 0.0);
   offset[i] = vec4(off, 0.0);

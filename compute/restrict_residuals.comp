@@ -36,7 +36,7 @@ void main() {
   vec4 p = position_of(int(v.x));
   precise vec3 start = p.xyz + offset[v.x].xyz;
   if (p.w == 0.0 ||
-      (params.sphere_count + params.plane_count + params.mesh_count > 0u && touches_colliders(start)) ||
+      (has_colliders() && touches_colliders(start)) ||
       folded(g, v)) {
     rhs[g] = vec4(0.0, 0.0, 0.0, -1.0);
     residual[particle_count() + g] = vec4(0.0);

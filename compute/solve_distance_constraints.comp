@@ -57,7 +57,7 @@ void main() {
   limit_stretch(xi, xj, di, dj, pi.w, pj.w, wsum, params.stretch_limit * rest);
   // A correction must not push a mass into a collider or through a plane, where the collision
   // test of the next substep could no longer see it (docs/model.md).
-  if (params.sphere_count + params.plane_count + params.mesh_count > 0u) {
+  if (has_colliders()) {
     if (pi.w != 0.0) collide_with_objects_friction(xi, di, false);
     if (pj.w != 0.0) collide_with_objects_friction(xj, dj, false);
   }

@@ -27,7 +27,7 @@ void main() {
   if (!limit_stretch(xi, xj, di, dj, pi.w, pj.w, wsum, limit)) return;
   // Provot's pull may not leave a mass deeper than 0.1 mm inside a collider or behind a
   // plane (docs/model.md, "Colliders: contact that holds"); shallower, nothing changes.
-  if (params.sphere_count + params.plane_count + params.mesh_count > 0u) {
+  if (has_colliders()) {
     if (pi.w != 0.0) keep_out_of_colliders(xi, di);
     if (pj.w != 0.0) keep_out_of_colliders(xj, dj);
   }

@@ -102,3 +102,43 @@ TEST_CASE("a live change of the substep length keeps the GPU cloth's velocity, a
   CHECK(d.max < 1e-5);
   CHECK_NO_GL_ERRORS();
 }
+
+TEST_CASE("a live edit that adds colliders compiles the passes for them and runs as the reference", "[gpu][viewer]") {
+  REQUIRE_GL_CONTEXT();
+  const std::vector<std::string> sets{"simulation.self_collision=false", "cloth.pinned=[[0,0],[6,0]]"};
+  Scene s = test::make_scene(7, 5, 0, sets);
+  ClothModel m = build_cloth(s);
+  GpuSimulator sim(s, m, test::source_path("compute"));
+  CpuBackend<float> cpu(s, m);
+  // No collider: none of the collider code is in the passes (shader_features.hpp).
+  CHECK(sim.shader_features() == ShaderFeatures{false, false, false, false, false, false, false});
+  for (int f = 0; f < 5; ++f) {
+    sim.step_frame();
+    cpu.step_frame();
+  }
+  // A sphere the falling cloth meets within a few frames, and a plane under it.
+  Scene edited_scene = test::make_scene(
+      7, 5, 0, sets,
+      R"(, "sphere": {"origin": [0.5, 0.78, 0.4], "radius": 0.2, "friction": 0.3},)"
+      R"( "plane": {"point": [0, 0.55, 0], "normal": [0, 1, 0], "friction": 0.5})");
+  sim.set_parameters(edited_scene);
+  CHECK(sim.shader_features() == ShaderFeatures{true, true, false, false, false, false, false});
+  CpuBackend<float> edited(edited_scene, m);
+  edited.state() = cpu.state();
+  for (int f = 0; f < 25; ++f) {
+    sim.step_frame();
+    edited.step_frame();
+    cpu.step_frame();  // without the colliders
+  }
+  State<float> after;
+  sim.download(after);
+  // The colliders acted: the cloth is centimetres from where it goes without them.
+  const double moved = deviation(edited.state().pos, cpu.state().pos).max;
+  INFO("with the colliders - without: " << moved << " m");
+  CHECK(moved > 0.01);
+  const Deviation d = deviation(after.pos, edited.state().pos);
+  INFO("GPU - CPU after the edit: " << d.max << " m");
+  if (gl::gl_renderer_is_llvmpipe()) CHECK(d.bitwise);
+  CHECK(d.max < 1e-5);
+  CHECK_NO_GL_ERRORS();
+}

@@ -26,6 +26,7 @@ class Program {
   static Program compute(const std::filesystem::path& path, const Defines& defines = {});
   static Program graphics(const std::filesystem::path& vertex_path, const std::filesystem::path& fragment_path,
                           const Defines& defines = {});
+  Program() = default;  // no GL program yet: only to be assigned one of the above
 
   void use() const;
 

@@ -21,7 +21,7 @@ void GpuSimulator::ensure_multigrid() {
   if (!constants_.multigrid) return;
   const Hierarchy& h = *constants_.hierarchy;
   if (multigrid_ && multigrid_->hierarchy == constants_.hierarchy) return;
-  if (!multigrid_) multigrid_ = std::make_unique<GpuMultigrid>(dir_);
+  if (!multigrid_) multigrid_ = std::make_unique<GpuMultigrid>(dir_, features_);
   GpuMultigrid& g = *multigrid_;
   const uint32_t n = uint32_t(model_.count()), coarse = h.coarse_count();
   // The lists: every coarse vertex's children, then parents, then springs, then the particles' parents.

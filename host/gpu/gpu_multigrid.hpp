@@ -11,11 +11,13 @@
 
 namespace clothsim {
 
-inline gl::Program load_multigrid_pass(const std::filesystem::path& dir, const char* name) {
-  return gl::Program::compute(dir / (std::string(name) + ".comp"),
-                              {{"WORKGROUP_SIZE", std::to_string(WORKGROUP_SIZE)},
-                               {"CONTACT_REACH", fmt::format("{:.9e}", float(kContactReach))},
-                               {"FOLDED_CHORD", fmt::format("{:.9e}", float(kFoldedChord))}});
+inline gl::Program load_multigrid_pass(const std::filesystem::path& dir, const char* name,
+                                      const ShaderFeatures& features) {
+  gl::Defines defines{{"WORKGROUP_SIZE", std::to_string(WORKGROUP_SIZE)},
+                      {"CONTACT_REACH", fmt::format("{:.9e}", float(kContactReach))},
+                      {"FOLDED_CHORD", fmt::format("{:.9e}", float(kFoldedChord))}};
+  for (auto& d : features.defines()) defines.push_back(d);
+  return gl::Program::compute(dir / (std::string(name) + ".comp"), defines);
 }
 
 // A pass dispatched over a range (u_first, u_count): its uniforms' locations, looked up once.
@@ -26,14 +28,14 @@ struct GpuMultigridPass {
 };
 
 struct GpuMultigrid {
-  explicit GpuMultigrid(const std::filesystem::path& dir)
-      : compute_residuals(load_multigrid_pass(dir, "compute_residuals")),
-        restrict_residuals(load_multigrid_pass(dir, "restrict_residuals")),
-        smooth_corrections(load_multigrid_pass(dir, "smooth_corrections")),
-        solve_coarsest(load_multigrid_pass(dir, "solve_coarsest")),
-        prolong_corrections(load_multigrid_pass(dir, "prolong_corrections")),
-        prolong_to_cloth(load_multigrid_pass(dir, "prolong_to_cloth")),
-        relax_vertices(load_multigrid_pass(dir, "relax_vertices")) {}
+  GpuMultigrid(const std::filesystem::path& dir, const ShaderFeatures& f)
+      : compute_residuals(load_multigrid_pass(dir, "compute_residuals", f)),
+        restrict_residuals(load_multigrid_pass(dir, "restrict_residuals", f)),
+        smooth_corrections(load_multigrid_pass(dir, "smooth_corrections", f)),
+        solve_coarsest(load_multigrid_pass(dir, "solve_coarsest", f)),
+        prolong_corrections(load_multigrid_pass(dir, "prolong_corrections", f)),
+        prolong_to_cloth(load_multigrid_pass(dir, "prolong_to_cloth", f)),
+        relax_vertices(load_multigrid_pass(dir, "relax_vertices", f)) {}
   gl::Program compute_residuals, restrict_residuals, smooth_corrections, solve_coarsest, prolong_corrections,
       prolong_to_cloth, relax_vertices;
   GpuMultigridPass restrict_residuals_range{restrict_residuals}, smooth_corrections_range{smooth_corrections};

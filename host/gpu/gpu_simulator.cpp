@@ -14,8 +14,10 @@
 namespace clothsim {
 namespace {
 
-gl::Program load_pass(const std::filesystem::path& dir, const char* name) {
-  return gl::Program::compute(dir / fmt::format("{}.comp", name), {{"WORKGROUP_SIZE", std::to_string(WORKGROUP_SIZE)}});
+gl::Program load_pass(const std::filesystem::path& dir, const char* name, const ShaderFeatures& features) {
+  gl::Defines defines{{"WORKGROUP_SIZE", std::to_string(WORKGROUP_SIZE)}};
+  for (auto& d : features.defines()) defines.push_back(d);
+  return gl::Program::compute(dir / fmt::format("{}.comp", name), defines);
 }
 
 // Too large a cloth is bad input, reported before any allocation rather than as a driver
@@ -94,26 +96,9 @@ GpuSimulator::GpuSimulator(const Scene& scene, const ClothModel& model, const st
       masses_(particle_masses(scene, model)),
       dt_(scene.dt()),
       groups_(gl::workgroups_for(model.count(), WORKGROUP_SIZE)),
-      compute_wind_forces_(load_pass(dir, "compute_wind_forces")),
-      accumulate_forces_(load_pass(dir, "accumulate_forces")),
-      integrate_(load_pass(dir, "integrate")),
-      advance_(load_pass(dir, "advance")),
-      collide_objects_(load_pass(dir, "collide_objects")),
-      solve_length_constraints_(load_pass(dir, "solve_length_constraints")),
-      compute_normals_(load_pass(dir, "compute_normals")),
-      count_cells_(load_pass(dir, "count_cells")),
-      fill_cells_(load_pass(dir, "fill_cells")),
-      sort_cells_(load_pass(dir, "sort_cells")),
-      resolve_self_contacts_(load_pass(dir, "resolve_self_contacts")),
-      predict_(load_pass(dir, "predict")),
-      solve_distance_constraints_(load_pass(dir, "solve_distance_constraints")),
       scan_(dir, hash_table_size(uint32_t(model.count()))),
       guard_(scene, model, dir) {
-  advance_collide_objects_ = advance_.location("u_collide_objects");
-  resolve_collide_objects_ = resolve_self_contacts_.location("u_collide_objects");
-  predict_collide_objects_ = predict_.location("u_collide_objects");
-  length_colour_ = {solve_length_constraints_.location("u_first"), solve_length_constraints_.location("u_count")};
-  distance_colour_ = {solve_distance_constraints_.location("u_first"), solve_distance_constraints_.location("u_count")};
+  load_passes(ShaderFeatures::of(constants_));
   const size_t n = model.count();
   upload_model();
 
@@ -137,6 +122,30 @@ GpuSimulator::GpuSimulator(const Scene& scene, const ClothModel& model, const st
   upload(initial_state<float>(model));  // attaches the views
   ensure_multigrid();
   compute_normals();
+}
+
+void GpuSimulator::load_passes(const ShaderFeatures& features) {
+  const std::filesystem::path& dir = dir_;
+  features_ = features;
+  compute_wind_forces_ = load_pass(dir, "compute_wind_forces", features);
+  accumulate_forces_ = load_pass(dir, "accumulate_forces", features);
+  integrate_ = load_pass(dir, "integrate", features);
+  advance_ = load_pass(dir, "advance", features);
+  collide_objects_ = load_pass(dir, "collide_objects", features);
+  solve_length_constraints_ = load_pass(dir, "solve_length_constraints", features);
+  compute_normals_ = load_pass(dir, "compute_normals", features);
+  count_cells_ = load_pass(dir, "count_cells", features);
+  fill_cells_ = load_pass(dir, "fill_cells", features);
+  sort_cells_ = load_pass(dir, "sort_cells", features);
+  resolve_self_contacts_ = load_pass(dir, "resolve_self_contacts", features);
+  predict_ = load_pass(dir, "predict", features);
+  solve_distance_constraints_ = load_pass(dir, "solve_distance_constraints", features);
+  advance_collide_objects_ = advance_.location("u_collide_objects");
+  resolve_collide_objects_ = resolve_self_contacts_.location("u_collide_objects");
+  predict_collide_objects_ = predict_.location("u_collide_objects");
+  length_colour_ = {solve_length_constraints_.location("u_first"), solve_length_constraints_.location("u_count")};
+  distance_colour_ = {solve_distance_constraints_.location("u_first"), solve_distance_constraints_.location("u_count")};
+  multigrid_.reset();  // its passes too, on first use (ensure_multigrid)
 }
 
 void GpuSimulator::upload_model() {

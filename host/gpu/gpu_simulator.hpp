@@ -15,6 +15,7 @@
 #include "objects.hpp"
 #include "prefix_scan.hpp"
 #include "program.hpp"
+#include "shader_features.hpp"
 #include "texture.hpp"
 #include "../../compute/layout.glsl"
 
@@ -116,6 +117,7 @@ class GpuSimulator {
   GpuCounters counters() const;   // dispatches and barriers issued so far
   size_t memory_bytes() const;    // GPU buffer memory this simulator owns
   const Constants<float>& constants() const { return constants_; }
+  const ShaderFeatures& shader_features() const { return features_; }  // what the passes are compiled for
 
  private:
   // Binds every simulation buffer and view, on binding points and texture units no one else
@@ -136,6 +138,9 @@ class GpuSimulator {
   void dispatch_range(GpuMultigridPass& pass, uint32_t first, uint32_t count);
   // xpbd's carried multipliers, one per spring (missing ones zero, one dummy without springs).
   void upload_multipliers(std::vector<Vec4<float>> multipliers);
+  // Compiles every pass for `features` (the scene's collider code, shader_features.hpp): at
+  // construction, and again when a live edit changes them.
+  void load_passes(const ShaderFeatures& features);
   void upload_model();      // the cloth model's lists (springs, gather, triangles, corners, tethers)
   void upload_materials();  // from constants_: the materials and every particle's mass and material
   std::vector<float> inverse_masses() const;  // of every particle for the current densities
@@ -187,6 +192,7 @@ class GpuSimulator {
   bool in_step_ = false;
   bool in_frame_ = false;  // within step_frame's substeps
   int substep_ = 0;        // of the frame, while in_frame_
+  ShaderFeatures features_;  // what the passes below were compiled for
   gl::Program compute_wind_forces_, accumulate_forces_, integrate_, advance_, collide_objects_, solve_length_constraints_, compute_normals_;
   gl::Program count_cells_, fill_cells_, sort_cells_, resolve_self_contacts_;
   gl::Program predict_, solve_distance_constraints_;

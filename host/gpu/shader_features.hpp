@@ -1,0 +1,50 @@
+// What the compute passes are compiled with (compute/features.glsl): which collider kinds the
+// scene has, whether a collider or a pin moves, which contact response it takes and whether
+// the multigrid solver runs. llvmpipe executes every branch of a shader for every invocation whatever the data,
+// so a zero-trip mesh loop or an untaken Coulomb branch costs its full time there (a third of
+// the classic step at 256², docs/performance.md); compiling only what the scene can reach
+// removes it, and on a GPU it saves registers. The results are the same bits either way: the
+// code left out is code no mass could take.
+#pragma once
+
+#include <string>
+
+#include "program.hpp"
+#include "reference.hpp"
+
+namespace clothsim {
+
+struct ShaderFeatures {
+  bool spheres = true, planes = true, meshes = true;
+  bool moving = true;   // some collider has keyframed motion (else every collider's motion is 0)
+  bool coulomb = true;  // xpbd's Coulomb friction, else the CS184 blend
+  bool pins_moving = true;  // cloth.pinned_motion
+  bool multigrid = true;    // the multigrid solver (predict's offsets, no multipliers, no tethers)
+
+  // What a run with these constants can reach.
+  static ShaderFeatures of(const Constants<float>& c) {
+    ShaderFeatures f;
+    f.spheres = !c.spheres.empty();
+    f.planes = !c.planes.empty();
+    f.meshes = !c.meshes.empty();
+    f.moving = false;
+    for (const auto* keys : {&c.timeline.spheres, &c.timeline.planes, &c.timeline.meshes})
+      for (const auto& k : *keys) f.moving = f.moving || k.has_value();
+    f.coulomb = c.xpbd;
+    f.pins_moving = c.moving_pins();
+    f.multigrid = c.multigrid;
+    return f;
+  }
+
+  // The #defines of compute/features.glsl.
+  gl::Defines defines() const {
+    auto b = [](bool v) { return std::string(v ? "true" : "false"); };
+    return {{"COLLIDE_SPHERES", b(spheres)}, {"COLLIDE_PLANES", b(planes)}, {"COLLIDE_MESHES", b(meshes)},
+            {"COLLIDERS_MOVE", b(moving)},   {"COULOMB_FRICTION", b(coulomb)},
+            {"PINS_MOVE", b(pins_moving)},   {"MULTIGRID_SOLVER", b(multigrid)}};
+  }
+
+  bool operator==(const ShaderFeatures&) const = default;
+};
+
+}  // namespace clothsim
