@@ -170,34 +170,32 @@ void collide_with_objects_friction(inout vec3 x, inout vec3 d, bool friction) {
     float r = origin_radius.w;
     vec3 e = x - origin_radius.xyz;
     float dist = length3(e);
+    // One push for the three cases below, then one response: llvmpipe runs every branch, so
+    // a response in each would cost three times over.
+    precise vec3 t_minus_x;
+    vec3 frame_motion = m;  // the sphere's motion in the response (zero for a static one)
     if (dist > r) {
       // Outside at the end: caught if it went through the sphere during the substep.
-      vec3 through;
-      if (!passed_through_sphere(e, dist, r, d - m, through)) continue;
-      respond_to_sphere(friction, origin_radius.xyz, keep, keep_mu.y, m, through, x, d);
-      keep_out_of_sphere(origin_radius.xyz, r, x, d);
-      continue;
-    }
-    if (any(notEqual(m, vec3(0.0)))) {
-      respond_to_sphere(friction, origin_radius.xyz, keep, keep_mu.y, m, moving_sphere_push(e, dist, r, d, m), x, d);
-      keep_out_of_sphere(origin_radius.xyz, r, x, d);
-      continue;
-    }
-    // The push out along e, unless the mass passed the centre this substep: then back out on
-    // its own side, along e_prev = e - d (a mass exactly at the centre goes up).
-    precise vec3 e_prev = e - d;
-    float prev_dist = length3(e_prev);
-    precise vec3 t_minus_x;
-    if (dot3(e, e_prev) < 0.0 && prev_dist > 0.0) {
-      precise float inv_prev = 1.0 / prev_dist;
-      t_minus_x = e_prev * (r * inv_prev) - e;
-    } else if (dist > 0.0) {
-      precise float scale = (r - dist) * (1.0 / dist);
-      t_minus_x = e * scale;
+      if (!passed_through_sphere(e, dist, r, d - m, t_minus_x)) continue;
+    } else if (any(notEqual(m, vec3(0.0)))) {
+      t_minus_x = moving_sphere_push(e, dist, r, d, m);
     } else {
-      t_minus_x = vec3(0.0, r, 0.0);
+      // The push out along e, unless the mass passed the centre this substep: then back out on
+      // its own side, along e_prev = e - d (a mass exactly at the centre goes up).
+      frame_motion = vec3(0.0);
+      precise vec3 e_prev = e - d;
+      float prev_dist = length3(e_prev);
+      if (dot3(e, e_prev) < 0.0 && prev_dist > 0.0) {
+        precise float inv_prev = 1.0 / prev_dist;
+        t_minus_x = e_prev * (r * inv_prev) - e;
+      } else if (dist > 0.0) {
+        precise float scale = (r - dist) * (1.0 / dist);
+        t_minus_x = e * scale;
+      } else {
+        t_minus_x = vec3(0.0, r, 0.0);
+      }
     }
-    respond_to_sphere(friction, origin_radius.xyz, keep, keep_mu.y, vec3(0.0), t_minus_x, x, d);
+    respond_to_sphere(friction, origin_radius.xyz, keep, keep_mu.y, frame_motion, t_minus_x, x, d);
     keep_out_of_sphere(origin_radius.xyz, r, x, d);
   }
   for (int k = 0; k < plane_count(); ++k) {
