@@ -142,3 +142,18 @@ TEST_CASE("a live edit that adds colliders compiles the passes for them and runs
   CHECK(d.max < 1e-5);
   CHECK_NO_GL_ERRORS();
 }
+
+TEST_CASE("the passes compile in what each scene can reach, and no more", "[gpu][viewer]") {
+  REQUIRE_GL_CONTEXT();  // (no GL call: kept with the GPU simulator's tests)
+  auto features = [](const std::string& name, std::vector<std::string> sets = {}) {
+    const Scene s = load_scene(test::source_path("scenes/" + name + ".json"), sets);
+    return ShaderFeatures::of(make_constants<float>(s, build_cloth(s)));
+  };
+  // spheres, planes, meshes, a collider moves, Coulomb friction, pins move, multigrid
+  CHECK(features("living") == ShaderFeatures{true, true, false, true, false, true, false});
+  CHECK(features("pinned2") == ShaderFeatures{false, false, false, false, false, false, false});
+  CHECK(features("hang_xpbd") == ShaderFeatures{false, false, false, false, true, false, false});
+  CHECK(features("hang_xpbd", {"simulation.solver=multigrid"}) ==
+        ShaderFeatures{false, false, false, false, true, false, true});  // (multigrid takes xpbd's friction)
+  CHECK(features("flag_pole") == ShaderFeatures{false, false, true, false, true, false, false});
+}
