@@ -125,21 +125,15 @@ GpuSimulator::GpuSimulator(const Scene& scene, const ClothModel& model, const st
 }
 
 void GpuSimulator::load_passes(const ShaderFeatures& features) {
-  const std::filesystem::path& dir = dir_;
   features_ = features;
-  compute_wind_forces_ = load_pass(dir, "compute_wind_forces", features);
-  accumulate_forces_ = load_pass(dir, "accumulate_forces", features);
-  integrate_ = load_pass(dir, "integrate", features);
-  advance_ = load_pass(dir, "advance", features);
-  collide_objects_ = load_pass(dir, "collide_objects", features);
-  solve_length_constraints_ = load_pass(dir, "solve_length_constraints", features);
-  compute_normals_ = load_pass(dir, "compute_normals", features);
-  count_cells_ = load_pass(dir, "count_cells", features);
-  fill_cells_ = load_pass(dir, "fill_cells", features);
-  sort_cells_ = load_pass(dir, "sort_cells", features);
-  resolve_self_contacts_ = load_pass(dir, "resolve_self_contacts", features);
-  predict_ = load_pass(dir, "predict", features);
-  solve_distance_constraints_ = load_pass(dir, "solve_distance_constraints", features);
+  const std::pair<gl::Program*, const char*> passes[] = {
+      {&compute_wind_forces_, "compute_wind_forces"}, {&accumulate_forces_, "accumulate_forces"},
+      {&integrate_, "integrate"}, {&advance_, "advance"}, {&collide_objects_, "collide_objects"},
+      {&solve_length_constraints_, "solve_length_constraints"}, {&compute_normals_, "compute_normals"},
+      {&count_cells_, "count_cells"}, {&fill_cells_, "fill_cells"}, {&sort_cells_, "sort_cells"},
+      {&resolve_self_contacts_, "resolve_self_contacts"}, {&predict_, "predict"},
+      {&solve_distance_constraints_, "solve_distance_constraints"}};
+  for (const auto& [program, name] : passes) *program = load_pass(dir_, name, features);
   advance_collide_objects_ = advance_.location("u_collide_objects");
   resolve_collide_objects_ = resolve_self_contacts_.location("u_collide_objects");
   predict_collide_objects_ = predict_.location("u_collide_objects");
