@@ -3,6 +3,7 @@
 // jitter that scales with the spacing.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <string>
@@ -10,6 +11,7 @@
 #include <glm/geometric.hpp>
 
 #include "backend.hpp"
+#include "diagnostics.hpp"
 #include "test_helpers.hpp"
 #include "xpbd_scenes.hpp"
 
@@ -123,4 +125,28 @@ TEST_CASE("xpbd: the tethers hold a soft hanging cloth to 1 % over its rest dist
                                                                << " without");
   CHECK(with <= 1.01 + 1e-3);  // the sweep after predict may undo a little of it
   CHECK(without > 1.05);
+}
+
+// heap256's collapse at 65², its thickness unchanged (2.6 mm): the cloth meets the floor and the sweep's later colours pull springs the earlier ones had limited
+// back over max_stretch. stretch_passes passes of the limit alone after the sweep hold it at the
+// end of every substep, so at every frame (docs/model.md).
+TEST_CASE("xpbd: stretch_passes hold max_stretch at every frame of a 65² heap, which one sweep does not",
+          "[reference][xpbd][slow]") {
+  auto worst_stretch = [](int passes) {
+    const Scene s = load_scene(std::filesystem::path(CLOTHSIM_SOURCE_DIR) / "scenes" / "heap256.json",
+                               {"cloth.num_width_points=65", "cloth.num_height_points=65",
+                                "simulation.stretch_passes=" + std::to_string(passes)});
+    const ClothModel m = build_cloth(s);
+    CpuBackend<float> cpu(s, m);
+    double worst = 0;
+    for (int f = 1; f <= 60; ++f) {
+      cpu.step_frame();
+      worst = std::max(worst, measure(s, m, cpu.snapshot()).max_stretch_ratio);
+    }
+    return worst;
+  };
+  const double one_sweep = worst_stretch(0), held = worst_stretch(4);
+  INFO("largest stretch at any frame: " << one_sweep << " with the sweep alone, " << held << " with 4 passes after it");
+  CHECK(one_sweep > 1.15);
+  CHECK(held <= 1.1001);  // the limit of 1.1, to float rounding
 }

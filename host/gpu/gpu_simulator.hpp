@@ -45,10 +45,13 @@ class GpuSimulator {
   void solve_length_constraints();
   void compute_normals();
   // The xpbd solver's passes (docs/model.md): step() runs predict (+ collide_objects when
-  // self-collision is off), [collide_self], solve_distance_constraints.
+  // self-collision is off), [collide_self], solve_distance_constraints, then with
+  // simulation.stretch_passes enforce_stretch_limit (that many passes of
+  // solve_length_constraints' shader over every colour).
   void predict(bool then_collide_objects = false);
   void solve_distance_constraint_colour(int colour);
   void solve_distance_constraints();
+  void enforce_stretch_limit();
   // The multigrid solver's passes (docs/model.md; gpu_multigrid.cpp): step() runs predict,
   // [collide_self], then solve_multigrid: compute_residuals, the V-cycle (cycle_levels:
   // restrict_residuals per level down, solve_coarsest, then prolong_corrections and

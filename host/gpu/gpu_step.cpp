@@ -177,6 +177,15 @@ void GpuSimulator::solve_distance_constraints() {
   }
 }
 
+void GpuSimulator::enforce_stretch_limit() {
+  bind_for_pass();
+  for (int pass = 0; pass < constants_.stretch_passes; ++pass)
+    for (int colour = 0; colour < model_.colours(); ++colour) {
+      if (!constants_.colour_enabled(model_, colour)) continue;
+      dispatch_colour(solve_length_constraints_, length_colour_, colour);
+    }
+}
+
 void GpuSimulator::compute_normals() {
   dispatch(compute_normals_);
   // The vertex shader pulls normals (and a read-back may follow).
@@ -198,8 +207,12 @@ void GpuSimulator::step() {
   if (constants_.xpbd) {
     predict(objects_first);
     if (constants_.self_collision) collide_self(colliders);
-    if (constants_.multigrid) solve_multigrid();
-    else solve_distance_constraints();
+    if (constants_.multigrid) {
+      solve_multigrid();
+    } else {
+      solve_distance_constraints();
+      enforce_stretch_limit();
+    }
   } else {
     advance(objects_first);
     if (constants_.self_collision) collide_self(colliders);
@@ -215,7 +228,9 @@ std::string GpuSimulator::pass_list() const {
   if (constants_.self_collision) passes += ", collide_self (count_cells, scan_cells, fill_cells, sort_cells, resolve_self_contacts)";
   passes += constants_.multigrid ? ", solve_multigrid (compute_residuals, restrict_residuals, smooth_corrections, "
                                    "solve_coarsest, prolong_corrections, prolong_to_cloth, relax_vertices)"
-             : constants_.xpbd   ? ", solve_distance_constraints"
+             : constants_.xpbd   ? (constants_.stretch_passes > 0 ? ", solve_distance_constraints, enforce_stretch_limit "
+                                                                      "(solve_length_constraints)"
+                                                                    : ", solve_distance_constraints")
                                  : ", solve_length_constraints";
   return passes;
 }
@@ -255,7 +270,8 @@ int GpuSimulator::dispatches_per_substep() const {
   // xpbd: predict, then one solve of every enabled colour; classic: advance, then the colours
   // once per constraint iteration; with wind, its pass first.
   if (constants_.multigrid) return 1 + int(constants_.wind.enabled) + self + multigrid_dispatches();
-  return 1 + int(constants_.wind.enabled) + self + (constants_.xpbd ? 1 : constants_.iterations) * enabled_colours;
+  return 1 + int(constants_.wind.enabled) + self +
+         (constants_.xpbd ? 1 + constants_.stretch_passes : constants_.iterations) * enabled_colours;
 }
 
 }  // namespace clothsim
