@@ -3,6 +3,7 @@
 // which keeps the force in registers; this pass stays for the pass-by-pass check.
 #include "layout.glsl"
 #include "common.glsl"
+#include "features.glsl"
 #include "forces.glsl"
 
 layout(local_size_x = WORKGROUP_SIZE) in;
@@ -13,6 +14,6 @@ void main() {
   int i = int(gl_GlobalInvocationID.x);
   if (i >= int(particle_count())) return;
   precise vec3 f = spring_force(i, position_of(i).xyz, material_of(i));
-  if (params.wind_enabled != 0u) f = f + wind_force[i].xyz;
+  if (WIND_ENABLED) f = f + wind_force[i].xyz;
   force[i] = vec4(f, 0.0);
 }

@@ -31,7 +31,7 @@ void main() {
   vec3 x = p.xyz;
   Material mat = material_of(i);
   precise vec3 f = spring_force(i, x, mat);
-  if (params.wind_enabled != 0u) f = f + wind_force[i].xyz;  // compute_wind_forces ran before
+  if (WIND_ENABLED) f = f + wind_force[i].xyz;  // compute_wind_forces ran before
   precise vec3 a = f * p.w;
   precise vec3 d = displacement_of(i).xyz * mat.keep.x + a * params.dt2;
   precise vec3 next = x + d;

@@ -1,6 +1,7 @@
 // What a pass is compiled with (host/gpu/shader_features.hpp; the host compiles the passes
 // again when a live edit changes any of it): the collider kinds the scene has, whether a
-// collider or a pin moves, the contact response, and whether the multigrid solver runs. Each
+// collider or a pin moves, the contact response, the wind, and whether the multigrid solver
+// runs. Each
 // is a compile-time constant there, so the code of what the scene cannot reach is not in the
 // program at all: llvmpipe runs every branch of a shader whatever the data, so code that no
 // mass takes still costs its full time there (docs/performance.md, "Passes compiled for the
@@ -26,6 +27,9 @@
 #endif
 #ifndef PINS_MOVE
 #define PINS_MOVE (params.pins_moving != 0u)
+#endif
+#ifndef WIND_ENABLED
+#define WIND_ENABLED (params.wind_enabled != 0u)
 #endif
 #ifndef MULTIGRID_SOLVER
 #define MULTIGRID_SOLVER (params.multigrid != 0u)

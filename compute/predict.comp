@@ -39,7 +39,7 @@ void main() {
     return;
   }
   precise vec3 acc = params.gravity;
-  if (params.wind_enabled != 0u) acc = acc + wind_force[i].xyz * p.w;  // compute_wind_forces ran before
+  if (WIND_ENABLED) acc = acc + wind_force[i].xyz * p.w;  // compute_wind_forces ran before
   // The springs' multipliers of the last substep, as their forces over this one (times dt^2):
   // -n lambda on a spring's i end, +n lambda on its j end, in the gather order.
   // (The multigrid solver carries none: its springs act in its own solve.)

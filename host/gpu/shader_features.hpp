@@ -1,6 +1,6 @@
 // What the compute passes are compiled with (compute/features.glsl): which collider kinds the
-// scene has, whether a collider or a pin moves, which contact response it takes and whether
-// the multigrid solver runs. llvmpipe executes every branch of a shader for every invocation whatever the data,
+// scene has, whether a collider or a pin moves, which contact response it takes, the wind, and
+// whether the multigrid solver runs. llvmpipe executes every branch of a shader for every invocation whatever the data,
 // so a zero-trip mesh loop or an untaken Coulomb branch costs its full time there (a third of
 // the classic step at 256², docs/performance.md); compiling only what the scene can reach
 // removes it, and on a GPU it saves registers. The results are the same bits either way: the
@@ -20,6 +20,7 @@ struct ShaderFeatures {
   bool coulomb = true;  // xpbd's Coulomb friction, else the CS184 blend
   bool pins_moving = true;  // cloth.pinned_motion
   bool multigrid = true;    // the multigrid solver (predict's offsets, no multipliers, no tethers)
+  bool wind = true;         // the wind (advance and predict read compute_wind_forces' output)
 
   // What a run with these constants can reach.
   static ShaderFeatures of(const Constants<float>& c) {
@@ -33,6 +34,7 @@ struct ShaderFeatures {
     f.coulomb = c.xpbd;
     f.pins_moving = c.moving_pins();
     f.multigrid = c.multigrid;
+    f.wind = c.wind.enabled;
     return f;
   }
 
@@ -41,7 +43,8 @@ struct ShaderFeatures {
     auto b = [](bool v) { return std::string(v ? "true" : "false"); };
     return {{"COLLIDE_SPHERES", b(spheres)}, {"COLLIDE_PLANES", b(planes)}, {"COLLIDE_MESHES", b(meshes)},
             {"COLLIDERS_MOVE", b(moving)},   {"COULOMB_FRICTION", b(coulomb)},
-            {"PINS_MOVE", b(pins_moving)},   {"MULTIGRID_SOLVER", b(multigrid)}};
+            {"PINS_MOVE", b(pins_moving)},   {"MULTIGRID_SOLVER", b(multigrid)},
+            {"WIND_ENABLED", b(wind)}};
   }
 
   bool operator==(const ShaderFeatures&) const = default;
