@@ -156,6 +156,9 @@ class GpuSimulator {
   // bindings already set: its springs' first index and count go to `where` (u_first, u_count).
   struct ColourUniforms { GLint first = -1, count = -1; };
   void dispatch_colour(gl::Program& program, ColourUniforms where, int colour);
+  // `passes` sweeps of solve_length_constraints' shader over every enabled colour: the classic
+  // constraint (constraint_iterations) and xpbd's enforce_stretch_limit (stretch_passes).
+  void length_constraint_passes(int passes);
 
   const ClothModel& model_;
   const std::filesystem::path dir_;

@@ -148,14 +148,16 @@ void GpuSimulator::dispatch_colour(gl::Program& program, ColourUniforms where, i
   barrier(kComputeReads);
 }
 
-void GpuSimulator::solve_length_constraints() {
+void GpuSimulator::length_constraint_passes(int passes) {
   bind_for_pass();
-  for (int it = 0; it < constants_.iterations; ++it)
+  for (int pass = 0; pass < passes; ++pass)
     for (int colour = 0; colour < model_.colours(); ++colour) {
       if (!constants_.colour_enabled(model_, colour)) continue;
       dispatch_colour(solve_length_constraints_, length_colour_, colour);
     }
 }
+
+void GpuSimulator::solve_length_constraints() { length_constraint_passes(constants_.iterations); }
 
 void GpuSimulator::predict(bool then_collide_objects) {
   predict_.set(predict_collide_objects_, int(then_collide_objects));
@@ -177,14 +179,7 @@ void GpuSimulator::solve_distance_constraints() {
   }
 }
 
-void GpuSimulator::enforce_stretch_limit() {
-  bind_for_pass();
-  for (int pass = 0; pass < constants_.stretch_passes; ++pass)
-    for (int colour = 0; colour < model_.colours(); ++colour) {
-      if (!constants_.colour_enabled(model_, colour)) continue;
-      dispatch_colour(solve_length_constraints_, length_colour_, colour);
-    }
-}
+void GpuSimulator::enforce_stretch_limit() { length_constraint_passes(constants_.stretch_passes); }
 
 void GpuSimulator::compute_normals() {
   dispatch(compute_normals_);
