@@ -103,7 +103,8 @@ void GpuSimulator::set_parameters(const Scene& scene) {
     wind_forces_.allocate((constants_.wind.enabled ? model_.count() : 1) * sizeof(glm::vec4));
   params_ = make_step_params(constants_, model_);
   step_params_.upload(0, sizeof(params_), &params_);
-  // A solver switch (Coulomb friction or not) or a collider set of another kind: other code.
+  // Something compiled into the passes changed (a solver, the collider kinds, wind, moving
+  // colliders or pins: shader_features.hpp): they are compiled again.
   if (ShaderFeatures::of(constants_) != features_) load_passes(ShaderFeatures::of(constants_));
   upload_colliders();
   upload_materials();  // stiffness, damping, enabled springs and masses, all cheap
