@@ -210,7 +210,6 @@ struct ShadowFrame {
   F(uint, coulomb_friction)    /* 1 = contacts take Coulomb friction (xpbd), 0 the CS184 blend */ \
   F(uint, mesh_count)          /* MeshCollider entries in use */                         \
   F(float, inv_dt2)            /* 1/s^2, 1 / dt^2: a mass's inertia per kg (multigrid) */   \
-  F(uint, carry_multipliers)   /* 1 = predict applies the carried multipliers (all but multigrid) */ \
   F(uint, multigrid)           /* 1 = the multigrid solver: predict leaves the external forces to its solve */
 #define STEP_PARAMS_DECLARE(type, name) type name;
 // std140 rounds the block's size up to 16 bytes; alignas makes sizeof agree.

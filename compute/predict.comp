@@ -45,7 +45,7 @@ void main() {
   // (The multigrid solver carries none: its springs act in its own solve.)
   precise vec3 warm = vec3(0.0);
   uint first = texelFetch(gather_start_view, i).x, last = texelFetch(gather_start_view, i + 1).x;
-  if (MULTIGRID_SOLVER || params.carry_multipliers == 0u) last = first;  // (the same: carry = !multigrid)
+  if (MULTIGRID_SOLVER) last = first;
   for (uint g = first; g < last; ++g) {
     uvec4 entry = texelFetch(gather_view, int(g));  // z: the spring, w: 1 if i is its i end
     vec4 l = texelFetch(multipliers_view, int(entry.z));

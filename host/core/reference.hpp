@@ -224,10 +224,7 @@ template <class R> void solve_distance_constraints(const ClothModel& m, const Co
 // classic length constraint, solve_length_constraint_colour). In the sweep each spring is
 // limited when its colour is solved, and the colours after it can pull it out again; a pass of
 // the limit alone moves only the springs still over it (docs/model.md).
-template <class R> void enforce_stretch_limit(const ClothModel& m, const Constants<R>& c, State<R>& s) {
-  for (int pass = 0; pass < c.stretch_passes; ++pass)
-    for (int colour = 0; colour < m.colours(); ++colour) solve_length_constraint_colour(m, c, colour, s);
-}
+template <class R> void enforce_stretch_limit(const ClothModel& m, const Constants<R>& c, State<R>& s);
 
 // The multigrid solver (docs/model.md, "One substep (multigrid solver)"), after predict and the
 // contacts: compute_residuals (the springs' force on every mass), then a V-cycle over the

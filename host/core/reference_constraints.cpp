@@ -58,9 +58,22 @@ void solve_length_constraint_colour(const ClothModel& m, const Constants<R>& c, 
   });
 }
 
-template <class R> void solve_length_constraints(const ClothModel& m, const Constants<R>& c, State<R>& s) {
-  for (int it = 0; it < c.iterations; ++it)
+// `passes` sweeps of the length constraint over every colour: the classic solver's
+// (constraint_iterations) and xpbd's enforce_stretch_limit (stretch_passes), as
+// GpuSimulator::length_constraint_passes.
+namespace {
+template <class R> void length_constraint_passes(const ClothModel& m, const Constants<R>& c, int passes, State<R>& s) {
+  for (int pass = 0; pass < passes; ++pass)
     for (int colour = 0; colour < m.colours(); ++colour) solve_length_constraint_colour(m, c, colour, s);
+}
+}  // namespace
+
+template <class R> void solve_length_constraints(const ClothModel& m, const Constants<R>& c, State<R>& s) {
+  length_constraint_passes(m, c, c.iterations, s);
+}
+
+template <class R> void enforce_stretch_limit(const ClothModel& m, const Constants<R>& c, State<R>& s) {
+  length_constraint_passes(m, c, c.stretch_passes, s);
 }
 
 template <class R>
@@ -119,6 +132,7 @@ template <class R> void solve_distance_constraints(const ClothModel& m, const Co
 #define CLOTHSIM_INSTANTIATE(R) \
   template void solve_length_constraint_colour<R>(const ClothModel&, const Constants<R>&, int, State<R>&); \
   template void solve_length_constraints<R>(const ClothModel&, const Constants<R>&, State<R>&); \
+  template void enforce_stretch_limit<R>(const ClothModel&, const Constants<R>&, State<R>&); \
   template void solve_distance_constraint_colour<R>(const ClothModel&, const Constants<R>&, int, State<R>&); \
   template void solve_distance_constraints<R>(const ClothModel&, const Constants<R>&, State<R>&);
 CLOTHSIM_INSTANTIATE(float)

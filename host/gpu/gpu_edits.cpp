@@ -105,7 +105,7 @@ void GpuSimulator::set_parameters(const Scene& scene) {
   step_params_.upload(0, sizeof(params_), &params_);
   // Something compiled into the passes changed (a solver, the collider kinds, wind, moving
   // colliders or pins: shader_features.hpp): they are compiled again.
-  if (ShaderFeatures::of(constants_) != features_) load_passes(ShaderFeatures::of(constants_));
+  if (const ShaderFeatures features = ShaderFeatures::of(constants_); features != features_) load_passes(features);
   upload_colliders();
   upload_materials();  // stiffness, damping, enabled springs and masses, all cheap
   if (constants_.mass != old_mass) {

@@ -13,11 +13,9 @@ namespace clothsim {
 
 inline gl::Program load_multigrid_pass(const std::filesystem::path& dir, const char* name,
                                       const ShaderFeatures& features) {
-  gl::Defines defines{{"WORKGROUP_SIZE", std::to_string(WORKGROUP_SIZE)},
-                      {"CONTACT_REACH", fmt::format("{:.9e}", float(kContactReach))},
-                      {"FOLDED_CHORD", fmt::format("{:.9e}", float(kFoldedChord))}};
-  for (auto& d : features.defines()) defines.push_back(d);
-  return gl::Program::compute(dir / (std::string(name) + ".comp"), defines);
+  return load_pass(dir, name, features,
+                   {{"CONTACT_REACH", fmt::format("{:.9e}", float(kContactReach))},
+                    {"FOLDED_CHORD", fmt::format("{:.9e}", float(kFoldedChord))}});
 }
 
 // A pass dispatched over a range (u_first, u_count): its uniforms' locations, looked up once.

@@ -14,12 +14,6 @@
 namespace clothsim {
 namespace {
 
-gl::Program load_pass(const std::filesystem::path& dir, const char* name, const ShaderFeatures& features) {
-  gl::Defines defines{{"WORKGROUP_SIZE", std::to_string(WORKGROUP_SIZE)}};
-  for (auto& d : features.defines()) defines.push_back(d);
-  return gl::Program::compute(dir / fmt::format("{}.comp", name), defines);
-}
-
 // Too large a cloth is bad input, reported before any allocation rather than as a driver
 // failure: every per-particle buffer must fit one storage block, every dispatch the group count.
 void check_gpu_limits(const Scene& scene, const ClothModel& m) {
@@ -82,7 +76,6 @@ layout::StepParams make_step_params(const Constants<float>& c, const ClothModel&
   p.pins_moving = c.moving_pins();
   p.coulomb_friction = c.xpbd;
   p.inv_dt2 = c.inv_dt2;
-  p.carry_multipliers = !c.multigrid;  // (a classic run never calls predict but the pass check does)
   p.multigrid = c.multigrid;
   p.pin_offset = glm::vec3(c.pin_offset.x, c.pin_offset.y, c.pin_offset.z);
   return p;

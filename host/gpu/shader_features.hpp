@@ -7,10 +7,12 @@
 // code left out is code no mass could take.
 #pragma once
 
+#include <filesystem>
 #include <string>
 
 #include "program.hpp"
 #include "reference.hpp"
+#include "../../compute/layout.glsl"
 
 namespace clothsim {
 
@@ -49,5 +51,15 @@ struct ShaderFeatures {
 
   bool operator==(const ShaderFeatures&) const = default;
 };
+
+// compute/NAME.comp compiled for `features`, with `extra` defines after them (the multigrid
+// passes' constants).
+inline gl::Program load_pass(const std::filesystem::path& dir, const std::string& name, const ShaderFeatures& features,
+                             const gl::Defines& extra = {}) {
+  gl::Defines defines{{"WORKGROUP_SIZE", std::to_string(WORKGROUP_SIZE)}};
+  for (const auto& d : features.defines()) defines.push_back(d);
+  for (const auto& d : extra) defines.push_back(d);
+  return gl::Program::compute(dir / (name + ".comp"), defines);
+}
 
 }  // namespace clothsim
