@@ -1,4 +1,4 @@
-// Reads positions (through the views) and the offsets; writes the residuals of the particles. One invocation
+// Reads positions and the offsets (through the views); writes the residuals of the particles. One invocation
 // per particle, the multigrid solve's first pass (docs/model.md): the residual force of the
 // implicit step at the start x = y + offset (predict's offset: minus the external forces'
 // share), -m/dt^2 (x - y) + the springs' forces summed in the gather order; w its mass (0 for a pinned or held mass, which does not take part). The CPU twin is
@@ -11,7 +11,6 @@
 
 layout(local_size_x = WORKGROUP_SIZE) in;
 layout(std430, binding = BINDING_MG_RESIDUALS) writeonly buffer Residuals { vec4 residual[]; };
-layout(std430, binding = BINDING_MG_OFFSET) readonly buffer Offsets { vec4 offset[]; };
 
 void main() {
   int i = int(gl_GlobalInvocationID.x);
@@ -24,7 +23,7 @@ void main() {
   Material mat = material_of(i);
   // -m/dt^2 (x - y) + the springs' force (compute_residuals in host/core/reference_multigrid.cpp).
   precise float inertia = mass_of(i) * params.inv_dt2;
-  vec3 off = offset[i].xyz;
+  vec3 off = offset_of(i);
   precise vec3 xi = p.xyz + off;
   // A mass a collider holds stays out of the coarse problem (touches_colliders).
   if (has_colliders() && touches_colliders(xi)) {
@@ -38,7 +37,7 @@ void main() {
     uint type = entry.x >> 30;
     if (!type_enabled(mat, type)) continue;
     int j = int(entry.x & 0x3FFFFFFFu);
-    precise vec3 e = (position_of(j).xyz + offset[j].xyz) - xi;
+    precise vec3 e = (position_of(j).xyz + offset_of(j)) - xi;
     float len = length3(e);
     if (len > 0.0) {
       precise float magnitude = stiffness(mat, type) * (len - uintBitsToFloat(entry.y)) * (1.0 / len);

@@ -91,12 +91,15 @@ using uint = uint32_t;
 #define TEXTURE_MULTIPLIERS 24       // RGBA32F, per spring: BINDING_MULTIPLIERS, read by predict and the sweep
 #define TEXTURE_MESHES 25            // RGBA32F, MESH_TEXELS per MeshCollider
 #define TEXTURE_SDF 26               // R32F, one texel per field node (BINDING_SDF)
-// The multigrid hierarchy (Hierarchy in host/core/hierarchy.hpp), static over a run, and one view of its scratch.
+// The multigrid hierarchy (Hierarchy in host/core/hierarchy.hpp), static over a run, and the views of its scratch.
 #define TEXTURE_MG_VERTICES 27       // RGBA32UI, per coarse vertex + 1: x its particle, y its first child, z its first parent, w its first spring (entries of TEXTURE_MG_LISTS)
 #define TEXTURE_MG_LISTS 28          // RGBA32UI, MultigridEntry: the children, then the parents, the springs, the particles' parents
 #define TEXTURE_MG_FINE 29           // R32UI, per particle + 1: its first parent (an entry of TEXTURE_MG_LISTS)
 #define TEXTURE_MG_ORDER 30          // R32UI: the particles by colour, then every level's coarse vertices by colour
 #define TEXTURE_MG_CORR 31           // RGBA32F, per coarse vertex: BINDING_MG_CORR, read by its neighbours
+#define TEXTURE_MG_OFFSET 32         // RGBA32F, per particle: BINDING_MG_OFFSET, read by the passes after predict
+#define TEXTURE_MG_RESIDUALS 33      // RGBA32F, per particle then coarse vertex: BINDING_MG_RESIDUALS, read by the next coarser level
+#define TEXTURE_MG_RHS 34            // RGBA32F, per coarse vertex: BINDING_MG_RHS, read by the smoothing and the prolongation
 // RGBA32F texels per struct in the views above: member m of element k is texel
 // k * STRUCT_TEXELS + m (tests/test_gpu_layout.cpp checks these against the std430 strides).
 #define MATERIAL_TEXELS 2
@@ -120,7 +123,8 @@ struct SpringTexel {
 
 // One entry of the multigrid hierarchy's lists: x an index (a child's residual, a parent, a
 // spring's other end), y a weight's float bits (a child's, a parent's) or a spring's rest
-// length's, z a spring's stiffness's bits.
+// length's, z a spring's stiffness's bits, w a spring's other end's particle (its position,
+// without a second fetch for the coarse vertex).
 struct MultigridEntry {
   uvec4 index_weight;
 };

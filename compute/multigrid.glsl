@@ -11,6 +11,16 @@ layout(binding = TEXTURE_MG_LISTS) uniform usamplerBuffer mg_lists_view;
 layout(binding = TEXTURE_MG_FINE) uniform usamplerBuffer mg_fine_view;
 layout(binding = TEXTURE_MG_ORDER) uniform usamplerBuffer mg_order_view;
 layout(binding = TEXTURE_MG_CORR) uniform samplerBuffer mg_corr_view;
+layout(binding = TEXTURE_MG_OFFSET) uniform samplerBuffer mg_offset_view;
+layout(binding = TEXTURE_MG_RESIDUALS) uniform samplerBuffer mg_residuals_view;
+layout(binding = TEXTURE_MG_RHS) uniform samplerBuffer mg_rhs_view;
+
+// Particle i's offset x - y (predict wrote it, prolong_to_cloth and relax_vertices move it), a
+// residual and a right-hand side, each written by an earlier dispatch: through their views (a
+// storage-buffer read in a spring loop is a bounds-checked loop over the lanes on llvmpipe).
+vec3 offset_of(int i) { return texelFetch(mg_offset_view, i).xyz; }
+vec4 residual_of(uint k) { return texelFetch(mg_residuals_view, int(k)); }
+vec4 rhs_of(uint g) { return texelFetch(mg_rhs_view, int(g)); }
 
 // The range of this dispatch: vertices (or entries of the order) [u_first, u_first + u_count).
 uniform uint u_first;
@@ -123,10 +133,10 @@ vec3 coarse_residual(uint g, uvec4 v, vec4 b, out Sym3 diag) {
   diag = sym3_diagonal(inertia);
   uint last = mg_vertex(g + 1u).w;
   for (uint k = v.w; k < last; ++k) {
-    uvec4 s = mg_entry(k);  // x the other end, y rest bits, z stiffness bits
+    uvec4 s = mg_entry(k);  // x the other end, y rest bits, z stiffness bits, w its particle
     vec3 n;
     float len, sa, sd;
-    if (!spring_terms(p, position_of(int(mg_vertex(s.x).x)).xyz, uintBitsToFloat(s.y), uintBitsToFloat(s.z), n, len, sa,
+    if (!spring_terms(p, position_of(int(s.w)).xyz, uintBitsToFloat(s.y), uintBitsToFloat(s.z), n, len, sa,
                       sd))
       continue;
     precise vec3 dv = e - MG_CORR_OF(s.x).xyz;

@@ -8,13 +8,12 @@
 
 layout(local_size_x = WORKGROUP_SIZE) in;
 layout(std430, binding = BINDING_MG_CORR) writeonly buffer Corrections { vec4 corr[]; };
-layout(std430, binding = BINDING_MG_RHS) readonly buffer Rhs { vec4 rhs[]; };
 
 void main() {
   if (gl_GlobalInvocationID.x >= u_count) return;
   uint g = u_first + gl_GlobalInvocationID.x;
   uvec4 v = mg_vertex(g);
-  if (rhs[g].w < 0.0) return;  // a fixed vertex does not move (restrict_residuals)
+  if (rhs_of(g).w < 0.0) return;  // a fixed vertex does not move (restrict_residuals)
   uint last = mg_vertex(g + 1u).z;
   precise vec3 e = vec3(0.0);
   for (uint k = v.z; k < last; ++k) {

@@ -11,13 +11,13 @@
 layout(local_size_x = WORKGROUP_SIZE) in;
 layout(std430, binding = BINDING_POSITIONS) writeonly buffer Positions { vec4 pos[]; };
 layout(std430, binding = BINDING_DISPLACEMENT) writeonly buffer Displacements { vec4 disp[]; };
-layout(std430, binding = BINDING_MG_OFFSET) buffer Offsets { vec4 offset[]; };
+layout(std430, binding = BINDING_MG_OFFSET) writeonly buffer Offsets { vec4 offset[]; };
 
 void main() {
   int i = int(gl_GlobalInvocationID.x);
   if (i >= int(particle_count())) return;
   vec4 p = position_of(i);
-  vec3 off = offset[i].xyz;
+  vec3 off = offset_of(i);
   precise vec3 start = p.xyz + off;
   bool touching = has_colliders() && touches_colliders(start);
   precise vec3 e = vec3(0.0);

@@ -13,7 +13,7 @@
 layout(local_size_x = WORKGROUP_SIZE) in;
 layout(std430, binding = BINDING_POSITIONS) writeonly buffer Positions { vec4 pos[]; };
 layout(std430, binding = BINDING_DISPLACEMENT) writeonly buffer Displacements { vec4 disp[]; };
-layout(std430, binding = BINDING_MG_OFFSET) buffer Offsets { vec4 offset[]; };
+layout(std430, binding = BINDING_MG_OFFSET) writeonly buffer Offsets { vec4 offset[]; };
 
 void main() {
   if (gl_GlobalInvocationID.x >= u_count) return;
@@ -21,7 +21,7 @@ void main() {
   vec4 p = position_of(i);
   float wi = p.w;
   if (wi == 0.0) return;
-  precise vec3 x = p.xyz, d = displacement_of(i).xyz, off = offset[i].xyz;
+  precise vec3 x = p.xyz, d = displacement_of(i).xyz, off = offset_of(i);
   Material mat = material_of(i);
   precise float inertia = mass_of(i) * params.inv_dt2;
   precise vec3 f = off * -inertia;

@@ -1,4 +1,4 @@
-// Reads positions and the right-hand sides; reads and writes the corrections of the coarsest
+// Reads positions and the right-hand sides (through the views); reads and writes the corrections of the coarsest
 // level. One workgroup: kCoarsestSweeps Gauss-Seidel sweeps over the level's colours, the
 // invocations striding over each colour's vertices, a barrier between colours, so the whole
 // coarsest solve is one dispatch (the level is small: at most a few hundred vertices). The
@@ -8,7 +8,6 @@
 #include "common.glsl"
 
 layout(local_size_x = WORKGROUP_SIZE) in;
-layout(std430, binding = BINDING_MG_RHS) readonly buffer Rhs { vec4 rhs[]; };
 // coherent: a colour reads the corrections the colour before it wrote, within this dispatch.
 layout(std430, binding = BINDING_MG_CORR) coherent buffer Corrections { vec4 corr[]; };
 #define MG_CORR_OF(g) corr[g]
@@ -26,7 +25,7 @@ void main() {
       for (uint e = u_starts[k] + gl_LocalInvocationID.x; e < u_starts[k + 1u]; e += uint(WORKGROUP_SIZE)) {
         uint g = texelFetch(mg_order_view, int(e)).x;
         uvec4 v = mg_vertex(g);
-        vec4 b = rhs[g];
+        vec4 b = rhs_of(g);
         if (b.w < 0.0) continue;  // a fixed vertex does not move (restrict_residuals)
         Sym3 diag;
         vec3 r = coarse_residual(g, v, b, diag);

@@ -31,7 +31,7 @@ void GpuSimulator::ensure_multigrid() {
   for (size_t k = 0; k < h.child.size(); ++k) lists.push_back({h.child[k], bits(h.child_weight[k]), 0u, 0u});
   for (size_t k = 0; k < h.parent.size(); ++k) lists.push_back({h.parent[k], bits(h.parent_weight[k]), 0u, 0u});
   for (size_t k = 0; k < h.spring_other.size(); ++k)
-    lists.push_back({h.spring_other[k], bits(h.spring_rest[k]), bits(h.spring_k[k]), 0u});
+    lists.push_back({h.spring_other[k], bits(h.spring_rest[k]), bits(h.spring_k[k]), h.particle[h.spring_other[k]]});
   for (size_t k = 0; k < h.fine_parent.size(); ++k) lists.push_back({h.fine_parent[k], bits(h.fine_parent_weight[k]), 0u, 0u});
   std::vector<glm::uvec4> vertices;
   for (uint32_t v = 0; v <= coarse; ++v)
@@ -60,6 +60,9 @@ void GpuSimulator::ensure_multigrid() {
   g.fine_view.attach(g.fine, GL_R32UI);
   g.order_view.attach(g.order, GL_R32UI);
   g.corr_view.attach(g.corr, GL_RGBA32F);
+  g.offset_view.attach(g.offset, GL_RGBA32F);
+  g.residuals_view.attach(g.residuals, GL_RGBA32F);
+  g.rhs_view.attach(g.rhs, GL_RGBA32F);
   if (!h.levels.empty()) {
     // solve_coarsest's uniforms: the coarsest level's colours, fixed with the hierarchy.
     const HierarchyLevel& l = h.levels.back();
@@ -95,6 +98,9 @@ void GpuSimulator::bind_multigrid() const {
   g.fine_view.bind(TEXTURE_MG_FINE);
   g.order_view.bind(TEXTURE_MG_ORDER);
   g.corr_view.bind(TEXTURE_MG_CORR);
+  g.offset_view.bind(TEXTURE_MG_OFFSET);
+  g.residuals_view.bind(TEXTURE_MG_RESIDUALS);
+  g.rhs_view.bind(TEXTURE_MG_RHS);
 }
 
 // One dispatch of a multigrid pass over items [first, first + count) (u_first, u_count, their
@@ -111,8 +117,8 @@ void GpuSimulator::compute_residuals() {
   ensure_multigrid();
   bind_for_pass();
   dispatch(multigrid_->compute_residuals);
-  // restrict_residuals reads them next.
-  barrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  // restrict_residuals reads them (through their view) next.
+  barrier(kComputeReads);
 }
 
 void GpuSimulator::restrict_residuals(int level) {

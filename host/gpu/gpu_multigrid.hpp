@@ -44,7 +44,8 @@ struct GpuMultigrid {
   gl::Buffer residuals{"multigrid residuals"}, offset{"multigrid offsets"}, rhs{"multigrid rhs"}, corr{"multigrid corrections"};
   gl::BufferTexture vertices_view{"multigrid vertices view"}, lists_view{"multigrid lists view"};
   gl::BufferTexture fine_view{"multigrid fine parents view"}, order_view{"multigrid order view"};
-  gl::BufferTexture corr_view{"multigrid corrections view"};
+  gl::BufferTexture corr_view{"multigrid corrections view"}, offset_view{"multigrid offsets view"};
+  gl::BufferTexture residuals_view{"multigrid residuals view"}, rhs_view{"multigrid rhs view"};
   std::shared_ptr<const Hierarchy> hierarchy;  // what the buffers hold (Constants::hierarchy)
 };
 
