@@ -43,15 +43,17 @@ void main() {
   // The springs' multipliers of the last substep, as their forces over this one (times dt^2):
   // -n lambda on a spring's i end, +n lambda on its j end, in the gather order.
   // (The multigrid solver carries none: its springs act in its own solve.)
+  // (A compile-time if: a loop of zero trips would still run its body once on llvmpipe.)
   precise vec3 warm = vec3(0.0);
-  uint first = texelFetch(gather_start_view, i).x, last = texelFetch(gather_start_view, i + 1).x;
-  if (MULTIGRID_SOLVER) last = first;
-  for (uint g = first; g < last; ++g) {
-    uvec4 entry = texelFetch(gather_view, int(g));  // z: the spring, w: 1 if i is its i end
-    vec4 l = texelFetch(multipliers_view, int(entry.z));
-    precise vec3 f = l.xyz * l.w;
-    precise vec3 minus = warm - f, plus = warm + f;
-    warm = entry.w != 0u ? minus : plus;
+  if (!MULTIGRID_SOLVER) {
+    uint first = texelFetch(gather_start_view, i).x, last = texelFetch(gather_start_view, i + 1).x;
+    for (uint g = first; g < last; ++g) {
+      uvec4 entry = texelFetch(gather_view, int(g));  // z: the spring, w: 1 if i is its i end
+      vec4 l = texelFetch(multipliers_view, int(entry.z));
+      precise vec3 f = l.xyz * l.w;
+      precise vec3 minus = warm - f, plus = warm + f;
+      warm = entry.w != 0u ? minus : plus;
+    }
   }
   precise vec3 d = displacement_of(i).xyz * material_of(i).keep.x + acc * params.dt2 + warm * p.w;
   if (params.max_step > 0.0) {
