@@ -13,7 +13,7 @@ layout(std430, binding = BINDING_WIND_FORCES) readonly buffer WindForces { vec4 
 void main() {
   int i = int(gl_GlobalInvocationID.x);
   if (i >= int(particle_count())) return;
-  precise vec3 f = spring_force(i, position_of(i).xyz, material_of(i));
+  precise vec3 f = spring_force(i, position_of(i).xyz, material_of(i), mass_of(i));
   if (WIND_ENABLED) f = f + wind_force[i].xyz;
   force[i] = vec4(f, 0.0);
 }

@@ -29,8 +29,9 @@ void main() {
     return;
   }
   vec3 x = p.xyz;
-  Material mat = material_of(i);
-  precise vec3 f = spring_force(i, x, mat);
+  float mass;
+  Material mat = material_and_mass_of(i, mass);
+  precise vec3 f = spring_force(i, x, mat, mass);
   if (WIND_ENABLED) f = f + wind_force[i].xyz;  // compute_wind_forces ran before
   precise vec3 a = f * p.w;
   precise vec3 d = displacement_of(i).xyz * mat.keep.x + a * params.dt2;

@@ -20,14 +20,15 @@ void main() {
     residual[i] = vec4(0.0);
     return;
   }
-  Material mat = material_of(i);
+  float mass;
+  Material mat = material_and_mass_of(i, mass);
   // -m/dt^2 (x - y) + the springs' force (compute_residuals in host/core/reference_multigrid.cpp).
-  precise float inertia = mass_of(i) * params.inv_dt2;
+  precise float inertia = mass * params.inv_dt2;
   vec3 off = offset_of(i);
   precise vec3 xi = p.xyz + off;
   // A mass a collider holds stays out of the coarse problem (touches_colliders).
   if (has_colliders() && touches_colliders(xi)) {
-    residual[i] = vec4(0.0, 0.0, 0.0, mass_of(i));
+    residual[i] = vec4(0.0, 0.0, 0.0, mass);
     return;
   }
   precise vec3 f = off * -inertia;
@@ -44,5 +45,5 @@ void main() {
       f = f + e * magnitude;
     }
   }
-  residual[i] = vec4(f, mass_of(i));
+  residual[i] = vec4(f, mass);
 }

@@ -18,8 +18,9 @@ vec3 add_spring(vec3 f, vec3 xi, int j, float rest, float k_spring) {
 }
 
 // Springs never join two cloths, so every spring of particle i has i's material.
-vec3 spring_force(int i, vec3 xi, Material mat) {
-  precise vec3 f = params.gravity * mass_of(i);
+// (mass: particle i's, read with its material by the caller.)
+vec3 spring_force(int i, vec3 xi, Material mat, float mass) {
+  precise vec3 f = params.gravity * mass;
   uint first = texelFetch(gather_start_view, i).x, last = texelFetch(gather_start_view, i + 1).x;
   for (uint g = first; g < last; ++g) {
     uvec2 entry = texelFetch(gather_view, int(g)).xy;  // x: the other end | type << 30, y: rest bits

@@ -42,6 +42,12 @@ Material material(int m) {
   return Material(texelFetch(materials_view, MATERIAL_TEXELS * m), texelFetch(materials_view, MATERIAL_TEXELS * m + 1));
 }
 Material material_of(int i) { return material(material_index_of(i)); }
+// Both from one fetch of particle i's texel (a pass that needs its mass and its material).
+Material material_and_mass_of(int i, out float mass) {
+  vec4 particle = texelFetch(particles_view, i);
+  mass = particle.x;
+  return material(int(particle.y));
+}
 bool type_enabled(Material m, uint type) { return m.keep[1 + int(type)] != 0.0; }
 float stiffness(Material m, uint type) { return type == 2u ? m.stiffness.y : m.stiffness.x; }
 float compliance(Material m, uint type) { return type == 2u ? m.stiffness.w : m.stiffness.z; }

@@ -22,8 +22,9 @@ void main() {
   float wi = p.w;
   if (wi == 0.0) return;
   precise vec3 x = p.xyz, d = displacement_of(i).xyz, off = offset_of(i);
-  Material mat = material_of(i);
-  precise float inertia = mass_of(i) * params.inv_dt2;
+  float mass;
+  Material mat = material_and_mass_of(i, mass);
+  precise float inertia = mass * params.inv_dt2;
   precise vec3 f = off * -inertia;
   Sym3 hess = sym3_diagonal(inertia);
   uint first = texelFetch(gather_start_view, i).x, last = texelFetch(gather_start_view, i + 1).x;
