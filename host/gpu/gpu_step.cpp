@@ -162,7 +162,8 @@ void GpuSimulator::solve_length_constraints() { length_constraint_passes(constan
 void GpuSimulator::predict(bool then_collide_objects) {
   predict_.set(predict_collide_objects_, int(then_collide_objects));
   dispatch(predict_);
-  // The hash passes or the constraints read the predicted positions and displacements next.
+  // The hash passes or the constraints read the predicted positions and displacements next
+  // (under multigrid compute_residuals reads the offsets too, through their view).
   barrier(kComputeReads);
 }
 
