@@ -13,7 +13,9 @@ layout(std430, binding = BINDING_WIND_FORCES) readonly buffer WindForces { vec4 
 void main() {
   int i = int(gl_GlobalInvocationID.x);
   if (i >= int(particle_count())) return;
-  precise vec3 f = spring_force(i, position_of(i).xyz, material_of(i), mass_of(i));
+  float mass;
+  Material mat = material_and_mass_of(i, mass);
+  precise vec3 f = spring_force(i, position_of(i).xyz, mat, mass);
   if (WIND_ENABLED) f = f + wind_force[i].xyz;
   force[i] = vec4(f, 0.0);
 }

@@ -1,8 +1,8 @@
-// Reads the residuals of the next finer level (through their view); writes the coarse right-hand sides, the level's
-// residuals (the same: its correction starts at zero) and zeroes its corrections. One
-// invocation per coarse vertex of the level (vertices [u_first, u_first + u_count)): the
-// weighted sum of its children's residual forces and masses.
-// The CPU twin is restrict_residuals in host/core/reference_multigrid.cpp.
+// Reads the residuals of the next finer level (through their view); writes the coarse right-hand
+// sides, the level's residuals (the same: its correction starts at zero) and zeroes its
+// corrections. One invocation per coarse vertex of the level (vertices [u_first, u_first +
+// u_count)): the weighted sum of its children's residual forces and masses. The CPU twin is
+// restrict_residuals in host/core/reference_multigrid.cpp.
 #include "layout.glsl"
 #include "common.glsl"
 #include "collide_objects.glsl"

@@ -1,7 +1,7 @@
-// Reads positions and the right-hand sides (through the views); reads and writes the corrections of the coarsest
-// level. One workgroup: kCoarsestSweeps Gauss-Seidel sweeps over the level's colours, the
-// invocations striding over each colour's vertices, a barrier between colours, so the whole
-// coarsest solve is one dispatch (the level is small: at most a few hundred vertices). The
+// Reads positions and the right-hand sides (through the views); reads and writes the corrections
+// of the coarsest level. One workgroup: kCoarsestSweeps Gauss-Seidel sweeps over the level's
+// colours, the invocations striding over each colour's vertices, a barrier between colours, so the
+// whole coarsest solve is one dispatch (the level is small: at most a few hundred vertices). The
 // CPU twin is solve_coarsest in host/core/reference_multigrid.cpp (smooth_corrections, colour by
 // colour, in the same arithmetic).
 #include "layout.glsl"
