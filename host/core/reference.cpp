@@ -143,7 +143,7 @@ Constants<R> make_constants(const Scene& scene, const ClothModel& model, std::sh
   }
   c.tether_limit = R(1.0 + sp.tether_stretch);
   c.iterations = sp.constraint_iterations;
-  c.stretch_passes = c.xpbd && !c.multigrid ? sp.stretch_passes : 0;
+  c.stretch_passes = c.xpbd ? sp.stretch_passes : 0;  // xpbd's sweep and multigrid's alike
   c.self_collision = sp.self_collision;
   c.bounded_contact = c.xpbd && c.self_collision;
   if (c.bounded_contact) {

@@ -108,7 +108,7 @@ template <class R> struct Constants {
   std::vector<MaterialC<R>> materials;  // by cloth, Scene::cloths() order
   std::vector<R> mass;  // kg, per particle (particle_masses: follows a live density edit)
   int iterations;
-  int stretch_passes = 0;  // xpbd: enforce_stretch_limit's passes after the sweep
+  int stretch_passes = 0;  // xpbd, multigrid: enforce_stretch_limit's passes after the sweep
   bool self_collision;
   // simulation.solver: xpbd for both position-based solvers (they share predict, the bounded
   // self-contact and Coulomb friction); multigrid for the multigrid one, whose solve replaces
@@ -220,10 +220,10 @@ template <class R> void solve_length_constraint_colour(const ClothModel& m, cons
 template <class R> void predict(const ClothModel& m, const Constants<R>& c, State<R>& s);
 template <class R> void solve_distance_constraint_colour(const ClothModel& m, const Constants<R>& c, int colour, State<R>& s);
 template <class R> void solve_distance_constraints(const ClothModel& m, const Constants<R>& c, State<R>& s);
-// xpbd, after the sweep: stretch_passes passes of Provot's limit alone over every colour (the
-// classic length constraint, solve_length_constraint_colour). In the sweep each spring is
-// limited when its colour is solved, and the colours after it can pull it out again; a pass of
-// the limit alone moves only the springs still over it (docs/model.md).
+// xpbd and multigrid, after the sweep: stretch_passes passes of Provot's limit alone over every
+// colour (the classic length constraint, solve_length_constraint_colour). In either sweep each
+// spring is limited when its colour (or its end's) is solved, and the colours after it can pull
+// it out again; a pass of the limit alone moves only the springs still over it (docs/model.md).
 template <class R> void enforce_stretch_limit(const ClothModel& m, const Constants<R>& c, State<R>& s);
 
 // The multigrid solver (docs/model.md, "One substep (multigrid solver)"), after predict and the
@@ -262,12 +262,11 @@ template <class R> void step(const ClothModel& m, const Constants<R>& c, State<R
     predict(m, c, s);
     if (c.self_collision) collide_self(c, s);
     collide_objects(c, s);
-    if (c.multigrid) {
+    if (c.multigrid)
       solve_multigrid(m, c, s);
-    } else {
+    else
       solve_distance_constraints(m, c, s);
-      enforce_stretch_limit(m, c, s);
-    }
+    enforce_stretch_limit(m, c, s);  // stretch_passes: the limit holds after either sweep
     return;
   }
   advance(m, c, s);

@@ -263,8 +263,8 @@ const Param<SimulationParams> kSimulation[] = {
          .widget = drag(0.001f, 0.0, 10.0, "%.3f")}),
     row<&SimulationParams::stretch_passes>(
         {.key = "stretch_passes", .lo = 0, .hi = 100,
-         .meaning = "xpbd only: passes of the max_stretch limit over every colour after the sweep, so that the limit "
-                    "holds at the end of the substep (in the sweep a later colour can pull a spring out again)",
+         .meaning = "xpbd and multigrid: passes of the max_stretch limit over every colour after the sweep, so that "
+                    "the limit holds at the end of the substep (in the sweep a later colour can pull a spring out again)",
          .widget = drag(0.1f, 0, 20, "%d")}),
 };
 

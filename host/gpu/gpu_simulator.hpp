@@ -45,8 +45,8 @@ class GpuSimulator {
   void solve_length_constraints();
   void compute_normals();
   // The xpbd solver's passes (docs/model.md): step() runs predict (+ collide_objects when
-  // self-collision is off), [collide_self], solve_distance_constraints, then with
-  // simulation.stretch_passes enforce_stretch_limit (that many passes of
+  // self-collision is off), [collide_self], solve_distance_constraints (or solve_multigrid),
+  // then with simulation.stretch_passes enforce_stretch_limit (that many passes of
   // solve_length_constraints' shader over every colour).
   void predict(bool then_collide_objects = false);
   void solve_distance_constraint_colour(int colour);

@@ -203,12 +203,11 @@ void GpuSimulator::step() {
   if (constants_.xpbd) {
     predict(objects_first);
     if (constants_.self_collision) collide_self(colliders);
-    if (constants_.multigrid) {
+    if (constants_.multigrid)
       solve_multigrid();
-    } else {
+    else
       solve_distance_constraints();
-      enforce_stretch_limit();
-    }
+    enforce_stretch_limit();  // stretch_passes: the limit holds after either sweep
   } else {
     advance(objects_first);
     if (constants_.self_collision) collide_self(colliders);
@@ -224,10 +223,9 @@ std::string GpuSimulator::pass_list() const {
   if (constants_.self_collision) passes += ", collide_self (count_cells, scan_cells, fill_cells, sort_cells, resolve_self_contacts)";
   passes += constants_.multigrid ? ", solve_multigrid (compute_residuals, restrict_residuals, smooth_corrections, "
                                    "solve_coarsest, prolong_corrections, prolong_to_cloth, relax_vertices)"
-             : constants_.xpbd   ? (constants_.stretch_passes > 0 ? ", solve_distance_constraints, enforce_stretch_limit "
-                                                                      "(solve_length_constraints)"
-                                                                    : ", solve_distance_constraints")
+             : constants_.xpbd   ? ", solve_distance_constraints"
                                  : ", solve_length_constraints";
+  if (constants_.stretch_passes > 0) passes += ", enforce_stretch_limit (solve_length_constraints)";
   return passes;
 }
 
@@ -265,9 +263,10 @@ int GpuSimulator::dispatches_per_substep() const {
   const int self = constants_.self_collision ? 4 + scan_.dispatches(table_size_) : 0;  // count, fill, sort, collide + scan
   // xpbd: predict, then one solve of every enabled colour; classic: advance, then the colours
   // once per constraint iteration; with wind, its pass first.
-  if (constants_.multigrid) return 1 + int(constants_.wind.enabled) + self + multigrid_dispatches();
-  return 1 + int(constants_.wind.enabled) + self +
-         (constants_.xpbd ? 1 + constants_.stretch_passes : constants_.iterations) * enabled_colours;
+  // stretch_passes: the limit's passes after either xpbd sweep (0 for classic).
+  const int limit = constants_.stretch_passes * enabled_colours;
+  if (constants_.multigrid) return 1 + int(constants_.wind.enabled) + self + multigrid_dispatches() + limit;
+  return 1 + int(constants_.wind.enabled) + self + (constants_.xpbd ? enabled_colours : constants_.iterations * enabled_colours) + limit;
 }
 
 }  // namespace clothsim
