@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 
 #include "backend.hpp"
+#include "diagnostics.hpp"
 #include "scene.hpp"
 
 namespace clothsim::test {
@@ -49,6 +50,18 @@ template <class T> size_t mismatches(const std::vector<T>& a, const std::vector<
   size_t n = 0;
   for (size_t i = 0; i < a.size(); ++i) n += std::memcmp(&a[i], &b[i], sizeof(T)) != 0;
   return n;
+}
+
+// The largest spring stretch at any of the first `frames` frames of the CPU reference (float).
+inline double worst_stretch_over_frames(const Scene& s, int frames) {
+  const ClothModel m = build_cloth(s);
+  CpuBackend<float> cpu(s, m);
+  double worst = 0;
+  for (int f = 1; f <= frames; ++f) {
+    cpu.step_frame();
+    worst = std::max(worst, measure(s, m, cpu.snapshot()).max_stretch_ratio);
+  }
+  return worst;
 }
 
 inline double max_abs_diff(const std::vector<glm::dvec4>& a, const std::vector<glm::dvec4>& b) {

@@ -253,17 +253,11 @@ TEST_CASE("multigrid at 120 substeps: a 65² heap collapses within its Provot li
 TEST_CASE("multigrid: stretch_passes hold max_stretch on a cloth that leans on it, which the sweep alone does not",
           "[multigrid]") {
   auto worst_stretch = [](int passes) {
-    const Scene s = load_scene(std::filesystem::path(CLOTHSIM_SOURCE_DIR) / "scenes" / "pinned2.json",
-                               {"cloth.num_width_points=49", "cloth.num_height_points=49", "cloth.pinned=[[0,0],[48,0]]",
-                                "simulation.solver=\"multigrid\"", "simulation.stretch_passes=" + std::to_string(passes)});
-    const ClothModel m = build_cloth(s);
-    CpuBackend<float> cpu(s, m);
-    double worst = 0;
-    for (int f = 1; f <= 30; ++f) {
-      cpu.step_frame();
-      worst = std::max(worst, measure(s, m, cpu.snapshot()).max_stretch_ratio);
-    }
-    return worst;
+    return test::worst_stretch_over_frames(
+        load_scene(std::filesystem::path(CLOTHSIM_SOURCE_DIR) / "scenes" / "pinned2.json",
+                   {"cloth.num_width_points=49", "cloth.num_height_points=49", "cloth.pinned=[[0,0],[48,0]]",
+                    "simulation.solver=\"multigrid\"", "simulation.stretch_passes=" + std::to_string(passes)}),
+        30);
   };
   const double sweep = worst_stretch(0), two = worst_stretch(2), four = worst_stretch(4);
   INFO("largest stretch at any frame: " << sweep << " with the sweep alone, " << two << " with 2 passes, " << four

@@ -133,17 +133,11 @@ TEST_CASE("xpbd: the tethers hold a soft hanging cloth to 1 % over its rest dist
 TEST_CASE("xpbd: stretch_passes hold max_stretch at every frame of a 65² heap, which one sweep does not",
           "[reference][xpbd][slow]") {
   auto worst_stretch = [](int passes) {
-    const Scene s = load_scene(std::filesystem::path(CLOTHSIM_SOURCE_DIR) / "scenes" / "heap256.json",
-                               {"cloth.num_width_points=65", "cloth.num_height_points=65",
-                                "simulation.stretch_passes=" + std::to_string(passes)});
-    const ClothModel m = build_cloth(s);
-    CpuBackend<float> cpu(s, m);
-    double worst = 0;
-    for (int f = 1; f <= 60; ++f) {
-      cpu.step_frame();
-      worst = std::max(worst, measure(s, m, cpu.snapshot()).max_stretch_ratio);
-    }
-    return worst;
+    return test::worst_stretch_over_frames(
+        load_scene(std::filesystem::path(CLOTHSIM_SOURCE_DIR) / "scenes" / "heap256.json",
+                   {"cloth.num_width_points=65", "cloth.num_height_points=65",
+                    "simulation.stretch_passes=" + std::to_string(passes)}),
+        60);
   };
   const double one_sweep = worst_stretch(0), held = worst_stretch(4);
   INFO("largest stretch at any frame: " << one_sweep << " with the sweep alone, " << held << " with 4 passes after it");
