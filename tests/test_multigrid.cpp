@@ -266,4 +266,26 @@ TEST_CASE("multigrid: stretch_passes hold max_stretch on a cloth that leans on i
   CHECK(two < 1.15);
   CHECK(four <= 1.11);
   CHECK(four <= two);
+  CHECK(worst_stretch(-1) == two);  // the default, auto: this cloth leans on its limit
+}
+
+// stretch_passes -1 (auto, the default): passes only where the solver needs them, the multigrid
+// sweep on a cloth whose own weight would stretch it past half its limit.
+TEST_CASE("stretch_passes auto: 2 under multigrid for the classic app's heavy cloths, none for fabric or xpbd",
+          "[multigrid]") {
+  auto passes = [](const std::string& scene, std::vector<std::string> sets) {
+    const Scene s = load_scene(std::filesystem::path(CLOTHSIM_SOURCE_DIR) / "scenes" / (scene + ".json"), sets);
+    return stretch_passes_for(s, build_cloth(s));
+  };
+  const std::string multigrid = "simulation.solver=\"multigrid\"";
+  CHECK(passes("pinned2", {multigrid}) == kAutoStretchPasses);     // 150 kg/m², ks 5000: 0.29 by the estimate
+  CHECK(passes("table_drag", {multigrid}) == kAutoStretchPasses);  // ks 1.9: 0.62
+  CHECK(passes("two_cloths", {multigrid}) == 0);                   // fabric, both cloths
+  CHECK(passes("hang_xpbd", {multigrid, "simulation.max_stretch=0.1"}) == 0);  // fabric: 3e-4
+  CHECK(passes("hang_xpbd", {multigrid, "simulation.max_stretch=0.1", "cloth.ks=20"}) ==
+        kAutoStretchPasses);  // 0.074 > 0.05
+  CHECK(passes("pinned2", {"simulation.solver=\"xpbd\""}) == 0);  // xpbd's own sweep holds it
+  CHECK(passes("pinned2", {multigrid, "simulation.stretch_passes=0"}) == 0);  // the scene's word
+  CHECK(passes("heap256", {}) == 4);
+  CHECK(hanging_cloth(17).simulation.stretch_passes == -1);
 }

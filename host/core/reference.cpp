@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <numeric>
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
 #include "mesh_collider.hpp"
@@ -102,6 +103,29 @@ template <class R> void set_substep_time(Constants<R>& c, double t) {
   if (tl.gust_period > 0) c.wind.gust_phase = R(gust_phase(t, tl.gust_period));
 }
 
+int stretch_passes_for(const Scene& scene, const ClothModel& model) {
+  const SimulationParams& sp = scene.simulation;
+  if (sp.stretch_passes >= 0) return sp.stretch_passes;
+  if (sp.solver != Solver::Multigrid) return 0;
+  const std::vector<const ClothParams*> cloths = scene.cloths();
+  for (size_t k = 0; k < cloths.size() && k < model.parts.size(); ++k) {
+    const ClothPart& part = model.parts[k];
+    if (part.count == 0) continue;
+    glm::dvec3 lo = model.initial[part.first], hi = lo;
+    for (uint32_t i = part.first; i < part.first + part.count; ++i) {
+      lo = glm::min(lo, model.initial[i]);
+      hi = glm::max(hi, model.initial[i]);
+    }
+    const glm::dvec3 size = hi - lo;
+    const double extent = std::max({size.x, size.y, size.z});
+    // The stretch of a strip hanging from its top under its own weight, its springs alone
+    // holding it (an upper bound: the shearing and bending springs carry some of it).
+    const double sag_stretch = cloths[k]->density * glm::length(sp.gravity) * extent / cloths[k]->ks;
+    if (!(sag_stretch <= 0.5 * sp.max_stretch)) return kAutoStretchPasses;  // ks 0 too
+  }
+  return 0;
+}
+
 template <class R>
 Constants<R> make_constants(const Scene& scene, const ClothModel& model, std::shared_ptr<const Hierarchy> reuse) {
   const ClothParams& cp = scene.cloth;
@@ -143,7 +167,7 @@ Constants<R> make_constants(const Scene& scene, const ClothModel& model, std::sh
   }
   c.tether_limit = R(1.0 + sp.tether_stretch);
   c.iterations = sp.constraint_iterations;
-  c.stretch_passes = c.xpbd ? sp.stretch_passes : 0;  // xpbd's sweep and multigrid's alike
+  c.stretch_passes = c.xpbd ? stretch_passes_for(scene, model) : 0;  // xpbd's sweep and multigrid's alike
   c.self_collision = sp.self_collision;
   c.bounded_contact = c.xpbd && c.self_collision;
   if (c.bounded_contact) {

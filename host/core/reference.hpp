@@ -220,6 +220,14 @@ template <class R> void solve_length_constraint_colour(const ClothModel& m, cons
 template <class R> void predict(const ClothModel& m, const Constants<R>& c, State<R>& s);
 template <class R> void solve_distance_constraint_colour(const ClothModel& m, const Constants<R>& c, int colour, State<R>& s);
 template <class R> void solve_distance_constraints(const ClothModel& m, const Constants<R>& c, State<R>& s);
+// simulation.stretch_passes as the solvers run it: the scene's count, or for -1 (auto, the
+// default) none under xpbd and, under multigrid, kAutoStretchPasses where a cloth is so heavy
+// for its ks that its own weight would stretch its springs past half its limit (density · |g| ·
+// its largest rest extent / ks > max_stretch / 2: the classic app's cloths, whose limit carries
+// them; the sweep's own limit does not hold those, docs/model.md step 7), else none.
+inline constexpr int kAutoStretchPasses = 2;
+int stretch_passes_for(const Scene& scene, const ClothModel& model);
+
 // xpbd and multigrid, after the sweep: stretch_passes passes of Provot's limit alone over every
 // colour (the classic length constraint, solve_length_constraint_colour). In either sweep each
 // spring is limited when its colour (or its end's) is solved, and the colours after it can pull

@@ -127,7 +127,7 @@ struct SimulationParams {
   bool self_collision = true;
   Solver solver = Solver::Classic;
   double tether_stretch = 0.01;  // xpbd only: long-range attachments to the nearest pin
-  int stretch_passes = 0;        // xpbd and multigrid: Provot passes over every colour after the sweep
+  int stretch_passes = -1;       // xpbd and multigrid: Provot passes over every colour after the sweep; -1 auto (stretch_passes_for)
 
   bool operator==(const SimulationParams&) const = default;
 };

@@ -262,10 +262,12 @@ const Param<SimulationParams> kSimulation[] = {
                     "pin (long-range attachments); a large value turns them off",
          .widget = drag(0.001f, 0.0, 10.0, "%.3f")}),
     row<&SimulationParams::stretch_passes>(
-        {.key = "stretch_passes", .lo = 0, .hi = 100,
+        {.key = "stretch_passes", .lo = -1, .hi = 100, .expected = "-1 (auto) or a pass count in [0, 100]",
          .meaning = "xpbd and multigrid: passes of the max_stretch limit over every colour after the sweep, so that "
-                    "the limit holds at the end of the substep (in the sweep a later colour can pull a spring out again)",
-         .widget = drag(0.1f, 0, 20, "%d")}),
+                    "the limit holds at the end of the substep (in the sweep a later colour can pull a spring out "
+                    "again); -1: none under xpbd, under multigrid 2 where a cloth's own weight would stretch its "
+                    "springs past half the limit (density · |gravity| · size / ks > max_stretch / 2), else none",
+         .widget = drag(0.1f, -1, 20, "%d")}),
 };
 
 const Param<WindParams> kWind[] = {
