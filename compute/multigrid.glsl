@@ -15,12 +15,22 @@ layout(binding = TEXTURE_MG_OFFSET) uniform samplerBuffer mg_offset_view;
 layout(binding = TEXTURE_MG_RESIDUALS) uniform samplerBuffer mg_residuals_view;
 layout(binding = TEXTURE_MG_RHS) uniform samplerBuffer mg_rhs_view;
 
-// Particle i's offset x - y (predict wrote it, prolong_to_cloth and relax_vertices move it), a
-// residual and a right-hand side, each written by an earlier dispatch: through their views (a
-// storage-buffer read in a spring loop is a bounds-checked loop over the lanes on llvmpipe).
+// Particle i's offset x - y (predict wrote it, prolong_to_cloth and relax_vertices move it).
 vec3 offset_of(int i) { return texelFetch(mg_offset_view, i).xyz; }
-vec4 residual_of(uint k) { return texelFetch(mg_residuals_view, int(k)); }
-vec4 rhs_of(uint g) { return texelFetch(mg_rhs_view, int(g)); }
+
+// How a pass reads a residual, a right-hand side and a correction, each written by an earlier
+// dispatch: through their views (a storage-buffer read in a loop is a bounds-checked loop over
+// the lanes on llvmpipe), unless it defines these first. The one pass that reads what it wrote
+// itself, cycle_small_levels, reads its coherent storage buffers.
+#ifndef MG_RESIDUAL_OF
+#define MG_RESIDUAL_OF(k) texelFetch(mg_residuals_view, int(k))
+#endif
+#ifndef MG_RHS_OF
+#define MG_RHS_OF(g) texelFetch(mg_rhs_view, int(g))
+#endif
+#ifndef MG_CORR_OF
+#define MG_CORR_OF(g) texelFetch(mg_corr_view, int(g))
+#endif
 
 // The range of this dispatch: vertices (or entries of the order) [u_first, u_first + u_count).
 uniform uint u_first;
@@ -115,12 +125,6 @@ bool touches_colliders(vec3 x) {
 // Coarse vertex g: its particle, and its entries' ranges [first, last) in the lists.
 uvec4 mg_vertex(uint g) { return texelFetch(mg_vertices_view, int(g)); }
 uvec4 mg_entry(uint k) { return texelFetch(mg_lists_view, int(k)); }
-
-// How a pass reads a correction: through the view, unless it defines MG_CORR_OF first (the one
-// pass that reads what it wrote itself, solve_coarsest, reads its storage buffer).
-#ifndef MG_CORR_OF
-#define MG_CORR_OF(g) texelFetch(mg_corr_view, int(g))
-#endif
 
 // b - A e at coarse vertex g (its vertex row v, its restricted force and mass b), and A's
 // diagonal block there: A = M / dt^2 + the coarse springs' Hessians at the current positions

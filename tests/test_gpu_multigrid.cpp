@@ -15,7 +15,7 @@ void check_multigrid_passes(const Scene& scene, int warmup) {
     INFO(e.pass << ": max |GPU - CPU| = " << e.max_error << " m" << (e.bitwise ? " (bitwise equal)" : ""));
     if (gl::gl_renderer_is_llvmpipe()) CHECK(e.bitwise);
     else CHECK(e.max_error <= kPassTolerance);
-    for (const char* pass : {"compute_residuals", "restrict_residuals", "solve_coarsest", "prolong_corrections",
+    for (const char* pass : {"compute_residuals", "restrict_residuals", "cycle_small_levels", "prolong_corrections",
                              "smooth_corrections", "prolong_to_cloth", "relax_vertices"})
       multigrid_passes += e.pass.rfind(pass, 0) == 0;
   }
@@ -41,6 +41,18 @@ TEST_CASE("each multigrid pass matches the reference on the two-cloth mesh scene
   CHECK_NO_GL_ERRORS();
 }
 
+// A first coarse level over kSmallLevelVertices (2,401 vertices): its passes are dispatched
+// one by one, the levels below it in cycle_small_levels' single dispatch.
+TEST_CASE("each multigrid pass matches the reference on a 97x95 cloth (a large level, then the small ones in one dispatch)",
+          "[gpu]") {
+  REQUIRE_GL_CONTEXT();
+  const Scene scene = pressed_cloth(97, 95, {"simulation.solver=\"multigrid\""});
+  const ClothModel model = build_cloth(scene);
+  REQUIRE(first_small_level(build_hierarchy(model, {scene.cloth.ks})) == 1);
+  check_multigrid_passes(scene, 1);
+  CHECK_NO_GL_ERRORS();
+}
+
 TEST_CASE("a multigrid run on the GPU follows the reference frame by frame, and counts its dispatches", "[gpu]") {
   REQUIRE_GL_CONTEXT();
   const Scene scene = pressed_cloth(33, 17, {"simulation.solver=\"multigrid\""}, kTwoSpheresTwoPlanes);
@@ -50,6 +62,9 @@ TEST_CASE("a multigrid run on the GPU follows the reference frame by frame, and 
   const GpuCounters before = gpu.counters();
   gpu.step_frame();
   const GpuCounters after = gpu.counters();
+  // Its two coarse levels are both small (kSmallLevelVertices): the whole V-cycle is one
+  // dispatch, with compute_residuals, prolong_to_cloth and a dispatch per colour of the sweep.
+  CHECK(gpu.multigrid_dispatches() == 3 + gpu.constants().hierarchy->fine_colours());
   // The substeps' dispatches, then the frame's own: normals and the divergence guard's two.
   CHECK(uint64_t(after.dispatches - before.dispatches) ==
         uint64_t(scene.simulation.simulation_steps * gpu.dispatches_per_substep() + 3));

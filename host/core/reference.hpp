@@ -238,7 +238,8 @@ template <class R> void enforce_stretch_limit(const ClothModel& m, const Constan
 // contacts: compute_residuals (the springs' force on every mass), then a V-cycle over the
 // hierarchy's levels (cycle_levels: restrict_residuals level by level down, solve_coarsest,
 // then prolong_corrections and smooth_corrections colour by colour up), prolong_to_cloth, and
-// relax_vertices colour by colour. solve_multigrid runs them in order.
+// relax_vertices colour by colour. solve_multigrid runs them in order. The small levels' part of
+// the cycle is cycle_small_levels: one dispatch on the GPU.
 inline constexpr int kLevelSweeps = 1;     // Gauss-Seidel sweeps per level on the way up
 // A mass this close to a collider's surface (m) is held by it: left out of the coarse problem.
 inline constexpr double kContactReach = 1e-3;
@@ -248,15 +249,22 @@ inline constexpr double kContactReach = 1e-3;
 // and slows its hanging (docs/solvers.md).
 inline constexpr double kFoldedChord = 0.99;
 inline constexpr int kCoarsestSweeps = 4;  // on the coarsest level (solve_coarsest)
-// The GPU's solve_coarsest takes the coarsest level's colour starts as a uniform array of this
-// size + 1 (COARSEST_COLOURS_MAX in compute/solve_coarsest.comp).
-inline constexpr uint32_t kCoarsestColoursMax = 32;
+// A level of at most this many vertices, and every level below it, is small: the GPU runs
+// their part of the cycle in one workgroup (cycle_small_levels), where a dispatch and a
+// barrier per colour would cost more than the levels' work (on a 256² cloth 19 of the 43
+// dispatches of a substep went to its four levels of 1,027 vertices and fewer).
+inline constexpr uint32_t kSmallLevelVertices = 2048;
+// The first small level of `h` (its coarsest level is always one); 0 for none.
+int first_small_level(const Hierarchy& h);
 template <class R> void compute_residuals(const ClothModel& m, const Constants<R>& c, State<R>& s);
 template <class R> void restrict_residuals(const Constants<R>& c, int level, State<R>& s);
 template <class R> void smooth_corrections(const Constants<R>& c, int level, int colour, State<R>& s);
 // `sweeps` Gauss-Seidel sweeps of one level, colour by colour (smooth_corrections).
 template <class R> void smooth_level(const Constants<R>& c, int level, int sweeps, State<R>& s);
 template <class R> void solve_coarsest(const Constants<R>& c, State<R>& s);
+// The small levels' part of the cycle, in cycle_levels' order: restrict_residuals down from the
+// first small level, solve_coarsest, then prolong_corrections and smooth_level up to it.
+template <class R> void cycle_small_levels(const Constants<R>& c, State<R>& s);
 template <class R> void prolong_corrections(const Constants<R>& c, int level, State<R>& s);
 template <class R> void prolong_to_cloth(const ClothModel& m, const Constants<R>& c, State<R>& s);
 template <class R> void relax_vertices(const ClothModel& m, const Constants<R>& c, int colour, State<R>& s);

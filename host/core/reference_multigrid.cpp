@@ -8,6 +8,8 @@
 #include "reference.hpp"
 #include "reference_detail.hpp"
 
+#include <algorithm>
+
 namespace clothsim {
 
 namespace {
@@ -271,15 +273,33 @@ template <class R> void solve_coarsest(const Constants<R>& c, State<R>& s) {
   smooth_level(c, int(c.hierarchy->levels.size()) - 1, kCoarsestSweeps, s);
 }
 
+int first_small_level(const Hierarchy& h) {
+  int l = int(h.levels.size()) - 1;
+  while (l > 0 && h.levels[size_t(l - 1)].count <= kSmallLevelVertices) --l;
+  return std::max(l, 0);
+}
+
+template <class R> void cycle_small_levels(const Constants<R>& c, State<R>& s) {
+  const int levels = int(c.hierarchy->levels.size()), small = first_small_level(*c.hierarchy);
+  if (levels == 0) return;
+  for (int l = small; l < levels; ++l) restrict_residuals(c, l, s);
+  solve_coarsest(c, s);
+  for (int l = levels - 2; l >= small; --l) {
+    prolong_corrections(c, l, s);
+    smooth_level(c, l, kLevelSweeps, s);
+  }
+}
+
 template <class R> void cycle_levels(const Constants<R>& c, State<R>& s) {
-  const int levels = int(c.hierarchy->levels.size());
+  const int levels = int(c.hierarchy->levels.size()), small = first_small_level(*c.hierarchy);
   if (levels == 0) return;
   // Down: the force restricted level by level (no smoothing on the way down: the correction
-  // is zero there, so each level's residual is its right-hand side).
-  for (int l = 0; l < levels; ++l) restrict_residuals(c, l, s);
-  solve_coarsest(c, s);
+  // is zero there, so each level's residual is its right-hand side); the small levels, the
+  // coarsest solve and the way back up to the first small level in cycle_small_levels.
+  for (int l = 0; l < small; ++l) restrict_residuals(c, l, s);
+  cycle_small_levels(c, s);
   // Up: add each level's correction to the finer one, smooth it there.
-  for (int l = levels - 2; l >= 0; --l) {
+  for (int l = small - 1; l >= 0; --l) {
     prolong_corrections(c, l, s);
     smooth_level(c, l, kLevelSweeps, s);
   }
@@ -301,6 +321,7 @@ template <class R> void solve_multigrid(const ClothModel& m, const Constants<R>&
   template void relax_vertices<R>(const ClothModel&, const Constants<R>&, int, State<R>&); \
   template void smooth_level<R>(const Constants<R>&, int, int, State<R>&); \
   template void solve_coarsest<R>(const Constants<R>&, State<R>&); \
+  template void cycle_small_levels<R>(const Constants<R>&, State<R>&); \
   template void cycle_levels<R>(const Constants<R>&, State<R>&); \
   template void solve_multigrid<R>(const ClothModel&, const Constants<R>&, State<R>&);
 CLOTHSIM_INSTANTIATE(float)

@@ -41,6 +41,28 @@ void GpuSimulator::ensure_multigrid() {
   for (uint32_t i = 0; i <= n; ++i) fine.push_back(fine_at + h.fine_parent_start[i]);
   std::vector<uint32_t> order = h.fine_order;
   order.insert(order.end(), h.order.begin(), h.order.end());
+  // cycle_small_levels' table after the order (compute/cycle_small_levels.comp): the small
+  // levels' count, each one's row entry, then the rows (first vertex, vertex count, colour
+  // count, colour starts as order entries).
+  const uint32_t table_at = uint32_t(order.size());
+  if (!h.levels.empty()) {
+    const uint32_t small = uint32_t(first_small_level(h)), levels = uint32_t(h.levels.size());
+    std::vector<uint32_t> table{levels - small};
+    std::vector<uint32_t> rows;
+    for (uint32_t l = small; l < levels; ++l) {
+      const HierarchyLevel& level = h.levels[l];
+      table.push_back(0);  // its row's entry, set below
+      rows.insert(rows.end(), {level.first, level.count, uint32_t(level.colour_start.size()) - 1});
+      for (uint32_t start : level.colour_start) rows.push_back(n + start);
+    }
+    uint32_t row = uint32_t(table.size());
+    for (uint32_t l = small; l < levels; ++l) {
+      table[1 + l - small] = row;  // from the table's start, as the shader's table() reads
+      row += 3 + uint32_t(h.levels[l].colour_start.size());
+    }
+    table.insert(table.end(), rows.begin(), rows.end());
+    order.insert(order.end(), table.begin(), table.end());
+  }
   // A storage buffer or view may not be empty: one dummy element for a model without coarse levels.
   auto nonempty = [](auto v) { if (v.empty()) v.resize(1); return v; };
   gl::upload_vector(g.vertices, vertices, GL_STATIC_DRAW);
@@ -63,20 +85,7 @@ void GpuSimulator::ensure_multigrid() {
   g.offset_view.attach(g.offset, GL_RGBA32F);
   g.residuals_view.attach(g.residuals, GL_RGBA32F);
   g.rhs_view.attach(g.rhs, GL_RGBA32F);
-  if (!h.levels.empty()) {
-    // solve_coarsest's uniforms: the coarsest level's colours, fixed with the hierarchy.
-    const HierarchyLevel& l = h.levels.back();
-    const uint32_t colours = uint32_t(l.colour_start.size()) - 1;
-    if (colours > kCoarsestColoursMax)
-      throw std::runtime_error(fmt::format("solve_coarsest: the coarsest level has {} colours, more than {}", colours,
-                                           kCoarsestColoursMax));
-    std::vector<GLuint> starts;
-    for (uint32_t start : l.colour_start) starts.push_back(n + start);
-    gl::Program& p = g.solve_coarsest;
-    glProgramUniform1uiv(p.id(), p.location("u_starts[0]"), GLsizei(starts.size()), starts.data());
-    p.set("u_count", colours);
-    p.set("u_sweeps", unsigned(kCoarsestSweeps));
-  }
+  g.cycle_small_levels.set("u_first", table_at);  // where its table starts, fixed with the hierarchy
   g.hierarchy = constants_.hierarchy;
   bind_multigrid();
 }
@@ -140,12 +149,13 @@ void GpuSimulator::smooth_corrections(int level, int colour) {
   barrier(kComputeReads);
 }
 
-void GpuSimulator::solve_coarsest() {
+void GpuSimulator::cycle_small_levels() {
   ensure_multigrid();
+  if (constants_.hierarchy->levels.empty()) return;
   bind_for_pass();
-  // Its colour starts, colour count and sweeps are set with the hierarchy (ensure_multigrid).
-  gl::Program& p = multigrid_->solve_coarsest;
-  p.dispatch(1);  // one workgroup: its barriers order the colours
+  // Its table (levels, vertices, colours) is set with the hierarchy (ensure_multigrid).
+  gl::Program& p = multigrid_->cycle_small_levels;
+  p.dispatch(1);  // one workgroup: its barriers order the steps
   dispatched(p);
   // prolong_corrections (or prolong_to_cloth) reads the corrections through their view next.
   barrier(kComputeReads);
@@ -185,11 +195,11 @@ void GpuSimulator::smooth_level(int level, int sweeps) {
 }
 
 void GpuSimulator::cycle_levels() {
-  const int levels = int(constants_.hierarchy->levels.size());
+  const int levels = int(constants_.hierarchy->levels.size()), small = first_small_level(*constants_.hierarchy);
   if (levels == 0) return;
-  for (int l = 0; l < levels; ++l) restrict_residuals(l);
-  solve_coarsest();
-  for (int l = levels - 2; l >= 0; --l) {
+  for (int l = 0; l < small; ++l) restrict_residuals(l);
+  cycle_small_levels();
+  for (int l = small - 1; l >= 0; --l) {
     prolong_corrections(l);
     smooth_level(l, kLevelSweeps);
   }
@@ -206,8 +216,10 @@ int GpuSimulator::multigrid_dispatches() const {
   const Hierarchy& h = *constants_.hierarchy;
   const int levels = int(h.levels.size());
   int count = 2 + h.fine_colours();  // compute_residuals, prolong_to_cloth, the sweep's colours
-  if (levels > 0) count += levels + 1;  // restrict_residuals per level, solve_coarsest
-  for (int l = 0; l + 1 < levels; ++l)
+  if (levels == 0) return count;
+  const int small = first_small_level(h);
+  count += small + 1;  // restrict_residuals per large level, cycle_small_levels
+  for (int l = 0; l < small; ++l)
     count += 1 + (int(h.levels[size_t(l)].colour_start.size()) - 1) * kLevelSweeps;  // prolong, smooth
   return count;
 }

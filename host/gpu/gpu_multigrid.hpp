@@ -15,7 +15,9 @@ inline gl::Program load_multigrid_pass(const std::filesystem::path& dir, const c
                                       const ShaderFeatures& features) {
   return load_pass(dir, name, features,
                    {{"CONTACT_REACH", fmt::format("{:.9e}", float(kContactReach))},
-                    {"FOLDED_CHORD", fmt::format("{:.9e}", float(kFoldedChord))}});
+                    {"FOLDED_CHORD", fmt::format("{:.9e}", float(kFoldedChord))},
+                    {"COARSEST_SWEEPS", std::to_string(kCoarsestSweeps)},
+                    {"LEVEL_SWEEPS", std::to_string(kLevelSweeps)}});
 }
 
 // A pass dispatched over a range (u_first, u_count): its uniforms' locations, looked up once.
@@ -30,11 +32,11 @@ struct GpuMultigrid {
       : compute_residuals(load_multigrid_pass(dir, "compute_residuals", f)),
         restrict_residuals(load_multigrid_pass(dir, "restrict_residuals", f)),
         smooth_corrections(load_multigrid_pass(dir, "smooth_corrections", f)),
-        solve_coarsest(load_multigrid_pass(dir, "solve_coarsest", f)),
+        cycle_small_levels(load_multigrid_pass(dir, "cycle_small_levels", f)),
         prolong_corrections(load_multigrid_pass(dir, "prolong_corrections", f)),
         prolong_to_cloth(load_multigrid_pass(dir, "prolong_to_cloth", f)),
         relax_vertices(load_multigrid_pass(dir, "relax_vertices", f)) {}
-  gl::Program compute_residuals, restrict_residuals, smooth_corrections, solve_coarsest, prolong_corrections,
+  gl::Program compute_residuals, restrict_residuals, smooth_corrections, cycle_small_levels, prolong_corrections,
       prolong_to_cloth, relax_vertices;
   GpuMultigridPass restrict_residuals_range{restrict_residuals}, smooth_corrections_range{smooth_corrections};
   GpuMultigridPass prolong_corrections_range{prolong_corrections}, relax_vertices_range{relax_vertices};

@@ -54,13 +54,15 @@ class GpuSimulator {
   void enforce_stretch_limit();
   // The multigrid solver's passes (docs/model.md; gpu_multigrid.cpp): step() runs predict,
   // [collide_self], then solve_multigrid: compute_residuals, the V-cycle (cycle_levels:
-  // restrict_residuals per level down, solve_coarsest, then prolong_corrections and
-  // smooth_corrections per colour up), prolong_to_cloth, relax_vertices per colour. Levels
-  // count from 0, the first coarse one (Hierarchy::levels).
+  // restrict_residuals per level down to the small ones, cycle_small_levels (their whole part
+  // of the cycle in one dispatch), then prolong_corrections and smooth_corrections per colour
+  // up), prolong_to_cloth, relax_vertices per colour. Levels count from 0, the first coarse one
+  // (Hierarchy::levels); restrict_residuals, smooth_corrections and prolong_corrections take any
+  // level (the pass checks run them on the small ones too).
   void compute_residuals();
   void restrict_residuals(int level);
   void smooth_corrections(int level, int colour);
-  void solve_coarsest();
+  void cycle_small_levels();
   void prolong_corrections(int level);
   void prolong_to_cloth();
   void relax_vertices(int colour);

@@ -222,7 +222,7 @@ std::string GpuSimulator::pass_list() const {
   passes += constants_.xpbd ? "predict" : "advance";
   if (constants_.self_collision) passes += ", collide_self (count_cells, scan_cells, fill_cells, sort_cells, resolve_self_contacts)";
   passes += constants_.multigrid ? ", solve_multigrid (compute_residuals, restrict_residuals, smooth_corrections, "
-                                   "solve_coarsest, prolong_corrections, prolong_to_cloth, relax_vertices)"
+                                   "cycle_small_levels, prolong_corrections, prolong_to_cloth, relax_vertices)"
              : constants_.xpbd   ? ", solve_distance_constraints"
                                  : ", solve_length_constraints";
   if (constants_.stretch_passes > 0) passes += ", enforce_stretch_limit (solve_length_constraints)";

@@ -114,15 +114,37 @@ void check_multigrid_passes(const ClothModel& model, const Constants<float>& c, 
     check(fmt::format("smooth_corrections (level {}, {} x {} colours)", l + 1, sweeps, colours),
           [&] { smooth_level(c, l, sweeps, s); }, [&] { gpu.smooth_level(l, sweeps); });
   };
-  for (int l = 0; l < levels; ++l)
-    check(fmt::format("restrict_residuals (level {})", l + 1), [&] { restrict_residuals(c, l, s); },
-          [&] { gpu.restrict_residuals(l); });
-  if (levels > 0)
-    check(fmt::format("solve_coarsest (level {}, {} sweeps)", levels, kCoarsestSweeps), [&] { solve_coarsest(c, s); },
-          [&] { gpu.solve_coarsest(); });
-  for (int l = levels - 2; l >= 0; --l) {
+  auto prolong = [&](int l) {
     check(fmt::format("prolong_corrections (level {})", l + 1), [&] { prolong_corrections(c, l, s); },
           [&] { gpu.prolong_corrections(l); });
+  };
+  const int small = levels > 0 ? first_small_level(h) : 0;
+  State<float> before_small;
+  for (int l = 0; l < levels; ++l) {
+    if (l == small) before_small = s;
+    check(fmt::format("restrict_residuals (level {})", l + 1), [&] { restrict_residuals(c, l, s); },
+          [&] { gpu.restrict_residuals(l); });
+  }
+  if (levels > 0) {
+    // The cycle restricts the small levels itself: from before their restrictions above, their
+    // right-hand sides, residuals and corrections zeroed so that a step it skipped shows.
+    s = before_small;
+    for (uint32_t g = h.levels[size_t(small)].first; g < h.coarse_count(); ++g) {
+      s.coarse_rhs[g] = s.coarse_corr[g] = s.residual[s.pos.size() + g] = Vec4<float>(0);
+    }
+    check(fmt::format("cycle_small_levels (levels {} to {}, {} coarsest sweeps)", small + 1, levels, kCoarsestSweeps),
+          [&] { cycle_small_levels(c, s); }, [&] { gpu.cycle_small_levels(); });
+    // The small levels' prolongation and sweep as passes of their own too, from where the
+    // cycle left them (each backend does the same to the same state), then back there.
+    const State<float> cycled = s;
+    for (int l = levels - 2; l >= small; --l) {
+      prolong(l);
+      sweep(l, kLevelSweeps);
+    }
+    s = cycled;
+  }
+  for (int l = small - 1; l >= 0; --l) {
+    prolong(l);
     sweep(l, kLevelSweeps);
   }
   check("prolong_to_cloth", [&] { prolong_to_cloth(model, c, s); }, [&] { gpu.prolong_to_cloth(); });
