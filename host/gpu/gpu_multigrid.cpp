@@ -47,18 +47,14 @@ void GpuSimulator::ensure_multigrid() {
   const uint32_t table_at = uint32_t(order.size());
   if (!h.levels.empty()) {
     const uint32_t small = uint32_t(first_small_level(h)), levels = uint32_t(h.levels.size());
-    std::vector<uint32_t> table{levels - small};
-    std::vector<uint32_t> rows;
+    std::vector<uint32_t> table{levels - small}, rows;
     for (uint32_t l = small; l < levels; ++l) {
       const HierarchyLevel& level = h.levels[l];
-      table.push_back(0);  // its row's entry, set below
+      // Its row's entry, from the table's start (as the shader's table() reads): after the
+      // count, the levels' entries and the rows before it.
+      table.push_back(1 + (levels - small) + uint32_t(rows.size()));
       rows.insert(rows.end(), {level.first, level.count, uint32_t(level.colour_start.size()) - 1});
       for (uint32_t start : level.colour_start) rows.push_back(n + start);
-    }
-    uint32_t row = uint32_t(table.size());
-    for (uint32_t l = small; l < levels; ++l) {
-      table[1 + l - small] = row;  // from the table's start, as the shader's table() reads
-      row += 3 + uint32_t(h.levels[l].colour_start.size());
     }
     table.insert(table.end(), rows.begin(), rows.end());
     order.insert(order.end(), table.begin(), table.end());

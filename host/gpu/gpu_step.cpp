@@ -266,7 +266,7 @@ int GpuSimulator::dispatches_per_substep() const {
   // stretch_passes: the limit's passes after either xpbd sweep (0 for classic).
   const int limit = constants_.stretch_passes * enabled_colours;
   if (constants_.multigrid) return 1 + int(constants_.wind.enabled) + self + multigrid_dispatches() + limit;
-  return 1 + int(constants_.wind.enabled) + self + (constants_.xpbd ? enabled_colours : constants_.iterations * enabled_colours) + limit;
+  return 1 + int(constants_.wind.enabled) + self + (constants_.xpbd ? 1 : constants_.iterations) * enabled_colours + limit;
 }
 
 }  // namespace clothsim
