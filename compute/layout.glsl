@@ -68,6 +68,9 @@ using uint = uint32_t;
 #define BINDING_MG_OFFSET 29     // per particle: xyz its move since the prediction (x - y)
 #define BINDING_MG_RHS 30        // per coarse vertex: xyz the restricted force, w the mass it stands for
 #define BINDING_MG_CORR 31       // per coarse vertex: xyz its correction
+// enforce_stretch_limit's settling passes (docs/model.md, xpbd step 6): a StretchControl, then
+// per colour a StretchDispatch (glDispatchComputeIndirect reads it; arm_stretch_pass writes it).
+#define BINDING_STRETCH_CONTROL 32
 // Texture units of the read-only texel views (GL_TEXTURE_BUFFER) of the simulation's buffers,
 // through which the hot passes read (compute/particle_views.glsl says why). Above the units
 // the renderer uses (0-2: fabric, height map, sky), so drawing a frame leaves them bound.
@@ -227,6 +230,19 @@ struct FrameBounds {
   uvec4 hi;  // xyz largest finite coordinate (ordered bits), w unused
 };
 
+// The settling passes' state (BINDING_STRETCH_CONTROL): x 1 once a watched pass found a spring
+// over its limit by more than kStretchSettled since the last arm_stretch_pass, y the settling
+// passes run since the buffer was made (State::stretch_settling_passes on the CPU), zw unused.
+struct StretchControl {
+  uvec4 state;
+};
+
+// One colour's dispatch of a watched pass: xyz the workgroups glDispatchComputeIndirect reads
+// (x 0 when arm_stretch_pass skips the pass), w the colour's workgroups when it runs.
+struct StretchDispatch {
+  uvec4 groups;
+};
+
 // In front of the kept positions of keep_last_good.
 struct LastGoodHeader {
   uvec4 state;  // x 1 once a frame has failed (no later frame is kept), y the frame kept, zw unused
@@ -238,6 +254,7 @@ static_assert(sizeof(SphereCollider) == SPHERE_TEXELS * sizeof(vec4), "SphereCol
 static_assert(sizeof(PlaneCollider) == PLANE_TEXELS * sizeof(vec4), "PlaneCollider texels");
 static_assert(sizeof(MeshCollider) == MESH_TEXELS * sizeof(vec4), "MeshCollider texels");
 static_assert(sizeof(ShadowFrame) == 6 * sizeof(vec4), "ShadowFrame is six vec4");
+static_assert(sizeof(StretchDispatch) == 16, "an indirect dispatch per 16 bytes");
 }  // namespace layout
 #endif
 #endif

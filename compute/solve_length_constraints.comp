@@ -1,7 +1,10 @@
 // Reads (through the views) and writes positions and displacements in place. Dispatched once
 // per colour over that colour's springs (ClothModel::colour_start): one invocation per spring
 // of the colour, and no two springs of a colour share a particle, so the writes never
-// race (Provot 1995). The CPU twin is solve_length_constraint_colour.
+// race (Provot 1995). The CPU twin is solve_length_constraint_colour. Compiled with
+// STRETCH_SETTLED (1 + 2^-16), a watched pass of enforce_stretch_limit: it also raises the
+// settling flag where a spring is longer than that times its limit (limit_colour in
+// host/core/reference_constraints.cpp), for arm_stretch_pass to read.
 #include "layout.glsl"
 #include "common.glsl"
 #include "particle_views.glsl"
@@ -11,6 +14,9 @@
 layout(local_size_x = WORKGROUP_SIZE) in;
 layout(std430, binding = BINDING_POSITIONS) writeonly buffer Positions { vec4 pos[]; };
 layout(std430, binding = BINDING_DISPLACEMENT) writeonly buffer Displacements { vec4 disp[]; };
+#ifdef STRETCH_SETTLED
+layout(std430, binding = BINDING_STRETCH_CONTROL) buffer Control { StretchControl control; };
+#endif
 
 void main() {
   int i, j, material_index;
@@ -24,6 +30,11 @@ void main() {
   vec3 xi = pi.xyz, xj = pj.xyz;
   vec3 di = displacement_of(i).xyz, dj = displacement_of(j).xyz;
   precise float limit = params.stretch_limit * rest;
+#ifdef STRETCH_SETTLED
+  // Every invocation that raises the flag writes the same 1 (no atomic needed).
+  precise float settled = limit * STRETCH_SETTLED;
+  if (length3(xj - xi) > settled) control.state.x = 1u;
+#endif
   if (!limit_stretch(xi, xj, di, dj, pi.w, pj.w, wsum, limit)) return;
   // Provot's pull may not leave a mass deeper than 0.1 mm inside a collider or behind a
   // plane (docs/model.md, "Colliders: contact that holds"); shallower, nothing changes.

@@ -53,7 +53,7 @@ template <class T> size_t mismatches(const std::vector<T>& a, const std::vector<
 }
 
 // The largest spring stretch at any of the first `frames` frames of the CPU reference (float).
-inline double worst_stretch_over_frames(const Scene& s, int frames) {
+inline double worst_stretch_over_frames(const Scene& s, int frames, uint64_t* settling_passes = nullptr) {
   const ClothModel m = build_cloth(s);
   CpuBackend<float> cpu(s, m);
   double worst = 0;
@@ -61,6 +61,7 @@ inline double worst_stretch_over_frames(const Scene& s, int frames) {
     cpu.step_frame();
     worst = std::max(worst, measure(s, m, cpu.snapshot()).max_stretch_ratio);
   }
+  if (settling_passes) *settling_passes = cpu.stretch_settling_passes();
   return worst;
 }
 

@@ -124,6 +124,8 @@ BenchResult BenchRunner::run_gpu(const Scene& scene) {
               }}};
   else if (xpbd) solve = {{"solve_distance_constraints", [&] { sim.solve_distance_constraints(); }}};
   else solve = {{"solve_length_constraints", [&] { sim.solve_length_constraints(); }}};
+  // The limit's passes after either xpbd sweep (stretch_passes_max is at least stretch_passes).
+  if (sim.constants().stretch_passes_max > 0) solve.push_back({"enforce_stretch_limit", [&] { sim.enforce_stretch_limit(); }});
   PassList passes{{{xpbd ? "predict" : "advance",
                     [&] { xpbd ? sim.predict(colliders && !sc) : sim.advance(colliders && !sc); }},
                    {"count_cells", [&] { if (sc) sim.count_cells(); }},
@@ -172,6 +174,7 @@ BenchResult BenchRunner::run_cpu(const Scene& scene) {
               }}};
   else if (c.xpbd) solve = {{"solve_distance_constraints", [&] { solve_distance_constraints(model, c, s); }}};
   else solve = {{"solve_length_constraints", [&] { solve_length_constraints(model, c, s); }}};
+  if (c.stretch_passes_max > 0) solve.push_back({"enforce_stretch_limit", [&] { enforce_stretch_limit(model, c, s); }});
   PassList passes{{{c.xpbd ? "predict" : "advance", [&] { c.xpbd ? predict(model, c, s) : advance(model, c, s); }},
                    {"collide_self", [&] { if (c.self_collision) collide_self(c, s); }},
                    {"collide_objects", [&] { collide_objects(c, s); }}},

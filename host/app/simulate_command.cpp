@@ -19,13 +19,16 @@
 namespace clothsim {
 namespace {
 
-void print_stats(const Scene& scene, const ClothStats& st, int frames, double wall) {
+void print_stats(const Scene& scene, const ClothStats& st, int frames, double wall, const Backend& backend) {
   const int substeps = frames * scene.simulation.simulation_steps;
   fmt::print("frames            {}\n", frames);
   fmt::print("substeps          {}\n", substeps);
   fmt::print("wall time         {:.3f} s ({:.2f} ms/frame)\n", wall, frames ? 1e3 * wall / frames : 0.0);
   fmt::print("max stretch       {:.4f} x rest length\n", st.max_stretch_ratio);
   fmt::print("stretch p99       {:.4f} x rest length (99 % of the springs at most)\n", st.p99_stretch_ratio);
+  if (const uint64_t settling = backend.stretch_settling_passes(); settling > 0)
+    fmt::print("settling passes   {} ({:.2f} a substep; stretch_passes_max)\n", settling,
+               substeps ? double(settling) / substeps : 0.0);
   fmt::print("kinetic energy    {:.6g} J (max speed {:.4g} m/s)\n", st.kinetic, st.max_speed);
   if (st.sphere_clearance.size() > 8) {
     // A collider built of many spheres (a round table): the closest one says what matters.
@@ -206,7 +209,7 @@ void add_simulate_command(CLI::App& app, std::function<int()>& run) {
       }
       if (o->stats || kind == ExportKind::Obj) {
         const ClothSnapshot snap = backend->snapshot();
-        if (o->stats) print_stats(scene, measure(scene, model, snap, backend->time()), o->frames, wall);
+        if (o->stats) print_stats(scene, measure(scene, model, snap, backend->time()), o->frames, wall, *backend);
         if (o->stats)  // exact, on the CPU: only asked for here
           fmt::print("self-intersections {} (pairs of non-adjacent triangles)\n", count_self_intersections(model, snap));
         if (kind == ExportKind::Obj) export_obj(snap, "");

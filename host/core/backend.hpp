@@ -42,6 +42,8 @@ class Backend {
   // Simulated seconds so far: the time of the state snapshot() returns (the end of the last
   // substep), where the keyframed colliders were for its collision passes.
   virtual double time() const = 0;
+  // enforce_stretch_limit's settling passes run so far (0 without them; the GPU reads it back).
+  virtual uint64_t stretch_settling_passes() const { return 0; }
 };
 
 // The CPU reference as a backend, in float (what the GPU computes) or double.
@@ -66,6 +68,7 @@ template <class R> class CpuBackend final : public Backend {
     checks_.push_back(check);
   }
   std::vector<FrameCheck> take_checks(bool) override { return std::exchange(checks_, {}); }
+  uint64_t stretch_settling_passes() const override { return state_.stretch_settling_passes; }
   ClothSnapshot last_good(int* frame) override {
     if (frame) *frame = kept_.frame;
     return snapshot_of_positions(model_, kept_.pos);

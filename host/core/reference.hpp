@@ -7,6 +7,7 @@
 #include <cmath>
 #include <memory>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -109,6 +110,9 @@ template <class R> struct Constants {
   std::vector<R> mass;  // kg, per particle (particle_masses: follows a live density edit)
   int iterations;
   int stretch_passes = 0;  // xpbd, multigrid: enforce_stretch_limit's passes after the sweep
+  // xpbd, multigrid: enforce_stretch_limit's passes in all, the settling ones included (not above
+  // stretch_passes: none settle)
+  int stretch_passes_max = 0;
   bool self_collision;
   // simulation.solver: xpbd for both position-based solvers (they share predict, the bounded
   // self-contact and Coulomb friction); multigrid for the multigrid one, whose solve replaces
@@ -172,6 +176,9 @@ template <class R> struct State {
   // its move since the prediction; per coarse vertex the restricted force (w: the mass) and
   // the correction.
   std::vector<Vec4<R>> residual, offset, coarse_rhs, coarse_corr;
+  // enforce_stretch_limit's settling passes run so far (a statistic, not part of the state the
+  // step reads; StretchControl::state.y on the GPU).
+  uint64_t stretch_settling_passes = 0;
 };
 
 template <class R> State<R> initial_state(const ClothModel& model);
@@ -232,7 +239,20 @@ int stretch_passes_for(const Scene& scene, const ClothModel& model);
 // colour (the classic length constraint, solve_length_constraint_colour). In either sweep each
 // spring is limited when its colour (or its end's) is solved, and the colours after it can pull
 // it out again; a pass of the limit alone moves only the springs still over it (docs/model.md).
+// With stretch_passes_max above stretch_passes, settling passes follow, up to that many passes
+// in all: the last fixed pass (or one, with none fixed) is watched, and each settling pass runs
+// only while the pass before it found a spring longer than kStretchSettled times its limit
+// (arm_stretch_pass), so the limit holds where one event needs many passes and a quiet
+// substep runs none.
 template <class R> void enforce_stretch_limit(const ClothModel& m, const Constants<R>& c, State<R>& s);
+// A settling pass runs while the pass before it found a spring longer than its limit times
+// kStretchSettled = 1 + 2^-kStretchSettledBits: exact in float and double, and handed to the
+// watched pass as STRETCH_SETTLED, so both sides compare against the same number.
+inline constexpr int kStretchSettledBits = 16;
+inline constexpr double kStretchSettled = 1.0 + 1.0 / double(1 << kStretchSettledBits);
+// Whether the next watched pass runs: what the pass before it found (`over`), which it clears
+// for the next. The CPU twin of compute/arm_stretch_pass.comp.
+inline bool arm_stretch_pass(bool& over) { return std::exchange(over, false); }
 
 // The multigrid solver (docs/model.md, "One substep (multigrid solver)"), after predict and the
 // contacts: compute_residuals (the springs' force on every mass), then a V-cycle over the

@@ -1,5 +1,7 @@
 // The reference's constraint passes: Provot's length limit (classic, DESIGN.md §1 step 5) and
 // xpbd's distance constraints (docs/model.md), colour by colour in the GPU's order.
+#include <algorithm>
+
 #include "reference.hpp"
 #include "reference_detail.hpp"
 
@@ -35,16 +37,18 @@ bool limit_stretch(Vec3<R>& xi, Vec3<R>& xj, Vec3<R>& di, Vec3<R>& dj, R wi, R w
   return true;
 }
 
-}  // namespace
-
+// One colour of the length constraint; with `over`, a watched pass's (enforce_stretch_limit):
+// set when a spring is longer than kStretchSettled times its limit as its colour is solved.
 template <class R>
-void solve_length_constraint_colour(const ClothModel& m, const Constants<R>& c, int colour, State<R>& s) {
+void limit_colour(const ClothModel& m, const Constants<R>& c, int colour, State<R>& s, bool* over) {
   for_each_spring_of_colour(m, c, colour, [&](const Spring& sp) {
     const uint32_t i = sp.i, j = sp.j;
     const R wi = s.pos[i].w, wj = s.pos[j].w, wsum = wi + wj;
     if (wsum == R(0)) return;
     Vec3<R> xi(s.pos[i]), xj(s.pos[j]), di(s.disp[i]), dj(s.disp[j]);
-    if (!limit_stretch(xi, xj, di, dj, wi, wj, wsum, c.stretch_limit * R(sp.rest))) return;
+    const R limit = c.stretch_limit * R(sp.rest);
+    if (over && length3(xj - xi) > limit * R(kStretchSettled)) *over = true;
+    if (!limit_stretch(xi, xj, di, dj, wi, wj, wsum, limit)) return;
     // Provot's pull may not leave a mass deeper than 0.1 mm inside a collider or behind a
     // plane (docs/model.md, "Colliders: contact that holds"); shallower, nothing changes.
     if (c.has_colliders()) {
@@ -57,14 +61,21 @@ void solve_length_constraint_colour(const ClothModel& m, const Constants<R>& c, 
     s.disp[j] = Vec4<R>(dj, R(0));
   });
 }
+}  // namespace
+
+template <class R>
+void solve_length_constraint_colour(const ClothModel& m, const Constants<R>& c, int colour, State<R>& s) {
+  limit_colour(m, c, colour, s, nullptr);
+}
 
 // `passes` sweeps of the length constraint over every colour: the classic solver's
 // (constraint_iterations) and xpbd's enforce_stretch_limit (stretch_passes), as
 // GpuSimulator::length_constraint_passes.
 namespace {
-template <class R> void length_constraint_passes(const ClothModel& m, const Constants<R>& c, int passes, State<R>& s) {
+template <class R>
+void length_constraint_passes(const ClothModel& m, const Constants<R>& c, int passes, State<R>& s, bool* over = nullptr) {
   for (int pass = 0; pass < passes; ++pass)
-    for (int colour = 0; colour < m.colours(); ++colour) solve_length_constraint_colour(m, c, colour, s);
+    for (int colour = 0; colour < m.colours(); ++colour) limit_colour(m, c, colour, s, over);
 }
 }  // namespace
 
@@ -73,7 +84,19 @@ template <class R> void solve_length_constraints(const ClothModel& m, const Cons
 }
 
 template <class R> void enforce_stretch_limit(const ClothModel& m, const Constants<R>& c, State<R>& s) {
-  length_constraint_passes(m, c, c.stretch_passes, s);
+  if (c.stretch_passes_max <= c.stretch_passes) {
+    length_constraint_passes(m, c, c.stretch_passes, s);
+    return;
+  }
+  // The fixed passes but the last, then the watched ones: the last fixed pass (one, with none
+  // fixed) always runs, each settling pass only while the pass before it found a spring over.
+  const int fixed = std::max(c.stretch_passes, 1);
+  length_constraint_passes(m, c, fixed - 1, s);
+  bool over = true;
+  for (int pass = fixed - 1; pass < c.stretch_passes_max && arm_stretch_pass(over); ++pass) {
+    if (pass >= fixed) ++s.stretch_settling_passes;
+    length_constraint_passes(m, c, 1, s, &over);
+  }
 }
 
 template <class R>

@@ -128,6 +128,7 @@ struct SimulationParams {
   Solver solver = Solver::Classic;
   double tether_stretch = 0.01;  // xpbd only: long-range attachments to the nearest pin
   int stretch_passes = -1;       // xpbd and multigrid: Provot passes over every colour after the sweep; -1 auto (stretch_passes_for)
+  int stretch_passes_max = -1;   // up to this many in all, the ones past stretch_passes only while a spring is over; -1: stretch_passes
 
   bool operator==(const SimulationParams&) const = default;
 };

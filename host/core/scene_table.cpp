@@ -268,6 +268,13 @@ const Param<SimulationParams> kSimulation[] = {
                     "again); -1: none under xpbd, under multigrid 2 where a cloth's own weight would stretch its "
                     "springs past half the limit (density · |gravity| · size / ks > max_stretch / 2), else none",
          .widget = drag(0.1f, -1, 20, "%d")}),
+    row<&SimulationParams::stretch_passes_max>(
+        {.key = "stretch_passes_max", .lo = -1, .hi = 100, .expected = "-1 (no settling passes) or a pass count in [0, 100]",
+         .meaning = "xpbd and multigrid: settling passes of the limit after the stretch_passes ones, up to this many "
+                    "passes in all, each only while the pass before it found a spring longer than (1 + 2^-16) times "
+                    "its limit: the limit holds where one event needs many passes, and a quiet substep pays "
+                    "for none (docs/model.md); -1 or a count not above stretch_passes: none",
+         .widget = drag(0.1f, -1, 40, "%d")}),
 };
 
 const Param<WindParams> kWind[] = {

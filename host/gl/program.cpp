@@ -148,4 +148,9 @@ void Program::dispatch(GLuint groups_x, GLuint groups_y, GLuint groups_z) const 
   glDispatchCompute(groups_x, groups_y, groups_z);
 }
 
+void Program::dispatch_indirect(GLintptr offset) const {
+  use();
+  glDispatchComputeIndirect(offset);
+}
+
 }  // namespace clothsim::gl

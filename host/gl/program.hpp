@@ -54,6 +54,9 @@ class Program {
 
   // Binds the program and dispatches; memory barriers remain the caller's (say who reads next).
   void dispatch(GLuint groups_x, GLuint groups_y = 1, GLuint groups_z = 1) const;
+  // The same, the workgroups read on the GPU from the GL_DISPATCH_INDIRECT_BUFFER bound, at
+  // `offset` bytes (three uints): a count a previous pass wrote, with no read-back.
+  void dispatch_indirect(GLintptr offset) const;
 
   const std::string& name() const { return name_; }  // the file name(s), for messages
   // The GL name, only for introspection (e.g. the layout test's glGetProgramResource*).

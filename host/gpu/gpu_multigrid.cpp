@@ -250,6 +250,5 @@ size_t GpuSimulator::multigrid_memory_bytes() const {
   return total;
 }
 
-GpuSimulator::~GpuSimulator() = default;
 
 }  // namespace clothsim

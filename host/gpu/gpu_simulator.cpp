@@ -10,6 +10,7 @@
 
 #include "gpu_memory.hpp"
 #include "gpu_multigrid.hpp"
+#include "gpu_stretch_limit.hpp"
 
 namespace clothsim {
 namespace {
@@ -117,6 +118,8 @@ GpuSimulator::GpuSimulator(const Scene& scene, const ClothModel& model, const st
   compute_normals();
 }
 
+GpuSimulator::~GpuSimulator() = default;  // here, where GpuMultigrid and GpuSettlingPasses are whole
+
 void GpuSimulator::load_passes(const ShaderFeatures& features) {
   features_ = features;
   const std::pair<gl::Program*, const char*> passes[] = {
@@ -133,6 +136,7 @@ void GpuSimulator::load_passes(const ShaderFeatures& features) {
   length_colour_ = {solve_length_constraints_.location("u_first"), solve_length_constraints_.location("u_count")};
   distance_colour_ = {solve_distance_constraints_.location("u_first"), solve_distance_constraints_.location("u_count")};
   multigrid_.reset();  // its passes too, on first use (ensure_multigrid)
+  settling_.reset();   // and enforce_stretch_limit's watched pass (settling_passes)
 }
 
 void GpuSimulator::upload_model() {
@@ -216,7 +220,7 @@ size_t GpuSimulator::memory_bytes() const {
                               &step_params_, &positions_out_, &cell_count_, &cell_start_, &cell_entries_,
                               &sorted_positions_, &tethers_, &wind_forces_, &anchors_, &gather_start_, &gather_,
                               &particles_, &materials_, &corner_start_, &corner_triangles_, &triangles_, &rest_positions_,
-                              &multipliers_, &meshes_, &sdf_})
+                              &multipliers_, &meshes_, &sdf_, &stretch_control_})
     total += b->size();
   return total + scan_.memory_bytes() + guard_.memory_bytes() + multigrid_memory_bytes();
 }

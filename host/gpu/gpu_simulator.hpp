@@ -22,6 +22,7 @@
 namespace clothsim {
 
 struct GpuMultigrid;  // the multigrid solver's programs and buffers (gpu_multigrid.cpp)
+struct GpuSettlingPasses;  // enforce_stretch_limit's watched pass and its arm (gpu_stretch_limit.cpp)
 struct GpuMultigridPass;
 
 class GpuSimulator {
@@ -52,6 +53,8 @@ class GpuSimulator {
   void solve_distance_constraint_colour(int colour);
   void solve_distance_constraints();
   void enforce_stretch_limit();
+  // With stretch_passes_max above stretch_passes: the settling passes run so far (a read-back).
+  uint64_t stretch_settling_passes() const;
   // The multigrid solver's passes (docs/model.md; gpu_multigrid.cpp): step() runs predict,
   // [collide_self], then solve_multigrid: compute_residuals, the V-cycle (cycle_levels:
   // restrict_residuals per level down to the small ones, cycle_small_levels (their whole part
@@ -161,6 +164,9 @@ class GpuSimulator {
   // `passes` sweeps of solve_length_constraints' shader over every enabled colour: the classic
   // constraint (constraint_iterations) and xpbd's enforce_stretch_limit (stretch_passes).
   void length_constraint_passes(int passes);
+  // enforce_stretch_limit's watched passes, each armed on the GPU (gpu_stretch_limit.cpp).
+  void settling_passes(int fixed);
+  bool enabled_colour(int colour) const;  // has springs, of a type some cloth has on
 
   const ClothModel& model_;
   const std::filesystem::path dir_;
@@ -210,6 +216,10 @@ class GpuSimulator {
   PrefixScan scan_;
   GpuDivergenceGuard guard_;
   std::unique_ptr<GpuMultigrid> multigrid_;
+  // The settling passes' programs (made on first use, again after load_passes) and their control
+  // buffer (StretchControl, then a StretchDispatch per colour; made once, so its count holds).
+  std::unique_ptr<GpuSettlingPasses> settling_;
+  gl::Buffer stretch_control_{"stretch control"};
   gl::Buffer no_offsets_{"no multigrid offsets"};  // one element, bound in their place without multigrid
 };
 
@@ -232,6 +242,7 @@ class GpuBackend final : public Backend {
   void load_state(const SavedState& saved) override;
   int scalar_bytes() const override { return int(sizeof(float)); }
   double time() const override { return sim_->time(); }
+  uint64_t stretch_settling_passes() const override { return sim_->stretch_settling_passes(); }
   GpuSimulator& simulator() { return *sim_; }
   const GpuSimulator& simulator() const { return *sim_; }
 

@@ -2,6 +2,8 @@
 // reads next. Bindings are made once per step (bind_all); a pass called on its own binds first.
 #include "gpu_simulator.hpp"
 
+#include <algorithm>
+
 #include <fmt/format.h>
 
 #include "debug_output.hpp"
@@ -180,8 +182,6 @@ void GpuSimulator::solve_distance_constraints() {
   }
 }
 
-void GpuSimulator::enforce_stretch_limit() { length_constraint_passes(constants_.stretch_passes); }
-
 void GpuSimulator::compute_normals() {
   dispatch(compute_normals_);
   // The vertex shader pulls normals (and a read-back may follow).
@@ -225,7 +225,10 @@ std::string GpuSimulator::pass_list() const {
                                    "cycle_small_levels, prolong_corrections, prolong_to_cloth, relax_vertices)"
              : constants_.xpbd   ? ", solve_distance_constraints"
                                  : ", solve_length_constraints";
-  if (constants_.stretch_passes > 0) passes += ", enforce_stretch_limit (solve_length_constraints)";
+  if (constants_.stretch_passes_max > constants_.stretch_passes)
+    passes += ", enforce_stretch_limit (solve_length_constraints, then arm_stretch_pass and the watched passes)";
+  else if (constants_.stretch_passes > 0)
+    passes += ", enforce_stretch_limit (solve_length_constraints)";
   return passes;
 }
 
@@ -256,15 +259,15 @@ void GpuSimulator::step_frame() {
 
 int GpuSimulator::dispatches_per_substep() const {
   int enabled_colours = 0;
-  for (int colour = 0; colour < model_.colours(); ++colour) {
-    const uint32_t springs = model_.colour_start[colour + 1] - model_.colour_start[colour];
-    enabled_colours += springs > 0 && constants_.colour_enabled(model_, colour);
-  }
+  for (int colour = 0; colour < model_.colours(); ++colour) enabled_colours += enabled_colour(colour);
   const int self = constants_.self_collision ? 4 + scan_.dispatches(table_size_) : 0;  // count, fill, sort, collide + scan
   // xpbd: predict, then one solve of every enabled colour; classic: advance, then the colours
   // once per constraint iteration; with wind, its pass first.
-  // stretch_passes: the limit's passes after either xpbd sweep (0 for classic).
-  const int limit = constants_.stretch_passes * enabled_colours;
+  // stretch_passes: the limit's passes after either xpbd sweep (0 for classic); with settling
+  // passes, up to stretch_passes_max of them, each after its arm_stretch_pass (the watched passes
+  // are dispatched whether they run or not: a skipped one's workgroups are 0).
+  const int fixed = constants_.stretch_passes, most = constants_.stretch_passes_max;
+  const int limit = most > fixed ? most * enabled_colours + most - std::max(fixed, 1) + 1 : fixed * enabled_colours;
   if (constants_.multigrid) return 1 + int(constants_.wind.enabled) + self + multigrid_dispatches() + limit;
   return 1 + int(constants_.wind.enabled) + self + (constants_.xpbd ? 1 : constants_.iterations) * enabled_colours + limit;
 }

@@ -17,6 +17,13 @@ template <class T> size_t differing(const std::vector<T>& a, const std::vector<T
   return n;
 }
 
+// What most passes write: every position, then every displacement.
+std::vector<Vec4<float>> positions_and_displacements(const State<float>& st) {
+  auto v = st.pos;
+  v.insert(v.end(), st.disp.begin(), st.disp.end());
+  return v;
+}
+
 PassError integer_result(const char* pass, size_t differ) {
   return {pass, differ ? INFINITY : 0.0, differ == 0, true, differ};
 }
@@ -71,11 +78,7 @@ void check_self_collision_stages(const Constants<float>& c, State<float>& s, Gpu
   gpu.resolve_self_contacts();
   State<float> r;
   gpu.download(r);
-  auto both = [](const State<float>& st) {
-    auto v = st.pos;
-    v.insert(v.end(), st.disp.begin(), st.disp.end());
-    return v;
-  };
+  const auto both = positions_and_displacements;
   const Deviation d = deviation(both(r), both(s));
   out.push_back({"resolve_self_contacts", d.max, d.bitwise});
 }
@@ -157,6 +160,36 @@ void check_multigrid_passes(const ClothModel& model, const Constants<float>& c, 
         });
 }
 
+// enforce_stretch_limit with settling passes, from the state with every free mass moved away
+// from the cloth's centre by twice max_stretch (so that passes settle), then from `s` itself;
+// and arm_stretch_pass by the number of settling passes each side ran. Leaves `s` as it was.
+void check_settling_passes(const ClothModel& model, const Constants<float>& c, State<float>& s, GpuSimulator& gpu,
+                           std::vector<PassError>& out) {
+  const State<float> start = s;
+  Vec3<float> centre(0.f);
+  for (const auto& p : s.pos) centre = centre + Vec3<float>(p) * (1.f / float(s.pos.size()));
+  const float scale = 1.f + 2.f * (c.stretch_limit - 1.f);
+  for (auto& p : s.pos)
+    if (p.w != 0.f) p = Vec4<float>(centre + (Vec3<float>(p) - centre) * scale, p.w);
+  const State<float> stretched = s;
+  for (const State<float>* from : {&stretched, &start}) {
+    s = *from;
+    const uint64_t cpu_before = s.stretch_settling_passes, gpu_before = gpu.stretch_settling_passes();
+    gpu.upload(s);
+    enforce_stretch_limit(model, c, s);
+    gpu.enforce_stretch_limit();
+    State<float> g;
+    gpu.download(g);
+    const Deviation d = deviation(positions_and_displacements(g), positions_and_displacements(s));
+    const char* from_what = from == &stretched ? ", stretched" : "";
+    out.push_back({fmt::format("enforce_stretch_limit (settling{})", from_what), d.max, d.bitwise});
+    const uint64_t cpu_ran = s.stretch_settling_passes - cpu_before, gpu_ran = gpu.stretch_settling_passes() - gpu_before;
+    out.push_back(integer_result(fmt::format("arm_stretch_pass ({} settling passes{})", cpu_ran, from_what).c_str(),
+                                 cpu_ran != gpu_ran));
+  }
+  s = start;
+}
+
 }  // namespace
 
 std::vector<PassError> check_passes(const Scene& scene, const ClothModel& model, GpuSimulator& gpu, int warmup) {
@@ -180,11 +213,7 @@ std::vector<PassError> check_passes(const Scene& scene, const ClothModel& model,
     Deviation d = deviation(stream(g), stream(s));
     out.push_back({name, d.max, d.bitwise});
   };
-  auto both = [](const State<float>& st) {
-    auto v = st.pos;
-    v.insert(v.end(), st.disp.begin(), st.disp.end());
-    return v;
-  };
+  const auto both = positions_and_displacements;
   // xpbd's sweep also writes the springs' carried multipliers (direction, lambda).
   auto with_multipliers = [&](const State<float>& st) {
     auto v = both(st);
@@ -252,6 +281,7 @@ std::vector<PassError> check_passes(const Scene& scene, const ClothModel& model,
   }
   check("solve_distance_constraints", [&] { solve_distance_constraints(model, c, s); },
         [&] { gpu.solve_distance_constraints(); }, with_multipliers);
+  if (c.stretch_passes_max > c.stretch_passes) check_settling_passes(model, c, s, gpu, out);
   // Predict again, now from the multipliers that sweep carried (a classic scene has none
   // before it): their forces in the gather order.
   check("predict (the sweep's multipliers carried)", [&] { predict(model, c, s); }, [&] { gpu.predict(); }, both);

@@ -1,0 +1,76 @@
+// xpbd's and multigrid's enforce_stretch_limit on the GPU (docs/model.md, xpbd step 6): the
+// fixed passes of the length constraint, then the settling ones, each armed on the GPU from
+// what the pass before it found, so that a settled substep skips them with no read-back.
+#include "gpu_stretch_limit.hpp"
+
+#include <algorithm>
+
+namespace clothsim {
+
+namespace {
+// The passes' readers need storage-buffer reads (the flag, the positions written) and texel
+// fetches (the positions through their views).
+constexpr GLbitfield kComputeReads = GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT;
+}  // namespace
+
+bool GpuSimulator::enabled_colour(int colour) const {
+  return model_.colour_start[colour + 1] > model_.colour_start[colour] && constants_.colour_enabled(model_, colour);
+}
+
+void GpuSimulator::enforce_stretch_limit() {
+  if (constants_.stretch_passes_max <= constants_.stretch_passes) {
+    length_constraint_passes(constants_.stretch_passes);
+    return;
+  }
+  // As the CPU twin: the fixed passes but the last, then the watched ones from that last one
+  // (one, with none fixed) on.
+  const int fixed = std::max(constants_.stretch_passes, 1);
+  length_constraint_passes(fixed - 1);
+  settling_passes(fixed);
+}
+
+void GpuSimulator::settling_passes(int fixed) {
+  if (!settling_) settling_ = std::make_unique<GpuSettlingPasses>(dir_, features_);
+  GpuSettlingPasses& p = *settling_;
+  const int colours = model_.colours();
+  const size_t bytes = sizeof(layout::StretchControl) + size_t(colours) * sizeof(layout::StretchDispatch);
+  if (stretch_control_.size() != bytes) {
+    // Made once per model: the header zeroed (no flag, no passes counted), each colour's
+    // workgroups in w for arm_stretch_pass to copy into x.
+    std::vector<glm::uvec4> control(1 + colours, glm::uvec4(0));
+    for (int c = 0; c < colours; ++c) {
+      const uint32_t springs = model_.colour_start[c + 1] - model_.colour_start[c];
+      control[1 + c] = {0u, 1u, 1u, gl::workgroups_for(springs, WORKGROUP_SIZE)};
+    }
+    gl::upload_vector(stretch_control_, control);
+  }
+  bind_for_pass();
+  stretch_control_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_STRETCH_CONTROL);
+  stretch_control_.bind(GL_DISPATCH_INDIRECT_BUFFER);
+  for (int pass = fixed - 1; pass < constants_.stretch_passes_max; ++pass) {
+    p.arm.set(p.first_watched, int(pass == fixed - 1));
+    p.arm.dispatch(1);
+    dispatched(p.arm);
+    // The watched pass's dispatches read their workgroups from what the arm wrote.
+    barrier(GL_COMMAND_BARRIER_BIT);
+    for (int colour = 0; colour < colours; ++colour) {
+      if (!enabled_colour(colour)) continue;
+      const uint32_t first = model_.colour_start[colour];
+      p.watched.set(p.first, first);
+      p.watched.set(p.count, model_.colour_start[colour + 1] - first);
+      p.watched.dispatch_indirect(GLintptr((1 + colour) * sizeof(layout::StretchDispatch)));
+      dispatched(p.watched);
+      // The next colour reads these positions and displacements (the first pass after the
+      // limit, those of the next substep); the next arm reads the flag.
+      barrier(kComputeReads);
+    }
+  }
+}
+
+uint64_t GpuSimulator::stretch_settling_passes() const {
+  if (stretch_control_.size() == 0) return 0;
+  // The GPU's count is a uint: the host's 64 bits are for the CPU's statistic.
+  return gl::download_vector<glm::uvec4>(stretch_control_, 0, 1)[0].y;
+}
+
+}  // namespace clothsim
