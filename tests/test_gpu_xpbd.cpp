@@ -93,3 +93,28 @@ TEST_CASE("an xpbd substep takes no more dispatches than a classic one", "[gpu][
   }
   CHECK_NO_GL_ERRORS();
 }
+
+// Settling passes (simulation.stretch_passes_max) dispatch every watched pass up to the cap,
+// whether it runs or not (a skipped one's workgroups are 0), so the count bench reports is what
+// a substep issues: with 3 fixed passes and up to 7 in all, 2 fixed passes of every colour, then
+// 5 watched ones, each after its arm_stretch_pass.
+TEST_CASE("a substep with settling passes issues the dispatches dispatches_per_substep counts", "[gpu][xpbd]") {
+  REQUIRE_GL_CONTEXT();
+  for (Solver solver : {Solver::Xpbd, Solver::Multigrid}) {
+    Scene s = test::hanging_cloth(33);
+    s.simulation.solver = solver;
+    s.simulation.self_collision = false;
+    s.simulation.stretch_passes = 3;
+    const ClothModel m = build_cloth(s);
+    GpuSimulator fixed(s, m, test::source_path("compute"));
+    s.simulation.stretch_passes_max = 7;
+    GpuSimulator gpu(s, m, test::source_path("compute"));
+    const GpuCounters before = gpu.counters();
+    gpu.step();
+    INFO("solver " << int(solver));
+    CHECK(int(gpu.counters().dispatches - before.dispatches) == gpu.dispatches_per_substep());
+    const int colours = m.colours();
+    CHECK(gpu.dispatches_per_substep() - fixed.dispatches_per_substep() == 2 * colours + 5 * (colours + 1) - 3 * colours);
+  }
+  CHECK_NO_GL_ERRORS();
+}
