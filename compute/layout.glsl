@@ -70,7 +70,9 @@ using uint = uint32_t;
 #define BINDING_MG_CORR 31       // per coarse vertex: xyz its correction
 // enforce_stretch_limit's settling passes (docs/model.md, xpbd step 6): a StretchControl, then
 // per colour a StretchDispatch (glDispatchComputeIndirect reads it; arm_stretch_pass writes it).
-#define BINDING_STRETCH_CONTROL 32
+// It shares the scan's point (BINDING_SCAN_SUMS): each binds its own buffer there before use
+// (prefix_scan.cpp, gpu_stretch_limit.cpp), and a point above 31 is more than some drivers have.
+#define BINDING_STRETCH_CONTROL BINDING_SCAN_SUMS
 // Texture units of the read-only texel views (GL_TEXTURE_BUFFER) of the simulation's buffers,
 // through which the hot passes read (compute/particle_views.glsl says why). Above the units
 // the renderer uses (0-2: fabric, height map, sky), so drawing a frame leaves them bound.

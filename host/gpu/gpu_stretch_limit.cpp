@@ -45,6 +45,7 @@ void GpuSimulator::settling_passes(int fixed) {
     gl::upload_vector(stretch_control_, control);
   }
   bind_for_pass();
+  // On the scan's point (layout.glsl), which the scan binds again before its next use.
   stretch_control_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_STRETCH_CONTROL);
   stretch_control_.bind(GL_DISPATCH_INDIRECT_BUFFER);
   for (int pass = fixed - 1; pass < constants_.stretch_passes_max; ++pass) {
