@@ -11,8 +11,6 @@ namespace clothsim {
 
 namespace {
 
-constexpr GLbitfield kComputeReads = GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT;
-
 uint32_t bits(double v) { return std::bit_cast<uint32_t>(float(v)); }
 
 }  // namespace

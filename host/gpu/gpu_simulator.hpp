@@ -21,6 +21,11 @@
 
 namespace clothsim {
 
+// What a pass's readers need after it wrote: storage-buffer reads and texel fetches (the
+// passes read particle data through texel views, compute/particle_views.glsl). Shared by the
+// passes of gpu_step.cpp, gpu_multigrid.cpp and gpu_stretch_limit.cpp.
+inline constexpr GLbitfield kComputeReads = GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT;
+
 struct GpuMultigrid;  // the multigrid solver's programs and buffers (gpu_multigrid.cpp)
 struct GpuSettlingPasses;  // enforce_stretch_limit's watched pass and its arm (gpu_stretch_limit.cpp)
 struct GpuMultigridPass;

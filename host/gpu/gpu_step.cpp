@@ -20,10 +20,6 @@ struct ScopedFlag {
   bool& flag_;
 };
 
-// What a pass's readers need after it wrote: storage-buffer reads and texel fetches (the
-// passes read particle data through texel views, compute/particle_views.glsl).
-constexpr GLbitfield kComputeReads = GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT;
-
 }  // namespace
 
 void GpuSimulator::swap_positions() {

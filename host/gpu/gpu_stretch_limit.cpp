@@ -7,12 +7,6 @@
 
 namespace clothsim {
 
-namespace {
-// The passes' readers need storage-buffer reads (the flag, the positions written) and texel
-// fetches (the positions through their views).
-constexpr GLbitfield kComputeReads = GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT;
-}  // namespace
-
 bool GpuSimulator::enabled_colour(int colour) const {
   return model_.colour_start[colour + 1] > model_.colour_start[colour] && constants_.colour_enabled(model_, colour);
 }
