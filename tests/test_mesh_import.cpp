@@ -1,5 +1,5 @@
-// Cloth from a mesh file: load_mesh's vertex order per format, welding, errors and clean-up;
-// the springs of quads (the CS184 grid's sets exactly) and triangles; the greedy colouring.
+// Cloth from a mesh file: load_mesh's vertex order per format, welding, errors and clean-up
+// (the springs and their colouring: test_mesh_springs.cpp).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -20,118 +20,19 @@
 #include <glm/geometric.hpp>
 
 #include "colouring.hpp"
+#include "mesh_fixtures.hpp"
 #include "mesh_import.hpp"
 #include "mesh_springs.hpp"
 #include "scene.hpp"
 
 using namespace clothsim;
 namespace fs = std::filesystem;
+using test::all_springs;
+using test::Grid;
+using test::Pairs;
+using test::TempDir;
 
 namespace {
-
-// A fresh directory under the system's temp directory, removed afterwards.
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    static int counter = 0;
-    path = fs::temp_directory_path() / fmt::format("clothsim_mesh_test_{}_{}", getpid(), counter++);
-    fs::create_directories(path);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
-  fs::path write(const std::string& name, const std::string& text) const {
-    std::ofstream(path / name, std::ios::binary) << text;
-    return path / name;
-  }
-};
-
-using Pairs = std::vector<std::array<uint32_t, 2>>;
-using PairSet = std::set<std::pair<uint32_t, uint32_t>>;
-
-PairSet unordered(const Pairs& pairs) {
-  PairSet out;
-  for (auto [a, b] : pairs) out.insert({std::min(a, b), std::max(a, b)});
-  return out;
-}
-
-// The CS184 grid's positions (horizontal, as host/core/cloth.cpp makes them), its quads
-// (A B D C per cell, row major) and its spring sets.
-struct Grid {
-  int nw, nh;
-  std::vector<glm::dvec3> positions;
-  std::vector<std::vector<uint32_t>> faces;
-  PairSet structural, shearing, bending;
-
-  Grid(int nw_, int nh_, double width = 1.0, double height = 1.0) : nw(nw_), nh(nh_) {
-    const double sx = width / (nw - 1), sy = height / (nh - 1);
-    auto at = [&](int x, int y) { return uint32_t(y * nw + x); };
-    for (int y = 0; y < nh; ++y)
-      for (int x = 0; x < nw; ++x) positions.push_back({x * sx, 1.0, y * sy});
-    for (int y = 0; y + 1 < nh; ++y)
-      for (int x = 0; x + 1 < nw; ++x) faces.push_back({at(x, y), at(x + 1, y), at(x + 1, y + 1), at(x, y + 1)});
-    for (int y = 0; y < nh; ++y)
-      for (int x = 0; x < nw; ++x) {
-        if (x + 1 < nw) structural.insert({at(x, y), at(x + 1, y)});
-        if (y + 1 < nh) structural.insert({at(x, y), at(x, y + 1)});
-        if (x + 1 < nw && y + 1 < nh) shearing.insert({at(x, y), at(x + 1, y + 1)}), shearing.insert({at(x + 1, y), at(x, y + 1)});
-        if (x + 2 < nw) bending.insert({at(x, y), at(x + 2, y)});
-        if (y + 2 < nh) bending.insert({at(x, y), at(x, y + 2)});
-      }
-  }
-
-  // As scripts/make-mesh grid writes it; faces in the order given (default: row major).
-  std::string obj(std::vector<size_t> order = {}) const {
-    if (order.empty()) order.resize(faces.size()), std::iota(order.begin(), order.end(), size_t(0));
-    std::string s = "# a CS184 grid\n";
-    for (const auto& p : positions) s += fmt::format("v {:.17g} {:.17g} {:.17g}\n", p.x, p.y, p.z);
-    for (int y = 0; y < nh; ++y)
-      for (int x = 0; x < nw; ++x) s += fmt::format("vt {:.17g} {:.17g}\n", double(x) / (nw - 1), double(y) / (nh - 1));
-    for (size_t f : order) {
-      s += "f";
-      for (uint32_t i : faces[f]) s += fmt::format(" {}/{}", i + 1, i + 1);
-      s += "\n";
-    }
-    return s;
-  }
-};
-
-void check_grid_springs(const Grid& g, const MeshSprings& s) {
-  const int nw = g.nw, nh = g.nh;
-  CHECK(s.structural.size() == size_t((nw - 1) * nh + nw * (nh - 1)));
-  CHECK(s.shearing.size() == size_t(2 * (nw - 1) * (nh - 1)));
-  CHECK(s.bending.size() == size_t(std::max(nw - 2, 0) * nh + nw * std::max(nh - 2, 0)));
-  CHECK(unordered(s.structural) == g.structural);
-  CHECK(unordered(s.shearing) == g.shearing);
-  CHECK(unordered(s.bending) == g.bending);
-}
-
-Pairs all_springs(const MeshSprings& s) {
-  Pairs out = s.structural;
-  out.insert(out.end(), s.shearing.begin(), s.shearing.end());
-  out.insert(out.end(), s.bending.begin(), s.bending.end());
-  return out;
-}
-
-size_t max_degree(const Pairs& springs, size_t n) {
-  std::vector<size_t> degree(n, 0);
-  for (auto [a, b] : springs) ++degree[a], ++degree[b];
-  return *std::max_element(degree.begin(), degree.end());
-}
-
-// The greedy colouring one spring at a time, the slow obvious way, to compare against.
-std::vector<uint32_t> naive_greedy(const Pairs& springs, size_t n) {
-  std::vector<std::set<uint32_t>> used(n);
-  std::vector<uint32_t> colour;
-  for (auto [a, b] : springs) {
-    uint32_t c = 0;
-    while (used[a].count(c) || used[b].count(c)) ++c;
-    used[a].insert(c), used[b].insert(c);
-    colour.push_back(c);
-  }
-  return colour;
-}
 
 const std::string kWhat = "scenes/test.json: cloth.mesh";
 
@@ -222,92 +123,6 @@ TEST_CASE("scripts/make-mesh grid writes the CS184 grid's positions bit for bit"
   const PolyMesh m = load_mesh(out, kWhat);
   CHECK(m.positions == g.positions);
   CHECK(m.faces == g.faces);
-}
-
-TEST_CASE("The springs of a quad grid are the CS184 grid's", "[mesh]") {
-  TempDir dir;
-  const Grid g(7, 5);
-  const MeshSprings s = build_mesh_springs(load_mesh(dir.write("grid.obj", g.obj()), kWhat));
-  check_grid_springs(g, s);
-  // Discovery order: the first cell's edges A-B, B-D, D-C, C-A, then its diagonals A-D, B-C.
-  REQUIRE(s.structural.size() >= 4);
-  CHECK(s.structural[0] == std::array<uint32_t, 2>{0, 1});
-  CHECK(s.structural[3] == std::array<uint32_t, 2>{7, 0});
-  CHECK(s.shearing[0] == std::array<uint32_t, 2>{0, 8});
-  CHECK(s.shearing[1] == std::array<uint32_t, 2>{1, 7});
-  for (auto [nw, nh] : {std::pair{2, 2}, {3, 2}, {2, 5}, {3, 3}, {10, 4}, {16, 16}}) {
-    INFO(nw << " x " << nh);
-    const Grid h(nw, nh);
-    check_grid_springs(h, build_mesh_springs(PolyMesh{h.positions, {}, h.faces}));
-  }
-}
-
-TEST_CASE("Triangle mesh springs: an edge each, bending across shared edges", "[mesh]") {
-  const std::vector<glm::dvec3> square{{0, 0, 0}, {1, 0, 0}, {1, 0, 1}, {0, 0, 1}};
-  const MeshSprings s = build_mesh_springs(PolyMesh{square, {}, {{0, 1, 2}, {0, 2, 3}}});
-  CHECK(s.structural.size() == 5);
-  CHECK(s.shearing.empty());
-  REQUIRE(s.bending.size() == 1);
-  CHECK(s.bending[0] == std::array<uint32_t, 2>{1, 3});  // from the first face's opposite vertex
-  // A quad and a triangle on one edge: that edge is one structural spring, no bending across it.
-  const MeshSprings mixed = build_mesh_springs(PolyMesh{{{0, 0, 0}, {1, 0, 0}, {1, 0, 1}, {0, 0, 1}, {2, 0, 0.5}}, {}, {{0, 1, 2, 3}, {1, 4, 2}}});
-  CHECK(mixed.structural.size() == 6);
-  CHECK(mixed.shearing.size() == 2);
-  CHECK(mixed.bending.empty());
-  CHECK_THROWS_AS(build_mesh_springs(PolyMesh{square, {}, {{0, 1, 7}}}), std::invalid_argument);
-}
-
-TEST_CASE("The greedy colouring is valid, deterministic and the one-at-a-time greedy", "[mesh]") {
-  const Grid g(7, 5);
-  const Pairs springs = all_springs(build_mesh_springs(PolyMesh{g.positions, {}, g.faces}));
-  const std::vector<uint32_t> colour = greedy_colouring(springs, 35);
-  CHECK(colouring_is_valid(springs, colour, 35));
-  CHECK(greedy_colouring(springs, 35) == colour);
-  CHECK(colour == naive_greedy(springs, 35));
-  const size_t degree = max_degree(springs, 35);
-  WARN("7x5 quad grid, all " << springs.size() << " springs: " << colour_count(colour) << " colours (max degree " << degree
-                             << "; the grid's own scheme uses 12)");
-  CHECK(colour_count(colour) >= degree);
-  CHECK(colour_count(colour) <= 2 * degree - 1);
-  std::vector<uint32_t> broken = colour;
-  broken[1] = broken[0];  // springs 0 and 1 (0-1 and 1-8) share particle 1
-  CHECK_FALSE(colouring_is_valid(springs, broken, 35));
-
-  // More than 64 colours: the blocks of 64 give exactly the one-at-a-time result.
-  std::mt19937 random(7);
-  Pairs dense;
-  for (int i = 0; i < 4000; ++i) {
-    const uint32_t a = random() % 90, b = random() % 90;
-    if (a != b) dense.push_back({a, b});
-  }
-  const std::vector<uint32_t> dense_colour = greedy_colouring(dense, 90);
-  CHECK(colour_count(dense_colour) > 64);
-  CHECK(colouring_is_valid(dense, dense_colour, 90));
-  CHECK(dense_colour == naive_greedy(dense, 90));
-  CHECK_THROWS_AS(greedy_colouring({{0, 5}}, 5), std::invalid_argument);
-}
-
-TEST_CASE("The tablecloth loads and its springs colour in few colours", "[mesh]") {
-  const PolyMesh m = load_mesh(fs::path(CLOTHSIM_SOURCE_DIR) / "scenes/meshes/tablecloth.obj", kWhat);
-  CHECK(m.positions.size() >= 10000);
-  CHECK(m.positions[0] == glm::dvec3(0.0));  // the centre comes first (scenes/meshes/README.md)
-  for (const auto& f : m.faces) REQUIRE(f.size() == 3);
-  const MeshSprings s = build_mesh_springs(m);
-  CHECK(s.shearing.empty());
-  const size_t n = m.positions.size();
-  // Euler: a disc has V - E + F = 1, and every interior edge has one bending spring.
-  CHECK(n - s.structural.size() + m.faces.size() == 1);
-  const Pairs springs = all_springs(s);
-  const std::vector<uint32_t> colour = greedy_colouring(springs, n), edges = greedy_colouring(s.structural, n);
-  CHECK(colouring_is_valid(springs, colour, n));
-  CHECK(colouring_is_valid(s.structural, edges, n));
-  CHECK(greedy_colouring(springs, n) == colour);
-  const size_t degree = max_degree(springs, n), edge_degree = max_degree(s.structural, n);
-  WARN("tablecloth: " << n << " vertices, " << m.faces.size() << " triangles, " << s.structural.size() << " structural + "
-                      << s.bending.size() << " bending springs: " << colour_count(colour) << " colours for all (max degree "
-                      << degree << "), " << colour_count(edges) << " for the structural alone (max degree " << edge_degree << ")");
-  CHECK(colour_count(edges) >= edge_degree);
-  CHECK(colour_count(colour) <= 2 * degree - 1);
 }
 
 TEST_CASE("The annulus loads: one hole, every triangle facing +y", "[mesh]") {

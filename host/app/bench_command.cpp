@@ -2,6 +2,11 @@
 // [--json FILE]`: throughput of both backends on square cloths (pinned corners, a sphere, a plane).
 #include <chrono>
 #include <fstream>
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <tuple>
+#include <vector>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -9,6 +14,7 @@
 #include "bench_runner.hpp"
 #include "cli_common.hpp"
 #include "commands.hpp"
+#include "output_file.hpp"
 
 namespace clothsim {
 
@@ -23,6 +29,31 @@ double self_collision_ms(const BenchResult& r) {
   return ms;
 }
 
+
+// One configuration's ms/frame, by backend, solver, size and self-collision.
+using Timings = std::map<std::tuple<std::string, std::string, int, bool>, double>;
+
+// The side-by-side figures a bench of several solvers or both backends is run for (issue 22's
+// cost check): each solver's ms/frame over classic's on the same backend, and the GPU path's
+// speed over the CPU reference's, per size. Only pairs that both ran are printed.
+void print_ratios(const Timings& ms, const std::vector<int>& sizes, const std::vector<bool>& sc_modes) {
+  auto find = [&](const std::string& backend, const std::string& solver, int n, bool sc) {
+    auto it = ms.find({backend, solver, n, sc});
+    return it == ms.end() ? 0.0 : it->second;
+  };
+  for (bool sc : sc_modes)
+    for (int n : sizes) {
+      std::string line;
+      for (const char* backend : {"gpu", "cpu"})
+        for (const char* solver : {"xpbd", "multigrid"})
+          if (double a = find(backend, solver, n, sc), b = find(backend, "classic", n, sc); a > 0 && b > 0)
+            line += fmt::format("  {} {}/classic {:.2f}", backend, solver, a / b);
+      for (const char* solver : {"classic", "xpbd", "multigrid"})
+        if (double g = find("gpu", solver, n, sc), c = find("cpu", solver, n, sc); g > 0 && c > 0)
+          line += fmt::format("  {} gpu/cpu speed {:.2f}x", solver, c / g);
+      if (!line.empty()) fmt::print("{}x{} self-collision {}:{}\n", n, n, sc ? "on" : "off", line);
+    }
+}
 
 struct Opts {
   std::vector<int> sizes{32, 64, 128, 256, 512, 1024};
@@ -47,6 +78,7 @@ int run_bench(const Opts& o) {
   fmt::print("{:>7} {:>9} {:>5} {:>4} {:>9} {:>7} {:>10} {:>10} {:>14} {:>6} {:>8} {:>6} {:>9}\n", "backend", "solver",
              "size", "self", "particles", "colours", "ms/frame", "self ms", "p-substeps/s", "disp", "disp/sub", "barr",
              "GPU MiB");
+  Timings timings;
   int done = 0;
   const int total = int(o.sizes.size() * o.backends.size() * sc_modes.size() * o.solvers.size());
   Progress progress("bench configuration", total);
@@ -79,12 +111,24 @@ int run_bench(const Opts& o) {
                    r.dispatches_per_frame / r.substeps_per_frame, r.barriers_per_frame,
                    r.gpu_memory_bytes / 1048576.0);
         out["results"].push_back(to_json(r, backend, solver, n, sc));
+        timings[{backend, solver, n, sc}] = r.ms_per_frame;
         ++done;
       }
   progress.finish();
+  print_ratios(timings, o.sizes, sc_modes);
   if (!o.json_path.empty()) {
-    std::ofstream f(o.json_path);
-    if (!(f << out.dump(2) << "\n")) throw ExitError(kExitBadInput, fmt::format("--json {}: cannot write", o.json_path));
+    // Beside the named file first and renamed once complete (output_file.hpp): an old result is
+    // never left half written.
+    try {
+      write_replacing(o.json_path, [&](const std::string& temp) {
+        std::ofstream f(temp);
+        f << out.dump(2) << "\n";
+        f.close();
+        if (!f) throw std::runtime_error("cannot write");
+      });
+    } catch (const std::exception& e) {
+      throw ExitError(kExitBadInput, fmt::format("--json {}: {}", o.json_path, e.what()));
+    }
     fmt::print("wrote {}\n", o.json_path);
   }
   return kExitOk;

@@ -5,12 +5,14 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <stdexcept>
 #include <string_view>
 #include <vector>
 
 #include <fmt/format.h>
 #include <imgui.h>
 
+#include "output_file.hpp"
 #include "scene_table.hpp"
 #include "viewer_state.hpp"
 
@@ -211,9 +213,19 @@ void scene_panel(ViewerState& st, const std::filesystem::path& root) {
   if (ImGui::Button("Reload")) st.reload_requested = true;
   ImGui::SameLine();
   if (ImGui::Button("Save as")) {
-    std::ofstream out(st.path_field);
-    st.status = out && (out << scene_to_json(st.scene)) ? fmt::format("saved {}", st.path_field)
-                                                        : fmt::format("cannot write {}", st.path_field);
+    // Beside the named file first and renamed once complete (output_file.hpp): a scene is
+    // never left half written.
+    try {
+      write_replacing(st.path_field, [&](const std::string& temp) {
+        std::ofstream out(temp);
+        out << scene_to_json(st.scene);
+        out.close();
+        if (!out) throw std::runtime_error("cannot write");
+      });
+      st.status = fmt::format("saved {}", st.path_field);
+    } catch (const std::exception& e) {
+      st.status = fmt::format("cannot write {}: {}", st.path_field, e.what());
+    }
   }
   if (!st.status.empty()) ImGui::TextWrapped("%s", st.status.c_str());
 }

@@ -4,8 +4,10 @@
 #include <fstream>
 #include <iterator>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 
+#include "output_file.hpp"
 #include "param_doc.hpp"
 
 namespace {
@@ -45,9 +47,16 @@ int main(int argc, char** argv) {
   }
   if (mode == "--check") return check(argv[2], md);
   if (mode == "--write") {
-    std::ofstream out(argv[2], std::ios::binary);
-    if (!(out << md)) {
-      std::fprintf(stderr, "cannot write %s\n", argv[2]);
+    // Beside the named file first and renamed once complete (output_file.hpp).
+    try {
+      clothsim::write_replacing(argv[2], [&](const std::string& temp) {
+        std::ofstream out(temp, std::ios::binary);
+        out << md;
+        out.close();
+        if (!out) throw std::runtime_error("cannot write");
+      });
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "%s: %s\n", argv[2], e.what());
       return 2;
     }
     std::printf("wrote %s\n", argv[2]);
