@@ -8,6 +8,7 @@
 #include "common.glsl"
 #include "forces.glsl"
 #include "collide_objects.glsl"
+#include "contact_list.glsl"
 #include "pinned_motion.glsl"
 
 layout(local_size_x = WORKGROUP_SIZE) in;
@@ -36,7 +37,14 @@ void main() {
   precise vec3 a = f * p.w;
   precise vec3 d = displacement_of(i).xyz * mat.keep.x + a * params.dt2;
   precise vec3 next = x + d;
-  if (u_collide_objects) collide_with_objects(next, d);
+  if (u_collide_objects) {
+    // Inline, or listed for collide_objects where the collider cannot reach this mass there
+    // (compute/contact_list.glsl): the same bits either way.
+    if (!CONTACT_LIST)
+      collide_with_objects(next, d);
+    else if (may_collide(next, d, true))
+      list_contact(i);
+  }
   disp[i] = vec4(d, 0.0);
   pos_out[i] = vec4(next, p.w);
 }

@@ -1,22 +1,35 @@
 // Reads positions, displacements and the colliders; writes positions and displacements in
-// place. One invocation per particle. The step fuses this into advance or
-// resolve_self_contacts (the particle's state makes one trip); this pass stays for the
-// pass-by-pass check against the reference.
+// place. One invocation per particle; compiled with LISTED, one per mass of the contact list
+// (compute/contact_list.glsl): the step's own use, after advance or predict listed them (with
+// FRICTIONLESS too, the push-out after a colour of xpbd's or multigrid's sweep). With a
+// mesh collider the step fuses it into advance or predict instead, and with self-collision
+// into resolve_self_contacts (the particle's state makes one trip).
 #include "layout.glsl"
 #include "common.glsl"
 #include "collide_objects.glsl"
+#include "contact_list.glsl"
 
 layout(local_size_x = WORKGROUP_SIZE) in;
 layout(std430, binding = BINDING_POSITIONS) writeonly buffer Positions { vec4 pos[]; };
 layout(std430, binding = BINDING_DISPLACEMENT) writeonly buffer Displacements { vec4 disp[]; };
 
 void main() {
+#ifdef LISTED
+  // The masses advance or predict listed (compute/contact_list.glsl), one invocation each.
+  if (gl_GlobalInvocationID.x >= contacts.header.w) return;
+  int i = int(contacts.entries[gl_GlobalInvocationID.x]);
+#else
   int i = int(gl_GlobalInvocationID.x);
   if (i >= int(particle_count())) return;
+#endif
   vec4 p = position_of(i);
   if (p.w == 0.0) return;
   vec3 x = p.xyz, d = displacement_of(i).xyz;
+#ifdef FRICTIONLESS
+  collide_with_objects_friction(x, d, false);  // the push-out after a sweep's correction
+#else
   collide_with_objects(x, d);
+#endif
   pos[i] = vec4(x, p.w);
   disp[i] = vec4(d, 0.0);
 }

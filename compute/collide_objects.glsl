@@ -44,16 +44,23 @@ vec3 moving_sphere_push(vec3 e, float dist, float r, vec3 d, vec3 m) {
   return out_along_e;
 }
 
+// The first test of passed_through_sphere: a path of length |rel| that ends `dist - r` outside
+// the sphere cannot have entered it. Also may_collide's, on the same values: the same decision.
+bool path_stays_outside(float dist, float r, vec3 rel) {
+  precise float gap = dist - r;
+  float a = dot3(rel, rel);
+  precise float gap2 = gap * gap;
+  return !(a > gap2);
+}
+
 // A mass outside a sphere at the end of the substep (e = x - o, dist = |e| > r) that moved by
 // rel = d - m relative to it: true if its path went into the sphere deeper than 0.1 mm, with
 // t - x the push back to where the path entered the surface (passed_through_sphere in
 // host/core/reference_collisions.cpp).
 bool passed_through_sphere(vec3 e, float dist, float r, vec3 rel, out vec3 t_minus_x) {
   t_minus_x = vec3(0.0);
-  precise float gap = dist - r;
+  if (path_stays_outside(dist, r, rel)) return false;
   float a = dot3(rel, rel);
-  precise float gap2 = gap * gap;
-  if (!(a > gap2)) return false;
   precise vec3 e_prev = e - rel;
   float b = dot3(e_prev, rel);
   if (!(b < 0.0)) return false;
@@ -156,6 +163,24 @@ void respond_to_sphere(bool friction, vec3 o, float keep, float mu, vec3 m, vec3
   else blend_to(t_minus_x, keep, x, d);
 }
 
+// The plane's crossing test in its frame (x_prev - p_prev = (x - p) - (d - m)): the signed
+// distances of the substep's end and start, and whether they differ in sign (or one is 0).
+bool plane_sides(vec3 x, vec3 d, vec4 point_front, vec3 n, vec3 m, out float dist, out float dist_prev) {
+  dist = dot3(x - point_front.xyz, n);
+  precise vec3 rel_d = d - m;
+  precise float prev = dist - dot3(rel_d, n);
+  dist_prev = prev;
+  precise float crossing = dist * dist_prev;
+  return !(crossing > 0.0);
+}
+
+// A mass that did not cross: untouched while it ends in front by more than the contact offset
+// (1e-4 with Coulomb friction: resting contact) or, without, anywhere in front.
+bool stays_in_front(float dist, float front, bool coulomb) {
+  precise float ahead = dist * front;
+  return !(ahead < (coulomb ? 1e-4 : 0.0));
+}
+
 #include "collide_meshes.glsl"
 
 // With `friction` false every contact keeps all of its tangential motion (keep = 1): the pure
@@ -211,14 +236,11 @@ void collide_with_objects_friction(inout vec3 x, inout vec3 d, bool friction) {
     // sweep is seen at any speed), and a mass found behind the front at both ends of the
     // substep is lifted to the front (docs/model.md); with Coulomb friction a mass within the
     // surface offset in front is in contact too (resting contact).
-    float dist = dot3(x - point_front.xyz, n);
-    precise vec3 rel_d = d - m;
-    precise float dist_prev = dist - dot3(rel_d, n);
-    precise float crossing = dist * dist_prev;
+    float dist, dist_prev;
+    bool crossed = plane_sides(x, d, point_front, n, m, dist, dist_prev);
     float side;
-    if (crossing > 0.0) {
-      precise float ahead = dist * front;
-      if (!(ahead < (coulomb ? 1e-4 : 0.0))) continue;
+    if (!crossed) {
+      if (stays_in_front(dist, front, coulomb)) continue;
       side = front;
     } else {
       side = dist_prev > 0.0 ? 1.0 : (dist_prev < 0.0 ? -1.0 : 0.0);
@@ -234,6 +256,32 @@ void collide_with_objects_friction(inout vec3 x, inout vec3 d, bool friction) {
 }
 
 void collide_with_objects(inout vec3 x, inout vec3 d) { collide_with_objects_friction(x, d, true); }
+
+// Whether collide_with_objects_friction could change a mass at x that moved by d: false only
+// where every sphere and every plane would leave it at its first test (a path that stays
+// outside a sphere, a mass that did not cross a plane and ends in front), computed here by the
+// same functions on the same values, so the decision is the one the full test makes and
+// skipping the mass is exact. A mesh collider always says maybe. advance and predict list the
+// masses it is true for, and collide_objects runs on those alone (compute/contact_list.glsl).
+bool may_collide(vec3 x, vec3 d, bool friction) {
+  if (mesh_count() > 0) return true;
+  for (int s = 0; s < sphere_count(); ++s) {
+    vec4 origin_radius = texelFetch(spheres_view, SPHERE_TEXELS * s);
+    vec3 m = collider_motion(texelFetch(spheres_view, SPHERE_TEXELS * s + 2).xyz);
+    float dist = length3(x - origin_radius.xyz);
+    if (!(dist > origin_radius.w) || !path_stays_outside(dist, origin_radius.w, d - m)) return true;
+  }
+  for (int k = 0; k < plane_count(); ++k) {
+    vec4 point_front = texelFetch(planes_view, PLANE_TEXELS * k);
+    vec3 n = texelFetch(planes_view, PLANE_TEXELS * k + 1).xyz;
+    vec3 m = collider_motion(texelFetch(planes_view, PLANE_TEXELS * k + 2).xyz);
+    float dist, dist_prev;
+    if (plane_sides(x, d, point_front, n, m, dist, dist_prev) ||
+        !stays_in_front(dist, point_front.w, friction && COULOMB_FRICTION))
+      return true;
+  }
+  return false;
+}
 
 // A mass deeper than 0.1 mm inside a sphere, or behind a plane's front, goes back to the
 // surface without friction (keep_out_of_colliders in host/core/reference_collisions.cpp).

@@ -73,6 +73,9 @@ using uint = uint32_t;
 // It shares the scan's point (BINDING_SCAN_SUMS): each binds its own buffer there before use
 // (prefix_scan.cpp, gpu_stretch_limit.cpp), and a point above 31 is more than some drivers have.
 #define BINDING_STRETCH_CONTROL BINDING_SCAN_SUMS
+// The contact list (compute/contact_list.glsl): a ContactListHeader, then a uint per listed
+// mass; on the scan's data point, which the scan binds again before its next use.
+#define BINDING_CONTACT_LIST BINDING_SCAN_DATA
 // Texture units of the read-only texel views (GL_TEXTURE_BUFFER) of the simulation's buffers,
 // through which the hot passes read (compute/particle_views.glsl says why). Above the units
 // the renderer uses (0-2: fabric, height map, sky), so drawing a frame leaves them bound.
@@ -172,6 +175,12 @@ struct MeshCollider {
 struct MeshVertex {
   vec4 uv;       // xy texture coordinates
   vec4 tangent;  // xyz unit tangent along +u
+};
+
+// The contact list's header: glDispatchComputeIndirect reads x, y, z as collide_objects'
+// workgroups; w counts the masses listed. Cleared to (0, 1, 1, 0) before each appending pass.
+struct ContactListHeader {
+  uvec4 dispatch_count;
 };
 
 // The key light's shadow projection of one drawn frame, fitted on the GPU to the bounds of the

@@ -7,6 +7,7 @@
 #include "layout.glsl"
 #include "common.glsl"
 #include "collide_objects.glsl"
+#include "contact_list.glsl"
 #include "pinned_motion.glsl"
 
 layout(local_size_x = WORKGROUP_SIZE) in;
@@ -84,7 +85,14 @@ void main() {
       d = d + corr;
     }
   }
-  if (u_collide_objects) collide_with_objects(next, d);
+  if (u_collide_objects) {
+    // Inline, or listed for collide_objects where the collider cannot reach this mass there
+    // (compute/contact_list.glsl): the same bits either way.
+    if (!CONTACT_LIST)
+      collide_with_objects(next, d);
+    else if (may_collide(next, d, true))
+      list_contact(i);
+  }
   pos[i] = vec4(next, p.w);
   disp[i] = vec4(d, 0.0);
 }

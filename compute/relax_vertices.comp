@@ -8,6 +8,7 @@
 #include "layout.glsl"
 #include "common.glsl"
 #include "collide_objects.glsl"
+#include "contact_list.glsl"
 #include "multigrid.glsl"
 
 layout(local_size_x = WORKGROUP_SIZE) in;
@@ -75,7 +76,14 @@ void main() {
     d = d + corr;
   }
   // A correction must not push a mass into a collider or through a plane (as in xpbd's sweep).
-  if (has_colliders()) collide_with_objects_friction(x, d, false);
+  // Inline, or listed for collide_objects after this colour where a collider may move the mass
+  // (compute/contact_list.glsl): the same bits, the push-out being its last step here.
+  if (has_colliders()) {
+    if (!CONTACT_LIST)
+      collide_with_objects_friction(x, d, false);
+    else if (may_collide(x, d, false))
+      list_contact(i);
+  }
   pos[i] = vec4(x, wi);
   disp[i] = vec4(d, 0.0);
   offset[i] = vec4(off, 0.0);

@@ -177,9 +177,13 @@ void GpuSimulator::relax_vertices(int colour) {
   bind_for_pass();
   const Hierarchy& h = *constants_.hierarchy;
   const uint32_t first = h.fine_colour_start[size_t(colour)], last = h.fine_colour_start[size_t(colour) + 1];
+  const bool listed = uses_contact_list() && last > first;
+  if (listed) start_contact_list();
   dispatch_range(multigrid_->relax_vertices_range, first, last - first);
-  // The next colour (or the next substep's first pass) reads these positions and displacements.
-  barrier(kComputeReads);
+  // The next colour (or the next substep's first pass) reads these positions and displacements,
+  // or first collide_objects the listed ones, its workgroups from the list's header (COMMAND).
+  barrier(kComputeReads | (listed ? GL_COMMAND_BARRIER_BIT : 0));
+  if (listed) collide_listed(false);
 }
 
 void GpuSimulator::smooth_level(int level, int sweeps) {
@@ -210,6 +214,9 @@ int GpuSimulator::multigrid_dispatches() const {
   const Hierarchy& h = *constants_.hierarchy;
   const int levels = int(h.levels.size());
   int count = 2 + h.fine_colours();  // compute_residuals, prolong_to_cloth, the sweep's colours
+  // and after each colour its push-out over the contact list (gpu_contacts.cpp), where used.
+  if (uses_contact_list())
+    for (int k = 0; k < h.fine_colours(); ++k) count += h.fine_colour_start[size_t(k) + 1] > h.fine_colour_start[size_t(k)];
   if (levels == 0) return count;
   const int small = first_small_level(h);
   count += small + 1;  // restrict_residuals per large level, cycle_small_levels

@@ -130,6 +130,8 @@ void GpuSimulator::load_passes(const ShaderFeatures& features) {
       {&resolve_self_contacts_, "resolve_self_contacts"}, {&predict_, "predict"},
       {&solve_distance_constraints_, "solve_distance_constraints"}};
   for (const auto& [program, name] : passes) *program = load_pass(dir_, name, features);
+  collide_listed_ = load_pass(dir_, "collide_objects", features, {{"LISTED", "1"}});
+  collide_listed_frictionless_ = load_pass(dir_, "collide_objects", features, {{"LISTED", "1"}, {"FRICTIONLESS", "1"}});
   advance_collide_objects_ = advance_.location("u_collide_objects");
   resolve_collide_objects_ = resolve_self_contacts_.location("u_collide_objects");
   predict_collide_objects_ = predict_.location("u_collide_objects");
@@ -220,7 +222,7 @@ size_t GpuSimulator::memory_bytes() const {
                               &step_params_, &positions_out_, &cell_count_, &cell_start_, &cell_entries_,
                               &sorted_positions_, &tethers_, &wind_forces_, &anchors_, &gather_start_, &gather_,
                               &particles_, &materials_, &corner_start_, &corner_triangles_, &triangles_, &rest_positions_,
-                              &multipliers_, &meshes_, &sdf_, &stretch_control_})
+                              &multipliers_, &meshes_, &sdf_, &stretch_control_, &contacts_})
     total += b->size();
   return total + scan_.memory_bytes() + guard_.memory_bytes() + multigrid_memory_bytes();
 }

@@ -60,6 +60,9 @@ class GpuSimulator {
   void enforce_stretch_limit();
   // With stretch_passes_max above stretch_passes: the settling passes run so far (a read-back).
   uint64_t stretch_settling_passes() const;
+  // The masses the last advance or predict listed for collide_objects, in the order listed (a
+  // read-back; none where the step collides inline: a mesh collider, or self-collision on).
+  std::vector<uint32_t> contact_list() const;
   // The multigrid solver's passes (docs/model.md; gpu_multigrid.cpp): step() runs predict,
   // [collide_self], then solve_multigrid: compute_residuals, the V-cycle (cycle_levels:
   // restrict_residuals per level down to the small ones, cycle_small_levels (their whole part
@@ -165,13 +168,20 @@ class GpuSimulator {
   // One colour of a constraint pass (solve_length_constraints or solve_distance_constraints),
   // bindings already set: its springs' first index and count go to `where` (u_first, u_count).
   struct ColourUniforms { GLint first = -1, count = -1; };
-  void dispatch_colour(gl::Program& program, ColourUniforms where, int colour);
+  // `also`: more barrier bits for what reads after it (the contact list's indirect dispatch).
+  void dispatch_colour(gl::Program& program, ColourUniforms where, int colour, GLbitfield also = 0);
   // `passes` sweeps of solve_length_constraints' shader over every enabled colour: the classic
   // constraint (constraint_iterations) and xpbd's enforce_stretch_limit (stretch_passes).
   void length_constraint_passes(int passes);
   // enforce_stretch_limit's watched passes, each armed on the GPU (gpu_stretch_limit.cpp).
   void settling_passes(int fixed);
   bool enabled_colour(int colour) const;  // has springs, of a type some cloth has on
+  // The contact list (gpu_contacts.cpp, compute/contact_list.glsl): whether the step collides
+  // through it (colliders, none of them a mesh), the cleared list bound for advance, predict or
+  // a colour of a sweep, and collide_objects over what they listed.
+  bool uses_contact_list() const;
+  void start_contact_list();
+  void collide_listed(bool friction = true);  // false: the sweeps' push-out (collide_objects' FRICTIONLESS)
 
   const ClothModel& model_;
   const std::filesystem::path dir_;
@@ -215,6 +225,8 @@ class GpuSimulator {
   gl::Program compute_wind_forces_, accumulate_forces_, integrate_, advance_, collide_objects_, solve_length_constraints_, compute_normals_;
   gl::Program count_cells_, fill_cells_, sort_cells_, resolve_self_contacts_;
   gl::Program predict_, solve_distance_constraints_;
+  // collide_objects over the contact list (compiled with LISTED), and without friction.
+  gl::Program collide_listed_, collide_listed_frictionless_;
   // Uniforms set before a dispatch, looked up once.
   GLint advance_collide_objects_ = -1, resolve_collide_objects_ = -1, predict_collide_objects_ = -1;
   ColourUniforms length_colour_, distance_colour_;
@@ -225,6 +237,7 @@ class GpuSimulator {
   // buffer (StretchControl, then a StretchDispatch per colour; made once, so its count holds).
   std::unique_ptr<GpuSettlingPasses> settling_;
   gl::Buffer stretch_control_{"stretch control"};
+  gl::Buffer contacts_{"contact list"};  // ContactListHeader, then a uint per listed mass
   gl::Buffer no_offsets_{"no multigrid offsets"};  // one element, bound in their place without multigrid
 };
 

@@ -69,12 +69,16 @@ void GpuSimulator::integrate() {
 }
 
 void GpuSimulator::advance(bool then_collide_objects) {
+  const bool listed = then_collide_objects && uses_contact_list();
+  if (listed) start_contact_list();
   advance_.set(advance_collide_objects_, int(then_collide_objects));
   dispatch(advance_);
   swap_positions();
-  // The hash passes or the constraints read the new positions next; the next advance
-  // writes the old ones (now the output buffer) after this pass read them.
-  barrier(kComputeReads);
+  // The hash passes or the constraints read the new positions next (or collide_objects the
+  // listed ones, its workgroups from the list's header: COMMAND); the next advance writes the
+  // old ones (now the output buffer) after this pass read them.
+  barrier(kComputeReads | (listed ? GL_COMMAND_BARRIER_BIT : 0));
+  if (listed) collide_listed();
 }
 
 void GpuSimulator::count_cells() {
@@ -134,7 +138,7 @@ void GpuSimulator::solve_length_constraint_colour(int colour) {
   dispatch_colour(solve_length_constraints_, length_colour_, colour);
 }
 
-void GpuSimulator::dispatch_colour(gl::Program& program, ColourUniforms where, int colour) {
+void GpuSimulator::dispatch_colour(gl::Program& program, ColourUniforms where, int colour, GLbitfield also) {
   const uint32_t first = model_.colour_start[colour], count = model_.colour_start[colour + 1] - first;
   if (count == 0) return;  // a grid too narrow for this colour
   program.set(where.first, first);
@@ -143,7 +147,7 @@ void GpuSimulator::dispatch_colour(gl::Program& program, ColourUniforms where, i
   dispatched(program);
   // The next colour (or the next substep's first pass) reads these positions and displacements,
   // and xpbd's next predict the multipliers.
-  barrier(kComputeReads);
+  barrier(kComputeReads | also);
 }
 
 void GpuSimulator::length_constraint_passes(int passes) {
@@ -158,24 +162,29 @@ void GpuSimulator::length_constraint_passes(int passes) {
 void GpuSimulator::solve_length_constraints() { length_constraint_passes(constants_.iterations); }
 
 void GpuSimulator::predict(bool then_collide_objects) {
+  const bool listed = then_collide_objects && uses_contact_list();
+  if (listed) start_contact_list();
   predict_.set(predict_collide_objects_, int(then_collide_objects));
   dispatch(predict_);
   // The hash passes or the constraints read the predicted positions and displacements next
-  // (under multigrid compute_residuals reads the offsets too, through their view).
-  barrier(kComputeReads);
+  // (under multigrid compute_residuals reads the offsets too, through their view), or first
+  // collide_objects the listed ones, its workgroups from the list's header (COMMAND).
+  barrier(kComputeReads | (listed ? GL_COMMAND_BARRIER_BIT : 0));
+  if (listed) collide_listed();
 }
 
 void GpuSimulator::solve_distance_constraint_colour(int colour) {
   bind_for_pass();
-  dispatch_colour(solve_distance_constraints_, distance_colour_, colour);
+  const bool listed = uses_contact_list() && model_.colour_start[colour + 1] > model_.colour_start[colour];
+  if (listed) start_contact_list();
+  // With the list, collide_objects next reads its workgroups from the header this colour wrote.
+  dispatch_colour(solve_distance_constraints_, distance_colour_, colour, listed ? GL_COMMAND_BARRIER_BIT : 0);
+  if (listed) collide_listed(false);
 }
 
 void GpuSimulator::solve_distance_constraints() {
-  bind_for_pass();
-  for (int colour = 0; colour < model_.colours(); ++colour) {
-    if (!constants_.colour_enabled(model_, colour)) continue;
-    dispatch_colour(solve_distance_constraints_, distance_colour_, colour);
-  }
+  for (int colour = 0; colour < model_.colours(); ++colour)
+    if (constants_.colour_enabled(model_, colour)) solve_distance_constraint_colour(colour);
 }
 
 void GpuSimulator::compute_normals() {
@@ -216,6 +225,7 @@ void GpuSimulator::step() {
 std::string GpuSimulator::pass_list() const {
   std::string passes = constants_.wind.enabled ? "compute_wind_forces, " : "";
   passes += constants_.xpbd ? "predict" : "advance";
+  if (!constants_.self_collision && uses_contact_list()) passes += ", collide_objects (the listed masses)";
   if (constants_.self_collision) passes += ", collide_self (count_cells, scan_cells, fill_cells, sort_cells, resolve_self_contacts)";
   passes += constants_.multigrid ? ", solve_multigrid (compute_residuals, restrict_residuals, smooth_corrections, "
                                    "cycle_small_levels, prolong_corrections, prolong_to_cloth, relax_vertices)"
@@ -264,8 +274,12 @@ int GpuSimulator::dispatches_per_substep() const {
   // are dispatched whether they run or not: a skipped one's workgroups are 0).
   const int fixed = constants_.stretch_passes, most = constants_.stretch_passes_max;
   const int limit = most > fixed ? most * enabled_colours + most - std::max(fixed, 1) + 1 : fixed * enabled_colours;
-  if (constants_.multigrid) return 1 + int(constants_.wind.enabled) + self + multigrid_dispatches() + limit;
-  return 1 + int(constants_.wind.enabled) + self + (constants_.xpbd ? 1 : constants_.iterations) * enabled_colours + limit;
+  // The first pass's collide_objects over the contact list, where the step collides through it.
+  const int listed = !constants_.self_collision && uses_contact_list() ? 1 : 0;
+  if (constants_.multigrid) return 1 + listed + int(constants_.wind.enabled) + self + multigrid_dispatches() + limit;
+  // xpbd's sweep pushes each colour's listed masses out after it.
+  const int sweep = constants_.xpbd ? (uses_contact_list() ? 2 : 1) * enabled_colours : constants_.iterations * enabled_colours;
+  return 1 + listed + int(constants_.wind.enabled) + self + sweep + limit;
 }
 
 }  // namespace clothsim

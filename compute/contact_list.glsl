@@ -1,0 +1,31 @@
+// The contact list (docs/performance.md, "The contact list"): advance and predict, and each
+// colour of xpbd's and multigrid's sweeps, append the masses that may_collide says a collider
+// could move, and collide_objects then runs on those alone, one indirect dispatch for as many
+// as there are. llvmpipe runs every branch of a shader for
+// every invocation, so the sphere's and the plane's full response cost every mass of the cloth
+// when called inline, touching or not; a mass that is not listed is not dispatched at all. The
+// result is the same bits: a mass may_collide passes over would leave collide_with_objects at
+// its first test, unchanged. The host clears the header before each appending pass.
+#ifndef CLOTHSIM_CONTACT_LIST_GLSL
+#define CLOTHSIM_CONTACT_LIST_GLSL
+
+#include "layout.glsl"
+#include "features.glsl"
+
+// Whether the scene's colliders go through the list: every collider but a mesh has the exact
+// early test (may_collide); with a mesh collider the passes collide inline as before.
+#define CONTACT_LIST (!COLLIDE_MESHES)
+
+layout(std430, binding = BINDING_CONTACT_LIST) buffer ContactList {
+  uvec4 header;     // ContactListHeader: xyz glDispatchComputeIndirect's workgroups, w the masses listed
+  uint entries[];   // the masses' indices, in no particular order
+} contacts;
+
+// Appends mass i: its slot, and the workgroups that cover every slot so far.
+void list_contact(int i) {
+  uint k = atomicAdd(contacts.header.w, 1u);
+  contacts.entries[k] = uint(i);
+  atomicMax(contacts.header.x, k / uint(WORKGROUP_SIZE) + 1u);
+}
+
+#endif

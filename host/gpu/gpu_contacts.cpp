@@ -1,0 +1,40 @@
+// The contact list on the GPU (compute/contact_list.glsl, docs/performance.md "The contact list"):
+// advance and predict list the masses a collider may move, and xpbd's and multigrid's sweeps
+// those a colour's correction may have pushed into one; collide_objects runs on those alone, one
+// indirect dispatch sized by the list on the GPU, with no read-back.
+#include "gpu_simulator.hpp"
+
+namespace clothsim {
+
+bool GpuSimulator::uses_contact_list() const { return constants_.has_colliders() && !features_.meshes; }
+
+void GpuSimulator::start_contact_list() {
+  const size_t bytes = sizeof(layout::ContactListHeader) + size_t(model_.count()) * sizeof(uint32_t);
+  if (contacts_.size() != bytes) contacts_.allocate(bytes);
+  // No workgroups and no masses yet (y and z stay 1 for glDispatchComputeIndirect). The last
+  // reader of the header, the previous collide_objects, ended with a BUFFER_UPDATE barrier.
+  const layout::ContactListHeader empty{{0u, 1u, 1u, 0u}};
+  contacts_.upload(0, sizeof empty, &empty);
+  // On the scan's data point (layout.glsl), which the scan binds again before its next use.
+  contacts_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_CONTACT_LIST);
+}
+
+void GpuSimulator::collide_listed(bool friction) {
+  bind_for_pass();
+  contacts_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_CONTACT_LIST);
+  contacts_.bind(GL_DISPATCH_INDIRECT_BUFFER);
+  gl::Program& pass = friction ? collide_listed_ : collide_listed_frictionless_;
+  pass.dispatch_indirect(0);
+  dispatched(pass);
+  // The hash passes or the constraints read the positions next; the next substep's
+  // start_contact_list rewrites the header this pass read (a buffer update).
+  barrier(kComputeReads | GL_BUFFER_UPDATE_BARRIER_BIT);
+}
+
+std::vector<uint32_t> GpuSimulator::contact_list() const {
+  if (contacts_.size() == 0) return {};
+  const uint32_t count = gl::download_vector<layout::ContactListHeader>(contacts_, 0, 1)[0].dispatch_count.w;
+  return gl::download_vector<uint32_t>(contacts_, sizeof(layout::ContactListHeader) / sizeof(uint32_t), count);
+}
+
+}  // namespace clothsim
