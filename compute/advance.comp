@@ -37,14 +37,7 @@ void main() {
   precise vec3 a = f * p.w;
   precise vec3 d = displacement_of(i).xyz * mat.keep.x + a * params.dt2;
   precise vec3 next = x + d;
-  if (u_collide_objects) {
-    // Inline, or listed for collide_objects where the collider cannot reach this mass there
-    // (compute/contact_list.glsl): the same bits either way.
-    if (!CONTACT_LIST)
-      collide_with_objects(next, d);
-    else if (may_collide(next, d, true))
-      list_contact(i);
-  }
+  if (u_collide_objects) collide_or_list(i, next, d, true);  // compute/contact_list.glsl
   disp[i] = vec4(d, 0.0);
   pos_out[i] = vec4(next, p.w);
 }

@@ -11,6 +11,7 @@
 
 #include "layout.glsl"
 #include "features.glsl"
+#include "collide_objects.glsl"
 
 // Whether the scene's colliders go through the list: every collider but a mesh has the exact
 // early test (may_collide); with a mesh collider the passes collide inline as before.
@@ -26,6 +27,17 @@ void list_contact(int i) {
   uint k = atomicAdd(contacts.header.w, 1u);
   contacts.entries[k] = uint(i);
   atomicMax(contacts.header.x, k / uint(WORKGROUP_SIZE) + 1u);
+}
+
+// Mass i at x, moved by d, against the colliders as the last step of its pass: inline, or
+// listed for collide_objects after the pass where a collider may move it (with `friction`:
+// advance and predict; without: the push-out after a sweep's correction). The same bits either
+// way.
+void collide_or_list(int i, inout vec3 x, inout vec3 d, bool friction) {
+  if (!CONTACT_LIST)
+    collide_with_objects_friction(x, d, friction);
+  else if (may_collide(x, d, friction))
+    list_contact(i);
 }
 
 #endif

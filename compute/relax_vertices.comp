@@ -76,14 +76,8 @@ void main() {
     d = d + corr;
   }
   // A correction must not push a mass into a collider or through a plane (as in xpbd's sweep).
-  // Inline, or listed for collide_objects after this colour where a collider may move the mass
-  // (compute/contact_list.glsl): the same bits, the push-out being its last step here.
-  if (has_colliders()) {
-    if (!CONTACT_LIST)
-      collide_with_objects_friction(x, d, false);
-    else if (may_collide(x, d, false))
-      list_contact(i);
-  }
+  // Inline, or after this colour for the masses it lists (compute/contact_list.glsl).
+  if (has_colliders()) collide_or_list(i, x, d, false);
   pos[i] = vec4(x, wi);
   disp[i] = vec4(d, 0.0);
   offset[i] = vec4(off, 0.0);

@@ -58,16 +58,10 @@ void main() {
   limit_stretch(xi, xj, di, dj, pi.w, pj.w, wsum, params.stretch_limit * rest);
   // A correction must not push a mass into a collider or through a plane, where the collision
   // test of the next substep could no longer see it (docs/model.md).
-  // Inline, or listed for collide_objects after this colour where a collider may move the
-  // mass (compute/contact_list.glsl): the same bits, the push-out being the mass's last step here.
+  // Inline, or after this colour for the masses it lists (compute/contact_list.glsl).
   if (has_colliders()) {
-    if (!CONTACT_LIST) {
-      if (pi.w != 0.0) collide_with_objects_friction(xi, di, false);
-      if (pj.w != 0.0) collide_with_objects_friction(xj, dj, false);
-    } else {
-      if (pi.w != 0.0 && may_collide(xi, di, false)) list_contact(i);
-      if (pj.w != 0.0 && may_collide(xj, dj, false)) list_contact(j);
-    }
+    if (pi.w != 0.0) collide_or_list(i, xi, di, false);
+    if (pj.w != 0.0) collide_or_list(j, xj, dj, false);
   }
   pos[i].xyz = xi;
   pos[j].xyz = xj;

@@ -1,7 +1,6 @@
 // `clothsim bench [--sizes ...] [--backend gpu,cpu] [--frames N] [--self-collision on|off|both]
 // [--json FILE]`: throughput of both backends on square cloths (pinned corners, a sphere, a plane).
 #include <chrono>
-#include <fstream>
 #include <map>
 #include <stdexcept>
 #include <string>
@@ -120,14 +119,9 @@ int run_bench(const Opts& o) {
     // Beside the named file first and renamed once complete (output_file.hpp): an old result is
     // never left half written.
     try {
-      write_replacing(o.json_path, [&](const std::string& temp) {
-        std::ofstream f(temp);
-        f << out.dump(2) << "\n";
-        f.close();
-        if (!f) throw std::runtime_error("cannot write");
-      });
+      write_text_replacing(o.json_path, out.dump(2) + "\n");
     } catch (const std::exception& e) {
-      throw ExitError(kExitBadInput, fmt::format("--json {}: {}", o.json_path, e.what()));
+      throw ExitError(kExitBadInput, fmt::format("--json: {}", e.what()));
     }
     fmt::print("wrote {}\n", o.json_path);
   }

@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <fstream>
 #include <stdexcept>
 
 #include <fmt/format.h>
@@ -22,6 +23,15 @@ void replace_file(const std::string& from, const std::string& to) {
     remove_quietly(from);
     throw std::runtime_error(fmt::format("{}: cannot replace it with the new file ({})", to, ec.message()));
   }
+}
+
+void write_text_replacing(const std::string& path, const std::string& text) {
+  write_replacing(path, [&](const std::string& temp) {
+    std::ofstream out(temp, std::ios::binary);
+    out << text;
+    out.close();
+    if (!out) throw std::runtime_error(fmt::format("{}: cannot write it", path));
+  });
 }
 
 void remove_quietly(const std::string& path) {

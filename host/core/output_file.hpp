@@ -55,4 +55,8 @@ template <class Write> void write_replacing(const std::string& path, Write&& wri
   file.commit();
 }
 
+// Writes `text` (bytes as they are) to `path` through write_replacing; throws
+// std::runtime_error naming `path` if it cannot be written or replaced.
+void write_text_replacing(const std::string& path, const std::string& text);
+
 }  // namespace clothsim

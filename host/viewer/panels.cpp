@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <string>
 #include <stdexcept>
 #include <string_view>
@@ -216,15 +215,10 @@ void scene_panel(ViewerState& st, const std::filesystem::path& root) {
     // Beside the named file first and renamed once complete (output_file.hpp): a scene is
     // never left half written.
     try {
-      write_replacing(st.path_field, [&](const std::string& temp) {
-        std::ofstream out(temp);
-        out << scene_to_json(st.scene);
-        out.close();
-        if (!out) throw std::runtime_error("cannot write");
-      });
+      write_text_replacing(st.path_field, scene_to_json(st.scene));
       st.status = fmt::format("saved {}", st.path_field);
     } catch (const std::exception& e) {
-      st.status = fmt::format("cannot write {}: {}", st.path_field, e.what());
+      st.status = fmt::format("not saved: {}", e.what());
     }
   }
   if (!st.status.empty()) ImGui::TextWrapped("%s", st.status.c_str());

@@ -49,14 +49,9 @@ int main(int argc, char** argv) {
   if (mode == "--write") {
     // Beside the named file first and renamed once complete (output_file.hpp).
     try {
-      clothsim::write_replacing(argv[2], [&](const std::string& temp) {
-        std::ofstream out(temp, std::ios::binary);
-        out << md;
-        out.close();
-        if (!out) throw std::runtime_error("cannot write");
-      });
+      clothsim::write_text_replacing(argv[2], md);
     } catch (const std::exception& e) {
-      std::fprintf(stderr, "%s: %s\n", argv[2], e.what());
+      std::fprintf(stderr, "%s\n", e.what());
       return 2;
     }
     std::printf("wrote %s\n", argv[2]);
