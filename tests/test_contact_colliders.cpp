@@ -93,7 +93,7 @@ TEST_CASE("the classic sphere scene: no mass ends a substep more than 0.1 mm ins
   CHECK(worst > 0);  // it does rest on the sphere, pressed into it by less than the threshold
 }
 
-TEST_CASE("the xpbd table_drag cloth rests on the table, not in it, at every frame", "[contact]") {
+TEST_CASE("the xpbd table_drag cloth rests on the table, not in it, at every frame", "[contact][slow]") {
   const Scene s = load_scene(std::filesystem::path(CLOTHSIM_SOURCE_DIR) / "scenes/table_drag.json",
                              {"simulation.solver=\"xpbd\"", "simulation.constraint_iterations=1"});
   const ClothModel m = build_cloth(s);

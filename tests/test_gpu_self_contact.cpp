@@ -31,7 +31,7 @@ TEST_CASE("the GPU's bounded contact equals the reference's on a cloth folded on
 }
 
 TEST_CASE("a 65 x 65 heap on the GPU has no intersecting triangles at any tenth frame to 300, bitwise the reference's",
-          "[gpu][self_contact]") {
+          "[gpu][self_contact][slow]") {
   REQUIRE_GL_CONTEXT();
   // heap256 on a 65 x 65 grid, thickness half the spacing (the contact distance one step). With
   // the CS184 contact it ends with 164 intersecting pairs at frame 70 (docs/model.md).

@@ -56,7 +56,7 @@ std::string line_for(const fs::path& file) {
 
 }  // namespace
 
-TEST_CASE("every shipped scene gives the recorded CPU reference positions, bit for bit", "[recorded]") {
+TEST_CASE("every shipped scene gives the recorded CPU reference positions, bit for bit", "[recorded][slow]") {
   const fs::path root = CLOTHSIM_SOURCE_DIR;
   std::map<std::string, std::string> recorded;
   std::ifstream in(root / "tests/golden/reference_hashes.txt");

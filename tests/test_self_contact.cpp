@@ -114,7 +114,7 @@ TEST_CASE("bounded contact: predict moves no mass more than a quarter of the con
   CHECK(largest >= limit * 0.999);  // it is falling at the limit
 }
 
-TEST_CASE("a 65 x 65 heap has no intersecting triangles at any tenth frame to 300", "[self_contact]") {
+TEST_CASE("a 65 x 65 heap has no intersecting triangles at any tenth frame to 300", "[self_contact][slow]") {
   const Scene scene = small_heap(65);
   const ClothModel model = build_cloth(scene);
   CpuBackend<float> cpu(scene, model);
@@ -128,7 +128,7 @@ TEST_CASE("a 65 x 65 heap has no intersecting triangles at any tenth frame to 30
 }
 
 TEST_CASE("the classic selfCollision scene has no intersecting triangles at any tenth frame to 300",
-          "[self_contact]") {
+          "[self_contact][slow]") {
   const Scene scene = load_scene(shipped("selfCollision.json"));
   const ClothModel model = build_cloth(scene);
   CpuBackend<float> cpu(scene, model);
