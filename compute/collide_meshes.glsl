@@ -88,11 +88,18 @@ bool mesh_normal(MeshField m, vec3 grad, out vec3 n) {
 // path (sampled every half node spacing, at most 8 samples) went through a closed mesh's wall
 // or an open mesh's shell, with t - x the way back to the sample before (passed_through_mesh
 // in the reference says how).
+// A mass phi from the surface, thickness its offset, that moved `moved` relative to the mesh:
+// true if it cannot have reached the offset surface (passed_through_mesh's first test, and
+// may_collide's on the same values).
+bool stays_clear_of_mesh(float moved, float phi, float thickness) {
+  precise float clearance = phi - thickness;
+  return !(moved > clearance);
+}
+
 bool passed_through_mesh(MeshField m, vec3 p, float phi, vec3 rel, out vec3 t_minus_x) {
   t_minus_x = vec3(0.0);
   float moved = length3(rel);
-  precise float clearance = phi - m.thickness;
-  if (!(moved > clearance)) return false;
+  if (stays_clear_of_mesh(moved, phi, m.thickness)) return false;
   vec3 step_all = mesh_local(m, rel);
   precise float halves = ceil(moved * m.inv_voxel * 2.0);
   int samples = int(min(8.0, halves));
@@ -139,6 +146,18 @@ void keep_out_of_mesh(MeshField m, inout vec3 x, inout vec3 d) {
   precise vec3 nx = x + out_along_n, nd = d + out_along_n;
   x = nx;
   d = nd;
+}
+
+// Whether collide_with_mesh leaves a mass at x, moved by d, unchanged at its first tests: outside
+// the field's grid, or outside the offset surface with a path too short to have reached it.
+// The same functions on the same values as collide_with_mesh and passed_through_mesh, so the
+// contact list's decision (may_collide) is the one the full response makes.
+bool mesh_leaves_alone(MeshField m, vec3 x, vec3 d) {
+  vec3 p = mesh_local(m, x - m.origin);
+  float phi;
+  vec3 grad;
+  if (!sample_mesh_field(m, p, phi, grad)) return true;
+  return !(phi < m.thickness) && stays_clear_of_mesh(length3(d - m.motion), phi, m.thickness);
 }
 
 // One mesh collider (collide_with_mesh in the reference).

@@ -1,9 +1,9 @@
 // Reads positions, displacements and the colliders; writes positions and displacements in
 // place. One invocation per particle; compiled with LISTED, one per mass of the contact list
 // (compute/contact_list.glsl): the step's own use, after advance or predict listed them (with
-// FRICTIONLESS too, the push-out after a colour of xpbd's or multigrid's sweep). With a
-// mesh collider the step fuses it into advance or predict instead, and with self-collision
-// into resolve_self_contacts (the particle's state makes one trip).
+// FRICTIONLESS too, the push-out after a colour of xpbd's or multigrid's sweep). Compiled
+// without, one per particle: the pass checks' own. With self-collision the step fuses it into
+// resolve_self_contacts instead (the particle's state makes one trip).
 #include "layout.glsl"
 #include "common.glsl"
 #include "collide_objects.glsl"

@@ -258,13 +258,13 @@ void collide_with_objects_friction(inout vec3 x, inout vec3 d, bool friction) {
 void collide_with_objects(inout vec3 x, inout vec3 d) { collide_with_objects_friction(x, d, true); }
 
 // Whether collide_with_objects_friction could change a mass at x that moved by d: false only
-// where every sphere and every plane would leave it at its first test (a path that stays
-// outside a sphere, a mass that did not cross a plane and ends in front), computed here by the
-// same functions on the same values, so the decision is the one the full test makes and
-// skipping the mass is exact. A mesh collider always says maybe. advance and predict list the
-// masses it is true for, and collide_objects runs on those alone (compute/contact_list.glsl).
+// where every sphere, plane and mesh would leave it at its first test (a path that stays
+// outside a sphere, a mass that did not cross a plane and ends in front, a mass outside a
+// mesh's grid or too far from its surface to have reached it), computed here by the same
+// functions on the same values, so the decision is the one the full test makes and skipping
+// the mass is exact. The passes list the masses it is true for, and collide_objects runs on
+// those alone (compute/contact_list.glsl).
 bool may_collide(vec3 x, vec3 d, bool friction) {
-  if (mesh_count() > 0) return true;
   for (int s = 0; s < sphere_count(); ++s) {
     vec4 origin_radius = texelFetch(spheres_view, SPHERE_TEXELS * s);
     vec3 m = collider_motion(texelFetch(spheres_view, SPHERE_TEXELS * s + 2).xyz);
@@ -280,6 +280,8 @@ bool may_collide(vec3 x, vec3 d, bool friction) {
         !stays_in_front(dist, point_front.w, friction && COULOMB_FRICTION))
       return true;
   }
+  for (int k = 0; k < mesh_count(); ++k)
+    if (!mesh_leaves_alone(mesh_field(k), x, d)) return true;
   return false;
 }
 

@@ -5,17 +5,14 @@
 // every invocation, so the sphere's and the plane's full response cost every mass of the cloth
 // when called inline, touching or not; a mass that is not listed is not dispatched at all. The
 // result is the same bits: a mass may_collide passes over would leave collide_with_objects at
-// its first test, unchanged. The host clears the header before each appending pass.
+// its first test, unchanged. Every collider has such a test (spheres, planes and meshes), so
+// every pass with colliders lists. The host clears the header before each appending pass.
 #ifndef CLOTHSIM_CONTACT_LIST_GLSL
 #define CLOTHSIM_CONTACT_LIST_GLSL
 
 #include "layout.glsl"
 #include "features.glsl"
 #include "collide_objects.glsl"
-
-// Whether the scene's colliders go through the list: every collider but a mesh has the exact
-// early test (may_collide); with a mesh collider the passes collide inline as before.
-#define CONTACT_LIST (!COLLIDE_MESHES)
 
 layout(std430, binding = BINDING_CONTACT_LIST) buffer ContactList {
   uvec4 header;     // ContactListHeader: xyz glDispatchComputeIndirect's workgroups, w the masses listed
@@ -29,15 +26,11 @@ void list_contact(int i) {
   atomicMax(contacts.header.x, k / uint(WORKGROUP_SIZE) + 1u);
 }
 
-// Mass i at x, moved by d, against the colliders as the last step of its pass: inline, or
-// listed for collide_objects after the pass where a collider may move it (with `friction`:
-// advance and predict; without: the push-out after a sweep's correction). The same bits either
-// way.
-void collide_or_list(int i, inout vec3 x, inout vec3 d, bool friction) {
-  if (!CONTACT_LIST)
-    collide_with_objects_friction(x, d, friction);
-  else if (may_collide(x, d, friction))
-    list_contact(i);
+// Mass i at x, moved by d, at the end of its pass: listed for collide_objects after the pass
+// where a collider may move it (with `friction`: advance and predict; without: the push-out
+// after a sweep's correction). The same bits as the response inline.
+void list_if_collider_may_move(int i, vec3 x, vec3 d, bool friction) {
+  if (may_collide(x, d, friction)) list_contact(i);
 }
 
 #endif

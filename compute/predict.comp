@@ -85,7 +85,7 @@ void main() {
       d = d + corr;
     }
   }
-  if (u_collide_objects) collide_or_list(i, next, d, true);  // compute/contact_list.glsl
+  if (u_collide_objects) list_if_collider_may_move(i, next, d, true);  // compute/contact_list.glsl
   pos[i] = vec4(next, p.w);
   disp[i] = vec4(d, 0.0);
 }

@@ -76,8 +76,8 @@ void main() {
     d = d + corr;
   }
   // A correction must not push a mass into a collider or through a plane (as in xpbd's sweep).
-  // Inline, or after this colour for the masses it lists (compute/contact_list.glsl).
-  if (has_colliders()) collide_or_list(i, x, d, false);
+  // Applied after this colour to the masses it lists (compute/contact_list.glsl).
+  if (has_colliders()) list_if_collider_may_move(i, x, d, false);
   pos[i] = vec4(x, wi);
   disp[i] = vec4(d, 0.0);
   offset[i] = vec4(off, 0.0);

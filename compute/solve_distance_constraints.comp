@@ -58,10 +58,10 @@ void main() {
   limit_stretch(xi, xj, di, dj, pi.w, pj.w, wsum, params.stretch_limit * rest);
   // A correction must not push a mass into a collider or through a plane, where the collision
   // test of the next substep could no longer see it (docs/model.md).
-  // Inline, or after this colour for the masses it lists (compute/contact_list.glsl).
+  // Applied after this colour to the masses it lists (compute/contact_list.glsl).
   if (has_colliders()) {
-    if (pi.w != 0.0) collide_or_list(i, xi, di, false);
-    if (pj.w != 0.0) collide_or_list(j, xj, dj, false);
+    if (pi.w != 0.0) list_if_collider_may_move(i, xi, di, false);
+    if (pj.w != 0.0) list_if_collider_may_move(j, xj, dj, false);
   }
   pos[i].xyz = xi;
   pos[j].xyz = xj;

@@ -5,6 +5,7 @@
 #include "contact_cases.hpp"
 #include "friction_cases.hpp"
 #include "gpu_pass_fixtures.hpp"
+#include "mesh_collider_cases.hpp"
 
 TEST_CASE("collide_objects on the GPU lifts and catches exactly as the reference", "[gpu][contact]") {
   REQUIRE_GL_CONTEXT();
@@ -64,53 +65,81 @@ TEST_CASE("Coulomb friction on the GPU holds and slides a cloth on a slope exact
 
 // The contact list (compute/contact_list.glsl): advance and predict list the masses a collider
 // may move and collide_objects runs on those alone. From a state where the cloth is pressed
-// between two spheres and two planes, the first pass with the list gives what the same pass
-// without collisions, then the reference's collide_objects on every mass, gives; every mass that
-// collide_objects moves is listed, and masses far from every collider are not.
+// between two spheres and two planes, or lies on a mesh collider, the first pass with the list
+// gives what the same pass without collisions, then the reference's collide_objects on every
+// mass, gives; every mass that collide_objects moves is listed, and masses far from every
+// collider are not.
+namespace {
+
+void check_contact_list(const Scene& s, int warmup_frames, const std::string& solver) {
+  const ClothModel m = build_cloth(s);
+  GpuSimulator gpu(s, m, pass_fixtures::compute_dir());
+  for (int f = 0; f < warmup_frames; ++f) gpu.step_frame();  // velocities, stretched springs, contacts
+  State<float> start, without, with;
+  gpu.download(start);
+  auto first_pass = [&](bool then_collide) {
+    gpu.upload(start);
+    if (solver == "classic") gpu.advance(then_collide);
+    else gpu.predict(then_collide);
+  };
+  first_pass(false);
+  gpu.download(without);
+  first_pass(true);
+  gpu.download(with);
+  const std::vector<uint32_t> listed = gpu.contact_list();
+  auto c = make_constants<float>(s, m);
+  State<float> expected = without;
+  collide_objects(c, expected);
+  pass_fixtures::check_same("positions", with.pos, expected.pos, pass_fixtures::kPassTolerance);
+  pass_fixtures::check_same("displacements", with.disp, expected.disp, pass_fixtures::kPassTolerance);
+  const size_t count = size_t(m.count());
+  std::vector<int> times_listed(count, 0);
+  for (uint32_t i : listed) {
+    REQUIRE(i < count);
+    ++times_listed[i];
+  }
+  size_t moved = 0, moved_unlisted = 0;
+  for (size_t i = 0; i < count; ++i) {
+    CHECK(times_listed[i] <= 1);
+    const bool changed = !(expected.pos[i] == without.pos[i]) || !(expected.disp[i] == without.disp[i]);
+    moved += changed;
+    moved_unlisted += changed && times_listed[i] == 0;
+  }
+  INFO(listed.size() << " of " << count << " masses listed, " << moved << " moved by collide_objects");
+  CHECK(moved > 0);
+  CHECK(moved_unlisted == 0);
+  CHECK(listed.size() >= moved);
+  CHECK(listed.size() < count / 2);
+  CHECK_NO_GL_ERRORS();
+}
+
+}  // namespace
+
 TEST_CASE("the contact list holds every mass a collider moves, and colliding it alone is the reference's",
           "[gpu][contact]") {
   REQUIRE_GL_CONTEXT();
   for (const char* solver : {"classic", "xpbd", "multigrid"}) {
     INFO(solver);
-    const Scene s = pass_fixtures::pressed_cloth(33, 17, {fmt::format("simulation.solver=\"{}\"", solver)},
-                                                 pass_fixtures::kTwoSpheresTwoPlanes);
-    const ClothModel m = build_cloth(s);
-    GpuSimulator gpu(s, m, pass_fixtures::compute_dir());
-    gpu.step_frame();  // velocities, stretched springs and masses in contact
-    State<float> start, without, with;
-    gpu.download(start);
-    auto first_pass = [&](bool then_collide) {
-      gpu.upload(start);
-      if (solver == std::string("classic")) gpu.advance(then_collide);
-      else gpu.predict(then_collide);
-    };
-    first_pass(false);
-    gpu.download(without);
-    first_pass(true);
-    gpu.download(with);
-    const std::vector<uint32_t> listed = gpu.contact_list();
-    auto c = make_constants<float>(s, m);
-    State<float> expected = without;
-    collide_objects(c, expected);
-    pass_fixtures::check_same("positions", with.pos, expected.pos, pass_fixtures::kPassTolerance);
-    pass_fixtures::check_same("displacements", with.disp, expected.disp, pass_fixtures::kPassTolerance);
-    std::vector<int> times_listed(m.count(), 0);
-    for (uint32_t i : listed) {
-      REQUIRE(i < m.count());
-      ++times_listed[i];
+    check_contact_list(pass_fixtures::pressed_cloth(33, 17, {fmt::format("simulation.solver=\"{}\"", solver)},
+                                                    pass_fixtures::kTwoSpheresTwoPlanes),
+                       1, solver);
+  }
+}
+
+// A mesh collider's early test (mesh_leaves_alone: outside its field's grid, or too far from its
+// surface to have reached it) lists only the masses near the mesh: a 13² cloth, 1 m wide, lying
+// on the icosphere and the torus of the mesh-collider tests.
+TEST_CASE("the contact list holds every mass a mesh collider moves, and only masses near it", "[gpu][contact]") {
+  REQUIRE_GL_CONTEXT();
+  test::TempDir dir("gpu_contact_list", "meshes");
+  for (const test::Shape& shape : test::shapes()) {
+    if (shape.name == "cube") continue;
+    const std::string obj = dir / (shape.name + ".obj");
+    test::write_obj(shape.mesh, obj);
+    for (const char* solver : {"classic", "multigrid"}) {
+      INFO(shape.name << ", " << solver);
+      Scene s = test::drop_onto_mesh(obj, solver, "", {}, 1.0);
+      check_contact_list(s, 45, solver);
     }
-    size_t moved = 0, moved_unlisted = 0;
-    for (size_t i = 0; i < m.count(); ++i) {
-      CHECK(times_listed[i] <= 1);
-      const bool changed = !(expected.pos[i] == without.pos[i]) || !(expected.disp[i] == without.disp[i]);
-      moved += changed;
-      moved_unlisted += changed && times_listed[i] == 0;
-    }
-    INFO(listed.size() << " of " << m.count() << " masses listed, " << moved << " moved by collide_objects");
-    CHECK(moved > 0);
-    CHECK(moved_unlisted == 0);
-    CHECK(listed.size() >= moved);
-    CHECK(listed.size() < m.count() / 2);
-    CHECK_NO_GL_ERRORS();
   }
 }

@@ -6,7 +6,7 @@
 
 namespace clothsim {
 
-bool GpuSimulator::uses_contact_list() const { return constants_.has_colliders() && !features_.meshes; }
+bool GpuSimulator::uses_contact_list() const { return constants_.has_colliders(); }
 
 void GpuSimulator::start_contact_list() {
   const size_t bytes = sizeof(layout::ContactListHeader) + size_t(model_.count()) * sizeof(uint32_t);

@@ -61,7 +61,7 @@ class GpuSimulator {
   // With stretch_passes_max above stretch_passes: the settling passes run so far (a read-back).
   uint64_t stretch_settling_passes() const;
   // The masses the last advance or predict listed for collide_objects, in the order listed (a
-  // read-back; none where the step collides inline: a mesh collider, or self-collision on).
+  // read-back; none where the step collides inline: self-collision on).
   std::vector<uint32_t> contact_list() const;
   // The multigrid solver's passes (docs/model.md; gpu_multigrid.cpp): step() runs predict,
   // [collide_self], then solve_multigrid: compute_residuals, the V-cycle (cycle_levels:
@@ -177,7 +177,7 @@ class GpuSimulator {
   void settling_passes(int fixed);
   bool enabled_colour(int colour) const;  // has springs, of a type some cloth has on
   // The contact list (gpu_contacts.cpp, compute/contact_list.glsl): whether the step collides
-  // through it (colliders, none of them a mesh), the cleared list bound for advance, predict or
+  // through it (any collider: every kind has its exact early test), the cleared list bound for advance, predict or
   // a colour of a sweep, and collide_objects over what they listed.
   bool uses_contact_list() const;
   void start_contact_list();
