@@ -6,8 +6,8 @@ usage: check_gpu_skips.py CTEST BUILD_DIR GPU_TESTS GPU_TEST_SH GL_PROBE
 Hides the EGL vendor libraries (__EGL_VENDOR_LIBRARY_FILENAMES=/nonexistent.json, so there is
 no context even on a machine with a GPU) and checks, from what ctest has registered
 (ctest --show-only=json-v1, which runs nothing):
-  - every gpu-labelled test is named "gpu:...", has SKIP_RETURN_CODE 77 and runs either the
-    Catch GPU binary or tools/gpu_test.sh, and every "gpu:..." test has the label;
+  - every gpu-labelled test (gpu, or gpu-slow) is named "gpu:...", has SKIP_RETURN_CODE 77 and
+    runs either the Catch GPU binary or tools/gpu_test.sh, and every "gpu:..." test has the label;
   - every one of them, run as ctest runs it, exits 77 and says "skipped: ..." and why;
   - with CLOTHSIM_REQUIRE_GPU=1 one Catch test and one command-level test fail instead (all
     of them would take twice as long for little more);
@@ -52,7 +52,13 @@ def properties(test):
 listing = json.loads(subprocess.run([ctest, "--test-dir", build_dir, "--show-only=json-v1"],
                                     check=True, stdout=subprocess.PIPE, text=True).stdout)
 tests = listing["tests"]
-gpu = [t for t in tests if "gpu" in properties(t).get("LABELS", [])]
+def gpu_labelled(t):
+    """A label "gpu", or "gpu-slow" (the [gpu][slow] Catch cases: Catch's discovery takes one
+    label, and ctest -L gpu, a regular expression, selects both)."""
+    return any(label == "gpu" or label.startswith("gpu-") for label in properties(t).get("LABELS", []))
+
+
+gpu = [t for t in tests if gpu_labelled(t)]
 catch_tests = [t for t in gpu if os.path.realpath(t["command"][0]) == gpu_tests]
 command_tests = [t for t in gpu if gpu_test_sh in map(os.path.realpath, t["command"])]
 print(f"{len(gpu)} gpu-labelled tests: {len(catch_tests)} Catch test cases, {len(command_tests)} command-level")
@@ -65,7 +71,7 @@ for t in gpu:
     check(t in catch_tests or t in command_tests, f"'{name}' runs the Catch GPU binary or gpu_test.sh")
 for t in tests:
     if t["name"].startswith("gpu:"):
-        check(t in gpu, f"'{t['name']}' has the label gpu")
+        check(t in gpu, f"'{t['name']}' has the label gpu (or gpu-slow)")
 
 
 
