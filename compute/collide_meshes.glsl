@@ -57,10 +57,11 @@ bool sample_mesh_field(MeshField m, vec3 p, out float phi, out vec3 grad) {
   precise vec3 f = g - cell;
   int nx = m.dims.x, nxy = m.dims.x * m.dims.y;
   int base = m.dims.w + int(cell.x) + nx * int(cell.y) + nxy * int(cell.z);
-  float c000 = texelFetch(sdf_view, base).x, c100 = texelFetch(sdf_view, base + 1).x;
-  float c010 = texelFetch(sdf_view, base + nx).x, c110 = texelFetch(sdf_view, base + nx + 1).x;
-  float c001 = texelFetch(sdf_view, base + nxy).x, c101 = texelFetch(sdf_view, base + nxy + 1).x;
-  float c011 = texelFetch(sdf_view, base + nxy + nx).x, c111 = texelFetch(sdf_view, base + nxy + nx + 1).x;
+  // A texel holds a node and its +x, +y and +x+y neighbours (host/gpu/sdf_texels.hpp): the
+  // cell's lower and upper faces, two fetches for the eight corners.
+  vec4 lower = texelFetch(sdf_view, base), upper = texelFetch(sdf_view, base + nxy);
+  float c000 = lower.x, c100 = lower.y, c010 = lower.z, c110 = lower.w;
+  float c001 = upper.x, c101 = upper.y, c011 = upper.z, c111 = upper.w;
   precise float x00 = c100 - c000, x10 = c110 - c010, x01 = c101 - c001, x11 = c111 - c011;
   precise float c00 = c000 + x00 * f.x, c10 = c010 + x10 * f.x, c01 = c001 + x01 * f.x, c11 = c011 + x11 * f.x;
   precise float y0 = c10 - c00, y1 = c11 - c01;

@@ -257,33 +257,49 @@ void collide_with_objects_friction(inout vec3 x, inout vec3 d, bool friction) {
 
 void collide_with_objects(inout vec3 x, inout vec3 d) { collide_with_objects_friction(x, d, true); }
 
-// Whether collide_with_objects_friction could change a mass at x that moved by d: false only
-// where every sphere, plane and mesh would leave it at its first test (a path that stays
-// outside a sphere, a mass that did not cross a plane and ends in front, a mass outside a
-// mesh's grid or too far from its surface to have reached it), computed here by the same
-// functions on the same values, so the decision is the one the full test makes and skipping
-// the mass is exact. The passes list the masses it is true for, and collide_objects runs on
-// those alone (compute/contact_list.glsl).
-bool may_collide(vec3 x, vec3 d, bool friction) {
+// Whether one collider's response could change a mass at x that moved by d (its motion m):
+// false only where it would leave the mass at its first test (a path that stays outside a
+// sphere, a mass that did not cross a plane and ends in front; for a mesh, mesh_leaves_alone),
+// computed by the same functions on the same values as the response.
+bool sphere_may_move(vec4 origin_radius, vec3 m, vec3 x, vec3 d) {
+  float dist = length3(x - origin_radius.xyz);
+  return !(dist > origin_radius.w) || !path_stays_outside(dist, origin_radius.w, d - m);
+}
+bool plane_may_move(vec4 point_front, vec3 n, vec3 m, vec3 x, vec3 d, bool friction) {
+  float dist, dist_prev;
+  return plane_sides(x, d, point_front, n, m, dist, dist_prev) ||
+         !stays_in_front(dist, point_front.w, friction && COULOMB_FRICTION);
+}
+bvec2 or_each(bvec2 may, bool i, bool j) { return bvec2(may.x || i, may.y || j); }
+
+// Whether collide_with_objects_friction could change masses i and j (a spring's ends in a sweep):
+// true where some collider may move it, so the decision is the one the full response makes and
+// skipping a mass is exact. Each collider's parameters are fetched once for both (on llvmpipe a
+// fetch is a call, dearer than the tests). The passes list the masses it is true for, and
+// collide_objects runs on those alone (compute/contact_list.glsl).
+bvec2 may_collide_pair(vec3 xi, vec3 di, vec3 xj, vec3 dj, bool friction) {
+  bvec2 may = bvec2(false);
   for (int s = 0; s < sphere_count(); ++s) {
     vec4 origin_radius = texelFetch(spheres_view, SPHERE_TEXELS * s);
     vec3 m = collider_motion(texelFetch(spheres_view, SPHERE_TEXELS * s + 2).xyz);
-    float dist = length3(x - origin_radius.xyz);
-    if (!(dist > origin_radius.w) || !path_stays_outside(dist, origin_radius.w, d - m)) return true;
+    may = or_each(may, sphere_may_move(origin_radius, m, xi, di), sphere_may_move(origin_radius, m, xj, dj));
   }
   for (int k = 0; k < plane_count(); ++k) {
     vec4 point_front = texelFetch(planes_view, PLANE_TEXELS * k);
     vec3 n = texelFetch(planes_view, PLANE_TEXELS * k + 1).xyz;
     vec3 m = collider_motion(texelFetch(planes_view, PLANE_TEXELS * k + 2).xyz);
-    float dist, dist_prev;
-    if (plane_sides(x, d, point_front, n, m, dist, dist_prev) ||
-        !stays_in_front(dist, point_front.w, friction && COULOMB_FRICTION))
-      return true;
+    may = or_each(may, plane_may_move(point_front, n, m, xi, di, friction),
+                  plane_may_move(point_front, n, m, xj, dj, friction));
   }
-  for (int k = 0; k < mesh_count(); ++k)
-    if (!mesh_leaves_alone(mesh_field(k), x, d)) return true;
-  return false;
+  for (int k = 0; k < mesh_count(); ++k) {
+    MeshField field = mesh_field(k);
+    may = or_each(may, !mesh_leaves_alone(field, xi, di), !mesh_leaves_alone(field, xj, dj));
+  }
+  return may;
 }
+
+// One mass (advance, predict, relax_vertices); the pair's second half is dead code.
+bool may_collide(vec3 x, vec3 d, bool friction) { return may_collide_pair(x, d, x, d, friction).x; }
 
 // A mass deeper than 0.1 mm inside a sphere, or behind a plane's front, goes back to the
 // surface without friction (keep_out_of_colliders in host/core/reference_collisions.cpp).

@@ -33,4 +33,12 @@ void list_if_collider_may_move(int i, vec3 x, vec3 d, bool friction) {
   if (may_collide(x, d, friction)) list_contact(i);
 }
 
+// The same for a spring's two ends after a sweep's correction (no friction), a pinned end
+// (`free` false) never listed.
+void list_ends_if_collider_may_move(int i, vec3 xi, vec3 di, int j, vec3 xj, vec3 dj, bvec2 free) {
+  bvec2 may = may_collide_pair(xi, di, xj, dj, false);
+  if (may.x && free.x) list_contact(i);
+  if (may.y && free.y) list_contact(j);
+}
+
 #endif

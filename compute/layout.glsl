@@ -62,7 +62,7 @@ using uint = uint32_t;
 // direction i -> j of its last visit, w its Lagrange multiplier carried into the next substep.
 #define BINDING_MULTIPLIERS 25
 #define BINDING_MESHES 26  // MeshCollider[] (the passes read them through TEXTURE_MESHES)
-#define BINDING_SDF 27     // float per field node, every mesh collider's field in turn
+#define BINDING_SDF 27     // vec4 per field node (host/gpu/sdf_texels.hpp), every mesh collider's field in turn
 // The multigrid solver's scratch (docs/model.md, host/core/hierarchy.hpp), vec4 each.
 #define BINDING_MG_RESIDUALS 28  // per particle its residual force (w its mass), then per coarse vertex its coarse residual (w the mass it stands for)
 #define BINDING_MG_OFFSET 29     // per particle: xyz its move since the prediction (x - y)
@@ -98,7 +98,7 @@ using uint = uint32_t;
 #define TEXTURE_REST_POSITIONS 23    // RGBA32F, per particle: xyz its rest position (bounded contact; 1 texel otherwise)
 #define TEXTURE_MULTIPLIERS 24       // RGBA32F, per spring: BINDING_MULTIPLIERS, read by predict and the sweep
 #define TEXTURE_MESHES 25            // RGBA32F, MESH_TEXELS per MeshCollider
-#define TEXTURE_SDF 26               // R32F, one texel per field node (BINDING_SDF)
+#define TEXTURE_SDF 26               // RGBA32F, per field node its value and its +x, +y, +x+y neighbours' (BINDING_SDF)
 // The multigrid hierarchy (Hierarchy in host/core/hierarchy.hpp), static over a run, and the views of its scratch.
 #define TEXTURE_MG_VERTICES 27       // RGBA32UI, per coarse vertex + 1: x its particle, y its first child, z its first parent, w its first spring (entries of TEXTURE_MG_LISTS)
 #define TEXTURE_MG_LISTS 28          // RGBA32UI, MultigridEntry: the children, then the parents, the springs, the particles' parents
@@ -159,7 +159,7 @@ struct PlaneCollider {
 
 // A mesh collider (MeshC in host/core/reference.hpp): a mass at x is at local =
 // rows (x - origin) in its field's frame; node (0, 0, 0) of the field is at grid_min, its nodes
-// are the texels of TEXTURE_SDF from dims.w on, x fastest.
+// are the texels of TEXTURE_SDF from dims.w on, x fastest (each with its +x, +y, +x+y neighbours).
 struct MeshCollider {
   vec4 row0;       // xyz the first row of the rotation's transpose, w origin.x (at the substep's end)
   vec4 row1;       // xyz the second row, w origin.y

@@ -59,10 +59,7 @@ void main() {
   // A correction must not push a mass into a collider or through a plane, where the collision
   // test of the next substep could no longer see it (docs/model.md).
   // Applied after this colour to the masses it lists (compute/contact_list.glsl).
-  if (has_colliders()) {
-    if (pi.w != 0.0) list_if_collider_may_move(i, xi, di, false);
-    if (pj.w != 0.0) list_if_collider_may_move(j, xj, dj, false);
-  }
+  if (has_colliders()) list_ends_if_collider_may_move(i, xi, di, j, xj, dj, bvec2(pi.w != 0.0, pj.w != 0.0));
   pos[i].xyz = xi;
   pos[j].xyz = xj;
   disp[i] = vec4(di, 0.0);

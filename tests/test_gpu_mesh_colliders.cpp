@@ -6,6 +6,7 @@
 #include "gpu_pass_fixtures.hpp"
 #include "mesh_collider.hpp"
 #include "mesh_collider_cases.hpp"
+#include "sdf_texels.hpp"
 
 TEST_CASE("mesh colliders on the GPU: every pass and a whole drop as the reference, and nothing inside",
           "[gpu][mesh_collider]") {
@@ -55,4 +56,30 @@ TEST_CASE("mesh colliders on the GPU: every pass and a whole drop as the referen
     }
   }
   CHECK_NO_GL_ERRORS();
+}
+
+// The GPU's texels of the fields (host/gpu/sdf_texels.hpp): texel k is node k and its +x, +y and
+// +x+y neighbours, within its own mesh's field (two fields of different shapes side by side), so
+// a cell's eight corners are the x, y, z, w of its lower and upper faces' texels.
+TEST_CASE("a field's texel holds its node and the node's +x, +y and +x+y neighbours", "[mesh_collider]") {
+  std::vector<MeshC<float>> meshes(2);
+  meshes[0].dims = {3, 4, 2};
+  meshes[0].offset = 0;
+  meshes[1].dims = {5, 2, 3};
+  meshes[1].offset = 24;
+  std::vector<float> fields(24 + 30);
+  for (size_t k = 0; k < fields.size(); ++k) fields[k] = 0.5f + float(k);
+  const std::vector<glm::vec4> texels = sdf_cell_texels(fields, meshes);
+  REQUIRE(texels.size() == fields.size());
+  for (const MeshC<float>& m : meshes)
+    for (int z = 0; z < m.dims.z; ++z)
+      for (int y = 0; y < m.dims.y; ++y)
+        for (int x = 0; x < m.dims.x; ++x) {
+          auto node = [&](int i, int j) {
+            return i < m.dims.x && j < m.dims.y ? fields[m.offset + i + m.dims.x * (j + m.dims.y * z)] : 0.f;
+          };
+          const glm::vec4 t = texels[m.offset + x + m.dims.x * (y + m.dims.y * z)];
+          INFO("node " << x << ", " << y << ", " << z << " of the field at " << m.offset);
+          CHECK(t == glm::vec4(node(x, y), node(x + 1, y), node(x, y + 1), node(x + 1, y + 1)));
+        }
 }

@@ -1,6 +1,7 @@
 // Live edits from the viewer: parameter changes, the grab, reset. None runs during a step;
 // each changes buffers the next step reads.
 #include "gpu_simulator.hpp"
+#include "sdf_texels.hpp"
 
 #include <utility>
 
@@ -39,9 +40,10 @@ void GpuSimulator::upload_colliders() {
       throw SceneError(fmt::format("the mesh colliders' fields have {} nodes in all, more than this GPU's texel buffers "
                                    "hold ({}): set a larger mesh.voxel_size",
                                    sdf->size(), limit));
-    const std::vector<float> none(1, 0.f);
-    gl::upload_vector(sdf_, sdf != nullptr && !sdf->empty() ? *sdf : none, GL_STATIC_DRAW);
-    sdf_view_.attach(sdf_, GL_R32F);
+    const std::vector<glm::vec4> texels = sdf != nullptr && !sdf->empty() ? sdf_cell_texels(*sdf, constants_.meshes)
+                                                                         : std::vector<glm::vec4>(1, glm::vec4(0.f));
+    gl::upload_vector(sdf_, texels, GL_STATIC_DRAW);
+    sdf_view_.attach(sdf_, GL_RGBA32F);
     sdf_source_ = sdf;
   }
   const size_t mesh_bytes = meshes.size() * sizeof(meshes[0]);

@@ -190,7 +190,7 @@ void GpuSimulator::upload_multipliers(std::vector<Vec4<float>> multipliers) {
   gl::upload_vector(multipliers_, multipliers);
   multipliers_view_.attach(multipliers_, GL_RGBA32F);
   meshes_view_.attach(meshes_, GL_RGBA32F);
-  sdf_view_.attach(sdf_, GL_R32F);
+  sdf_view_.attach(sdf_, GL_RGBA32F);
 }
 
 void GpuSimulator::upload_materials() {
@@ -287,7 +287,7 @@ void GpuSimulator::attach_views() {
   rest_positions_view_.attach(rest_positions_, GL_RGBA32F);
   multipliers_view_.attach(multipliers_, GL_RGBA32F);
   meshes_view_.attach(meshes_, GL_RGBA32F);
-  sdf_view_.attach(sdf_, GL_R32F);
+  sdf_view_.attach(sdf_, GL_RGBA32F);
 }
 
 GpuBackend::GpuBackend(std::unique_ptr<gl::GlContext> context, const Scene& scene, const ClothModel& model,

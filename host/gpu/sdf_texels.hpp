@@ -1,0 +1,38 @@
+// The mesh colliders' fields as the GPU reads them (compute/collide_meshes.glsl,
+// sample_mesh_field): texel k holds node k's value and those of its +x, +y and +x+y
+// neighbours, so a trilinear sample is two texel fetches (the cell's lower and upper xy faces)
+// instead of eight. The values are the reference's floats, moved, never recomputed, so both
+// backends still interpolate the same bits. Four times the memory of the fields (one RGBA32F
+// texel per node where the reference keeps one float); on llvmpipe a texel fetch is a call to
+// a generated function, and the eight made a field sample the dearest part of the colliders.
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include <glm/vec4.hpp>
+
+#include "reference.hpp"
+
+namespace clothsim {
+
+// `fields`: every mesh's nodes, concatenated (Constants::sdf), mesh m's from meshes[m].offset,
+// x fastest. A neighbour past the field's last x or y node is 0: no cell that sample_mesh_field
+// reads has its lower corner there.
+inline std::vector<glm::vec4> sdf_cell_texels(const std::vector<float>& fields, const std::vector<MeshC<float>>& meshes) {
+  std::vector<glm::vec4> texels(fields.size(), glm::vec4(0.f));
+  for (const MeshC<float>& m : meshes) {
+    const size_t nx = size_t(m.dims.x), ny = size_t(m.dims.y), nz = size_t(m.dims.z);
+    for (size_t z = 0; z < nz; ++z)
+      for (size_t y = 0; y < ny; ++y)
+        for (size_t x = 0; x < nx; ++x) {
+          const size_t k = m.offset + x + nx * (y + ny * z);
+          const bool right = x + 1 < nx, up = y + 1 < ny;
+          texels[k] = glm::vec4(fields[k], right ? fields[k + 1] : 0.f, up ? fields[k + nx] : 0.f,
+                                right && up ? fields[k + nx + 1] : 0.f);
+        }
+  }
+  return texels;
+}
+
+}  // namespace clothsim
