@@ -85,10 +85,6 @@ bool mesh_normal(MeshField m, vec3 grad, out vec3 n) {
   return true;
 }
 
-// A mass outside the offset surface that moved by rel further than its clearance: true if its
-// path (sampled every half node spacing, at most 8 samples) went through a closed mesh's wall
-// or an open mesh's shell, with t - x the way back to the sample before (passed_through_mesh
-// in the reference says how).
 // A mass phi from the surface, thickness its offset, that moved `moved` relative to the mesh:
 // true if it cannot have reached the offset surface (passed_through_mesh's first test, and
 // may_collide's on the same values).
@@ -97,6 +93,10 @@ bool stays_clear_of_mesh(float moved, float phi, float thickness) {
   return !(moved > clearance);
 }
 
+// A mass outside the offset surface that moved by rel further than its clearance: true if its
+// path (sampled every half node spacing, at most 8 samples) went through a closed mesh's wall
+// or an open mesh's shell, with t - x the way back to the sample before (passed_through_mesh
+// in the reference says how).
 bool passed_through_mesh(MeshField m, vec3 p, float phi, vec3 rel, out vec3 t_minus_x) {
   t_minus_x = vec3(0.0);
   float moved = length3(rel);
