@@ -298,7 +298,8 @@ bvec2 may_collide_pair(vec3 xi, vec3 di, vec3 xj, vec3 dj, bool friction) {
   return may;
 }
 
-// One mass (advance, predict, relax_vertices); the pair's second half is dead code.
+// One mass (advance, predict, relax_vertices): both halves of the pair get the same values, so
+// the compiler merges their fetches and arithmetic (common subexpressions) and drops the unused .y.
 bool may_collide(vec3 x, vec3 d, bool friction) { return may_collide_pair(x, d, x, d, friction).x; }
 
 // A mass deeper than 0.1 mm inside a sphere, or behind a plane's front, goes back to the

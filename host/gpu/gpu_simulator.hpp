@@ -177,8 +177,8 @@ class GpuSimulator {
   void settling_passes(int fixed);
   bool enabled_colour(int colour) const;  // has springs, of a type some cloth has on
   // The contact list (gpu_contacts.cpp, compute/contact_list.glsl): whether the step collides
-  // through it (any collider: every kind has its exact early test), the cleared list bound for advance, predict or
-  // a colour of a sweep, and collide_objects over what they listed.
+  // through it (any collider: every kind has its exact early test), the cleared list bound for
+  // advance, predict or a colour of a sweep, and collide_objects over what they listed.
   bool uses_contact_list() const;
   void start_contact_list();
   void collide_listed(bool friction = true);  // false: the sweeps' push-out (collide_objects' FRICTIONLESS)
