@@ -37,7 +37,8 @@ void main() {
   precise vec3 a = f * p.w;
   precise vec3 d = displacement_of(i).xyz * mat.keep.x + a * params.dt2;
   precise vec3 next = x + d;
-  if (u_collide_objects) list_if_collider_may_move(i, next, d, true);  // compute/contact_list.glsl
+  // (The clearance it returns is for the sweeps after predict: the classic step has none.)
+  if (u_collide_objects) list_if_collider_may_move(i, next, d);  // compute/contact_list.glsl
   disp[i] = vec4(d, 0.0);
   pos_out[i] = vec4(next, p.w);
 }

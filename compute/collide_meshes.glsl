@@ -15,6 +15,7 @@ struct MeshField {
   vec3 grid_min;
   float inv_voxel;
   ivec4 dims;  // w: the offset of node (0, 0, 0) in sdf_view
+  float slope;  // the sampled field's Lipschitz bound in the world (mesh_leaves_alone_after)
 };
 
 MeshField mesh_field(int k) {
@@ -22,6 +23,7 @@ MeshField mesh_field(int k) {
   vec4 r2 = texelFetch(meshes_view, MESH_TEXELS * k + 2), grid = texelFetch(meshes_view, MESH_TEXELS * k + 3);
   ivec4 dims = floatBitsToInt(texelFetch(meshes_view, MESH_TEXELS * k + 4));
   vec4 motion = texelFetch(meshes_view, MESH_TEXELS * k + 5), material = texelFetch(meshes_view, MESH_TEXELS * k + 6);
+  vec4 bound = texelFetch(meshes_view, MESH_TEXELS * k + 7);
   MeshField m;
   m.rows[0] = r0.xyz;
   m.rows[1] = r1.xyz;
@@ -36,6 +38,7 @@ MeshField mesh_field(int k) {
   m.grid_min = grid.xyz;
   m.inv_voxel = grid.w;
   m.dims = dims;
+  m.slope = bound.x;
   return m;
 }
 
@@ -45,16 +48,26 @@ vec3 mesh_world(MeshField m, vec3 v) {
   return w;
 }
 
-// The field at local point p: false outside the grid (sample_mesh_field in the reference).
-bool sample_mesh_field(MeshField m, vec3 p, out float phi, out vec3 grad) {
-  phi = 0.0;
-  grad = vec3(0.0);
-  precise vec3 g = (p - m.grid_min) * m.inv_voxel;
-  if (!(g.x >= 0.0 && g.y >= 0.0 && g.z >= 0.0 && g.x < float(m.dims.x - 1) && g.y < float(m.dims.y - 1) &&
-        g.z < float(m.dims.z - 1)))
-    return false;
-  vec3 cell = floor(g);
-  precise vec3 f = g - cell;
+// Whether local point p is inside the field's grid, and its grid coordinates g.
+bool inside_mesh_grid(MeshField m, vec3 p, out vec3 g) {
+  precise vec3 at = (p - m.grid_min) * m.inv_voxel;
+  g = at;
+  return at.x >= 0.0 && at.y >= 0.0 && at.z >= 0.0 && at.x < float(m.dims.x - 1) && at.y < float(m.dims.y - 1) &&
+         at.z < float(m.dims.z - 1);
+}
+
+// The field at local point p, and whether p is inside the grid. Outside, the value at the
+// grid's point nearest p: the field extended outward unchanged along each face's normal, as
+// Lipschitz as the field inside (the nearest point of a box moves no farther than p does),
+// which the contact list's bound needs (mesh_leaves_alone_after). Inside, the clamps change
+// nothing, so the value is the same bits as sample_mesh_field's.
+bool sample_mesh_field_clamped(MeshField m, vec3 p, out float phi, out vec3 grad) {
+  vec3 g;
+  bool inside = inside_mesh_grid(m, p, g);
+  vec3 top = vec3(m.dims.xyz - 1);
+  vec3 nearest = clamp(g, vec3(0.0), top);
+  vec3 cell = min(floor(nearest), top - 1.0);
+  precise vec3 f = nearest - cell;
   int nx = m.dims.x, nxy = m.dims.x * m.dims.y;
   int base = m.dims.w + int(cell.x) + nx * int(cell.y) + nxy * int(cell.z);
   // A texel holds a node and its +x, +y and +x+y neighbours (host/gpu/sdf_texels.hpp): the
@@ -72,7 +85,17 @@ bool sample_mesh_field(MeshField m, vec3 p, out float phi, out vec3 grad) {
   precise vec3 gradient = vec3(gx0 + (gx1 - gx0) * f.z, y0 + (y1 - y0) * f.z, z);
   phi = value;
   grad = gradient;
-  return true;
+  return inside;
+}
+
+// The field at local point p: false outside the grid (sample_mesh_field in the reference).
+bool sample_mesh_field(MeshField m, vec3 p, out float phi, out vec3 grad) {
+  bool inside = sample_mesh_field_clamped(m, p, phi, grad);
+  if (!inside) {
+    phi = 0.0;
+    grad = vec3(0.0);
+  }
+  return inside;
 }
 
 // The outward unit normal in the world; false where the field is flat.
@@ -152,13 +175,39 @@ void keep_out_of_mesh(MeshField m, inout vec3 x, inout vec3 d) {
 // Whether collide_with_mesh leaves a mass at x, moved by d, unchanged at its first tests: outside
 // the field's grid, or outside the offset surface with a path too short to have reached it.
 // The same functions on the same values as collide_with_mesh and passed_through_mesh, so the
-// contact list's decision (may_collide) is the one the full response makes.
-bool mesh_leaves_alone(MeshField m, vec3 x, vec3 d) {
+// contact list's decision (may_collide) is the one the full response makes. `clearance` takes
+// the min with this mesh's bound for mesh_leaves_alone_after (predict's is kept).
+bool mesh_leaves_alone(MeshField m, vec3 x, vec3 d, inout float clearance) {
   vec3 p = mesh_local(m, x - m.origin);
   float phi;
   vec3 grad;
-  if (!sample_mesh_field(m, p, phi, grad)) return true;
+  bool inside = sample_mesh_field_clamped(m, p, phi, grad);
+  // At s = x - d, where the mass started the substep, the (extended) field is at least
+  // phi - slope |d|: the clearance bound the passes after this one start from.
+  precise float below = (phi - m.slope * length3(d)) - m.thickness;
+  clearance = min(clearance, below);
+  if (!inside) return true;
   return !(phi < m.thickness) && stays_clear_of_mesh(length3(d - m.motion), phi, m.thickness);
+}
+
+// The same decision in the passes after predict (xpbd's and multigrid's sweeps) without a
+// field sample: a mass that predict found `clearance` outside every mesh's offset surface at
+// the substep's start s = x - d (the bound above, kept in its displacement's w) is still at
+// least clearance - slope |d| outside at x, the field being slope-Lipschitz along the way
+// (inside the grid the trilinear interpolant of nodes whose neighbours differ by at most D per
+// axis has a gradient of at most |D| / spacing: host/gpu/sdf_texels.hpp, sdf_slopes). Where
+// that exceeds the way it moved relative to the mesh, with a margin for the rounding of every
+// step (the samples, the frame change, x - d drifting by an ulp per correction), the response
+// would stop at its first tests: left alone. Otherwise listed, and the listed response samples
+// and decides: a listed mass it leaves alone costs time, never bits. A clearance of 0 (a pass
+// that does not keep it, a pinned mass) lists every mass inside the grid.
+bool mesh_leaves_alone_after(MeshField m, vec3 x, vec3 d, float clearance) {
+  vec3 p = mesh_local(m, x - m.origin), g;
+  if (!inside_mesh_grid(m, p, g)) return true;
+  precise float scale = ((length3(x) + length3(m.origin)) + length3(m.grid_min)) + (abs(clearance) + 0.01);
+  precise float margin = 1e-4 * (1.0 + m.slope) * scale;
+  precise float room = (clearance - m.slope * length3(d)) - margin;
+  return room > length3(d - m.motion);
 }
 
 // One mesh collider (collide_with_mesh in the reference).

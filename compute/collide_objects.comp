@@ -24,12 +24,13 @@ void main() {
 #endif
   vec4 p = position_of(i);
   if (p.w == 0.0) return;
-  vec3 x = p.xyz, d = displacement_of(i).xyz;
+  vec4 moved = displacement_of(i);
+  vec3 x = p.xyz, d = moved.xyz;
 #ifdef FRICTIONLESS
   collide_with_objects_friction(x, d, false);  // the push-out after a sweep's correction
 #else
   collide_with_objects(x, d);
 #endif
   pos[i] = vec4(x, p.w);
-  disp[i] = vec4(d, 0.0);
+  disp[i] = vec4(d, moved.w);  // x - d stays: so does predict's clearance bound in w
 }

@@ -260,7 +260,8 @@ void collide_with_objects(inout vec3 x, inout vec3 d) { collide_with_objects_fri
 // Whether one collider's response could change a mass at x that moved by d (its motion m):
 // false only where it would leave the mass at its first test (a path that stays outside a
 // sphere, a mass that did not cross a plane and ends in front; for a mesh, mesh_leaves_alone),
-// computed by the same functions on the same values as the response.
+// computed by the same functions on the same values as the response (or, for a mesh after
+// predict, a bound of them: mesh_leaves_alone_after).
 bool sphere_may_move(vec4 origin_radius, vec3 m, vec3 x, vec3 d) {
   float dist = length3(x - origin_radius.xyz);
   return !(dist > origin_radius.w) || !path_stays_outside(dist, origin_radius.w, d - m);
@@ -272,12 +273,10 @@ bool plane_may_move(vec4 point_front, vec3 n, vec3 m, vec3 x, vec3 d, bool frict
 }
 bvec2 or_each(bvec2 may, bool i, bool j) { return bvec2(may.x || i, may.y || j); }
 
-// Whether collide_with_objects_friction could change masses i and j (a spring's ends in a sweep):
-// true where some collider may move it, so the decision is the one the full response makes and
-// skipping a mass is exact. Each collider's parameters are fetched once for both (on llvmpipe a
-// fetch is a call, dearer than the tests). The passes list the masses it is true for, and
-// collide_objects runs on those alone (compute/contact_list.glsl).
-bvec2 may_collide_pair(vec3 xi, vec3 di, vec3 xj, vec3 dj, bool friction) {
+// Whether a sphere or a plane could change masses i and j (a spring's ends in a sweep): true
+// where one may move it. Each collider's parameters are fetched once for both (on llvmpipe a
+// fetch is a call, dearer than the tests).
+bvec2 analytic_may_move_pair(vec3 xi, vec3 di, vec3 xj, vec3 dj, bool friction) {
   bvec2 may = bvec2(false);
   for (int s = 0; s < sphere_count(); ++s) {
     vec4 origin_radius = texelFetch(spheres_view, SPHERE_TEXELS * s);
@@ -291,16 +290,46 @@ bvec2 may_collide_pair(vec3 xi, vec3 di, vec3 xj, vec3 dj, bool friction) {
     may = or_each(may, plane_may_move(point_front, n, m, xi, di, friction),
                   plane_may_move(point_front, n, m, xj, dj, friction));
   }
-  for (int k = 0; k < mesh_count(); ++k) {
-    MeshField field = mesh_field(k);
-    may = or_each(may, !mesh_leaves_alone(field, xi, di), !mesh_leaves_alone(field, xj, dj));
-  }
   return may;
 }
 
-// One mass (advance, predict, relax_vertices): both halves of the pair get the same values, so
-// the compiler merges their fetches and arithmetic (common subexpressions) and drops the unused .y.
-bool may_collide(vec3 x, vec3 d, bool friction) { return may_collide_pair(x, d, x, d, friction).x; }
+// Whether every mesh collider leaves a mass at x, moved by d, alone (mesh_leaves_alone, a field
+// sample each), and the mass's clearance bound for the passes after predict: the least over
+// the meshes, 0 where it is not positive or there is no mesh (0: no bound).
+bool meshes_leave_alone(vec3 x, vec3 d, out float clearance) {
+  bool alone = true;
+  float least = 3.0e38;
+  for (int k = 0; k < mesh_count(); ++k) {
+    MeshField field = mesh_field(k);
+    bool this_one = mesh_leaves_alone(field, x, d, least);  // (not inside &&: every mesh bounds `least`)
+    alone = alone && this_one;
+  }
+  clearance = mesh_count() > 0 && least > 0.0 ? least : 0.0;
+  return alone;
+}
+
+// Whether collide_with_objects_friction could change a mass at x that moved by d (advance,
+// predict: their own positions): true where some collider may move it, so the decision is the
+// one the full response makes and skipping a mass is exact. Also its clearance bound
+// (meshes_leave_alone).
+bool may_collide(vec3 x, vec3 d, bool friction, out float clearance) {
+  bool meshes_alone = meshes_leave_alone(x, d, clearance);
+  return analytic_may_move_pair(x, d, x, d, friction).x || !meshes_alone;
+}
+
+// The same for masses i and j in the passes after predict (xpbd's and multigrid's sweeps), each
+// with the clearance predict kept: the meshes decide without a field sample
+// (mesh_leaves_alone_after), listing a mass near a mesh that the response may then leave
+// alone. The passes list the masses it is true for, and collide_objects runs on those alone
+// (compute/contact_list.glsl).
+bvec2 may_collide_pair_after(vec3 xi, vec3 di, float ci, vec3 xj, vec3 dj, float cj, bool friction) {
+  bvec2 may = analytic_may_move_pair(xi, di, xj, dj, friction);
+  for (int k = 0; k < mesh_count(); ++k) {
+    MeshField field = mesh_field(k);
+    may = or_each(may, !mesh_leaves_alone_after(field, xi, di, ci), !mesh_leaves_alone_after(field, xj, dj, cj));
+  }
+  return may;
+}
 
 // A mass deeper than 0.1 mm inside a sphere, or behind a plane's front, goes back to the
 // surface without friction (keep_out_of_colliders in host/core/reference_collisions.cpp).

@@ -26,19 +26,22 @@ void list_contact(int i) {
   atomicMax(contacts.header.x, k / uint(WORKGROUP_SIZE) + 1u);
 }
 
-// Mass i at x, moved by d, at the end of its pass: listed for collide_objects after the pass
-// where a collider may move it (with `friction`: advance and predict; without: the push-out
-// after a sweep's correction). The same bits as the response inline.
-void list_if_collider_may_move(int i, vec3 x, vec3 d, bool friction) {
-  if (may_collide(x, d, friction)) list_contact(i);
+// Mass i at x, moved by d, at the end of advance or predict: listed for collide_objects (with
+// friction) where a collider may move it. Returns the mass's clearance bound (may_collide) for
+// its displacement's w, which the later passes of the substep keep.
+float list_if_collider_may_move(int i, vec3 x, vec3 d) {
+  float clearance;
+  if (may_collide(x, d, true, clearance)) list_contact(i);
+  return clearance;
 }
 
-// The same for a spring's two ends after a sweep's correction (no friction), a pinned end
-// (`free` false) never listed.
-void list_ends_if_collider_may_move(int i, vec3 xi, vec3 di, int j, vec3 xj, vec3 dj, bvec2 free) {
-  bvec2 may = may_collide_pair(xi, di, xj, dj, false);
+// The same after a sweep's correction (no friction: the push-out) for a spring's two ends, each
+// with the clearance predict left it, a pinned end (`free` false) never listed; and for one mass
+// (multigrid's relax_vertices: i = j). The same bits as the response inline.
+void list_ends_if_collider_may_move(int i, vec3 xi, vec3 di, float ci, int j, vec3 xj, vec3 dj, float cj, bvec2 free) {
+  bvec2 may = may_collide_pair_after(xi, di, ci, xj, dj, cj, false);
   if (may.x && free.x) list_contact(i);
-  if (may.y && free.y) list_contact(j);
+  if (may.y && free.y && j != i) list_contact(j);
 }
 
 #endif

@@ -30,7 +30,7 @@ using uint = uint32_t;
 // simulator binds them once per step; nothing else uses these points, so they stay put while
 // the renderer, the scan and the divergence guard bind their own.
 #define BINDING_POSITIONS 0   // vec4: xyz position, w inverse mass (0 = pinned)
-#define BINDING_DISPLACEMENT 1    // vec4: xyz position one substep ago
+#define BINDING_DISPLACEMENT 1    // vec4: xyz x - x_prev (the substep's move so far), w predict's clearance bound (predict.comp; 0 in a State)
 #define BINDING_FORCES 2      // vec4: xyz force of this substep
 #define BINDING_NORMALS 3     // vec4: xyz unit vertex normal
 #define BINDING_SPRINGS 4     // SpringTexel per spring, sorted by colour (ClothModel::springs)
@@ -113,7 +113,7 @@ using uint = uint32_t;
 #define MATERIAL_TEXELS 2
 #define SPHERE_TEXELS 3
 #define PLANE_TEXELS 3
-#define MESH_TEXELS 7
+#define MESH_TEXELS 8
 // Uniform block binding.
 #define BINDING_STEP_PARAMS 0
 
@@ -168,6 +168,7 @@ struct MeshCollider {
   ivec4 dims;      // xyz nodes along x, y, z, w the offset of node (0, 0, 0) (read as floatBitsToInt)
   vec4 motion;     // xyz m over this substep, w = 1 - friction
   vec4 material;   // x friction (xpbd's Coulomb mu), y thickness (m), z crossing (MeshC), w 1 closed, 0 open
+  vec4 bound;      // x the field's slope bound in the world (sdf_slopes), yzw unused
 };
 
 // Per-vertex extras of a drawn mesh: a collider's uv and tangent; the cloth's uv, and in uv.zw the particles

@@ -85,7 +85,13 @@ void main() {
       d = d + corr;
     }
   }
-  if (u_collide_objects) list_if_collider_may_move(i, next, d, true);  // compute/contact_list.glsl
+  // w: the mass's clearance bound from the meshes, which the sweep's contact list reads
+  // (mesh_leaves_alone_after) and every pass up to it keeps; 0 is no bound.
+  float clearance = 0.0;
+  if (u_collide_objects)
+    clearance = list_if_collider_may_move(i, next, d);  // compute/contact_list.glsl
+  else if (has_colliders())
+    meshes_leave_alone(next, d, clearance);  // the self-contacts collide before the sweep lists
   pos[i] = vec4(next, p.w);
-  disp[i] = vec4(d, 0.0);
+  disp[i] = vec4(d, clearance);
 }

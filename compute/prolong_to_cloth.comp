@@ -30,9 +30,10 @@ void main() {
   }
   // From the prediction to the start (the offset predict left) plus the correction.
   precise vec3 x = (p.xyz + off) + e;
-  precise vec3 d = (displacement_of(i).xyz + off) + e;
+  vec4 before = displacement_of(i);
+  precise vec3 d = (before.xyz + off) + e;
   precise vec3 moved = off + e;
   pos[i] = vec4(x, p.w);
-  disp[i] = vec4(d, 0.0);
+  disp[i] = vec4(d, before.w);  // predict's clearance bound (x - d stays)
   offset[i] = vec4(moved, 0.0);
 }

@@ -22,7 +22,8 @@ void main() {
   vec4 p = position_of(i);
   float wi = p.w;
   if (wi == 0.0) return;
-  precise vec3 x = p.xyz, d = displacement_of(i).xyz, off = offset_of(i);
+  vec4 moved = displacement_of(i);  // w: predict's clearance bound (x - d stays)
+  precise vec3 x = p.xyz, d = moved.xyz, off = offset_of(i);
   float mass;
   Material mat = material_and_mass_of(i, mass);
   precise float inertia = mass * params.inv_dt2;
@@ -77,8 +78,8 @@ void main() {
   }
   // A correction must not push a mass into a collider or through a plane (as in xpbd's sweep).
   // Applied after this colour to the masses it lists (compute/contact_list.glsl).
-  if (has_colliders()) list_if_collider_may_move(i, x, d, false);
+  if (has_colliders()) list_ends_if_collider_may_move(i, x, d, moved.w, i, x, d, moved.w, bvec2(true));
   pos[i] = vec4(x, wi);
-  disp[i] = vec4(d, 0.0);
+  disp[i] = vec4(d, moved.w);
   offset[i] = vec4(off, 0.0);
 }

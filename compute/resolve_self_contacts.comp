@@ -101,7 +101,8 @@ void main() {
   acc = visit_row(acc, xi, rest_i, c, 1, 1);
   precise vec3 sum = acc.sum;
   uint hits = acc.hits;
-  precise vec3 d = displacement_of(i).xyz;
+  vec4 moved = displacement_of(i);  // w: predict's clearance bound (x - d stays)
+  precise vec3 d = moved.xyz;
   if (hits > 0u) {
     // Classic: the average over the contacts, spread over the substeps (DESIGN.md §1.3).
     // Bounded: the average, whole, every substep.
@@ -113,6 +114,6 @@ void main() {
     d = d + corr;  // x_prev stays where it was
   }
   if (u_collide_objects) collide_with_objects(xi, d);
-  disp[i] = vec4(d, 0.0);
+  disp[i] = vec4(d, moved.w);
   pos_out[i] = vec4(xi, p.w);
 }

@@ -28,7 +28,8 @@ void main() {
   if (wsum == 0.0) return;  // both ends pinned
   float alpha = compliance(mat, type);
   precise vec3 xi = pi.xyz, xj = pj.xyz;
-  precise vec3 di = displacement_of(i).xyz, dj = displacement_of(j).xyz;
+  vec4 moved_i = displacement_of(i), moved_j = displacement_of(j);  // w: predict's clearance bounds (x - d stays)
+  precise vec3 di = moved_i.xyz, dj = moved_j.xyz;
   precise vec3 e = xj - xi;
   float len = length3(e);
   if (len > 0.0) {
@@ -59,9 +60,10 @@ void main() {
   // A correction must not push a mass into a collider or through a plane, where the collision
   // test of the next substep could no longer see it (docs/model.md).
   // Applied after this colour to the masses it lists (compute/contact_list.glsl).
-  if (has_colliders()) list_ends_if_collider_may_move(i, xi, di, j, xj, dj, bvec2(pi.w != 0.0, pj.w != 0.0));
+  if (has_colliders())
+    list_ends_if_collider_may_move(i, xi, di, moved_i.w, j, xj, dj, moved_j.w, bvec2(pi.w != 0.0, pj.w != 0.0));
   pos[i].xyz = xi;
   pos[j].xyz = xj;
-  disp[i] = vec4(di, 0.0);
-  disp[j] = vec4(dj, 0.0);
+  disp[i] = vec4(di, moved_i.w);
+  disp[j] = vec4(dj, moved_j.w);
 }

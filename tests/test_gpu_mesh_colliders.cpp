@@ -1,11 +1,15 @@
 // The GPU twin of tests/test_mesh_colliders.cpp: a cloth dropped onto each mesh shape gives the
 // reference's floats pass by pass and over a whole run (bit for bit on llvmpipe), and never has
 // a mass deeper than half a node + 0.1 mm inside the exact shape.
+#include <algorithm>
+#include <random>
+
 #include "backend.hpp"
 #include "cloth.hpp"
 #include "gpu_pass_fixtures.hpp"
 #include "mesh_collider.hpp"
 #include "mesh_collider_cases.hpp"
+#include "reference_detail.hpp"
 #include "sdf_texels.hpp"
 
 TEST_CASE("mesh colliders on the GPU: every pass and a whole drop as the reference, and nothing inside",
@@ -15,7 +19,8 @@ TEST_CASE("mesh colliders on the GPU: every pass and a whole drop as the referen
   for (const test::Shape& shape : test::shapes()) {
     const std::string obj = dir / (shape.name + ".obj");
     test::write_obj(shape.mesh, obj);
-    for (const char* solver : {"classic", "xpbd"}) {
+    // (xpbd's and multigrid's sweeps list from predict's clearance bound: mesh_leaves_alone_after.)
+    for (const char* solver : {"classic", "xpbd", "multigrid"}) {
       INFO(shape.name << ", " << solver);
       // A moving mesh too (the torus rises 5 cm in the first half second), for the motion terms.
       const std::string motion = shape.name == "torus"
@@ -82,4 +87,62 @@ TEST_CASE("a field's texel holds its node and the node's +x, +y and +x+y neighbo
           INFO("node " << x << ", " << y << ", " << z << " of the field at " << m.offset);
           CHECK(t == glm::vec4(node(x, y), node(x + 1, y), node(x, y + 1), node(x + 1, y + 1)));
         }
+}
+
+// The contact list's bound (mesh_leaves_alone_after in compute/collide_meshes.glsl) needs each
+// field's slope bound (sdf_slopes) to hold between any two points: checked on the sampled
+// fields of the three shapes and of an open box (an unsigned field), 4,000 pairs each, within
+// a cell and across the grid; and exactly on a field that is a linear function.
+TEST_CASE("a field's slope bound holds between any two points of its grid", "[mesh_collider]") {
+  test::TempDir dir("gpu_mesh_colliders", "slopes");
+  std::vector<test::Shape> shapes = test::shapes();
+  test::Shape open_box = shapes[0];
+  open_box.name = "open box";
+  open_box.mesh.triangles.resize(open_box.mesh.triangles.size() - 2);  // one face gone: not closed
+  shapes.push_back(open_box);
+  std::mt19937 rng(7);
+  for (const test::Shape& shape : shapes) {
+    INFO(shape.name);
+    const std::string obj = dir / (shape.name + ".obj");
+    test::write_obj(shape.mesh, obj);
+    const Scene s = test::drop_onto_mesh(obj, "xpbd");
+    const auto c = make_constants<float>(s, build_cloth(s));
+    REQUIRE(c.meshes.size() == 1);
+    const MeshC<float>& m = c.meshes[0];
+    CHECK(m.closed == (shape.name != "open box"));
+    const float slope = sdf_slopes(*c.sdf, c.meshes).at(0);
+    INFO("slope bound " << slope);
+    // A distance field's neighbours differ by at most a spacing: at most sqrt(3).
+    CHECK(slope >= 0.9f);
+    CHECK(slope <= 1.7321f);
+    const glm::dvec3 extent = glm::dvec3(m.dims - 1) / double(m.inv_voxel);
+    std::uniform_real_distribution<double> unit(0.0, 0.999999);
+    double worst = 0;  // the largest |phi(a) - phi(b)| / |a - b| seen
+    for (int k = 0; k < 4000; ++k) {
+      const glm::dvec3 a = glm::dvec3(unit(rng), unit(rng), unit(rng)) * extent;
+      // Every other pair within one node spacing: the slope inside and across a few cells.
+      const double reach = k % 2 == 0 ? 1.0 / m.inv_voxel : glm::length(extent);
+      glm::dvec3 b = a + (glm::dvec3(unit(rng), unit(rng), unit(rng)) - 0.5) * reach;
+      b = glm::clamp(b, glm::dvec3(0.0), extent * 0.999999);
+      float pa = 0, pb = 0;
+      Vec3<float> grad;
+      REQUIRE(sample_mesh_field(m, c.sdf->data(), Vec3<float>(m.grid_min) + Vec3<float>(a), pa, grad));
+      REQUIRE(sample_mesh_field(m, c.sdf->data(), Vec3<float>(m.grid_min) + Vec3<float>(b), pb, grad));
+      const double apart = glm::length(b - a);
+      if (apart > 1e-4) worst = std::max(worst, std::abs(double(pa) - double(pb)) / apart);
+    }
+    INFO("steepest sampled " << worst);
+    CHECK(worst <= slope * (1 + 1e-3));
+    CHECK(worst >= 0.5 * slope);  // and the bound is not loose by much
+  }
+  // A field of nodes on a plane, phi = 0.3 x - 0.4 y + 1.2 z (m): slope 1.3, exactly as measured.
+  std::vector<MeshC<float>> plane(1);
+  plane[0].dims = {4, 5, 3};
+  plane[0].inv_voxel = 50.f;  // 2 cm
+  std::vector<float> nodes;
+  for (int z = 0; z < 3; ++z)
+    for (int y = 0; y < 5; ++y)
+      for (int x = 0; x < 4; ++x) nodes.push_back(float((0.3 * x - 0.4 * y + 1.2 * z) * 0.02));
+  CHECK(sdf_slopes(nodes, plane).at(0) == Approx(1.3).epsilon(1e-5));
+  CHECK(sdf_slopes(nodes, plane).at(0) >= 1.3f * (1 - 1e-6f));
 }

@@ -15,22 +15,6 @@ void GpuSimulator::upload_colliders() {
   for (auto& s : constants_.spheres) spheres.push_back({v4(s.origin, s.radius), {s.keep, s.mu, 0.f, 0.f}, v4(s.motion, 0.f)});
   std::vector<layout::PlaneCollider> planes;
   for (auto& p : constants_.planes) planes.push_back({v4(p.point, p.front), v4(p.normal, p.keep), v4(p.motion, p.mu)});
-  std::vector<layout::MeshCollider> meshes;
-  for (auto& m : constants_.meshes) {
-    layout::MeshCollider g;
-    g.row0 = v4(m.rows[0], m.origin.x);
-    g.row1 = v4(m.rows[1], m.origin.y);
-    g.row2 = v4(m.rows[2], m.origin.z);
-    g.grid = v4(m.grid_min, m.inv_voxel);
-    g.dims = glm::ivec4(m.dims, int(m.offset));
-    g.motion = v4(m.motion, m.keep);
-    g.material = glm::vec4(m.mu, m.thickness, m.crossing, m.closed ? 1.f : 0.f);
-    meshes.push_back(g);
-  }
-  // A storage buffer may not be empty when bound: keep one dummy element for zero colliders.
-  if (spheres.empty()) spheres.resize(1);
-  if (planes.empty()) planes.resize(1);
-  if (meshes.empty()) meshes.resize(1);
   // The fields never change during a run: uploaded when the constants bring another set.
   const std::vector<float>* sdf = constants_.sdf.get();
   if (sdf != sdf_source_ || sdf_.size() == 0) {
@@ -45,7 +29,28 @@ void GpuSimulator::upload_colliders() {
     gl::upload_vector(sdf_, texels, GL_STATIC_DRAW);
     sdf_view_.attach(sdf_, GL_RGBA32F);
     sdf_source_ = sdf;
+    sdf_slopes_.clear();
   }
+  // Each field's slope bound, measured once per set of fields (the contact list's bound).
+  if (sdf_slopes_.size() != constants_.meshes.size())
+    sdf_slopes_ = sdf != nullptr ? sdf_slopes(*sdf, constants_.meshes) : std::vector<float>(constants_.meshes.size(), 1e30f);
+  std::vector<layout::MeshCollider> meshes;
+  for (auto& m : constants_.meshes) {
+    layout::MeshCollider g;
+    g.row0 = v4(m.rows[0], m.origin.x);
+    g.row1 = v4(m.rows[1], m.origin.y);
+    g.row2 = v4(m.rows[2], m.origin.z);
+    g.grid = v4(m.grid_min, m.inv_voxel);
+    g.dims = glm::ivec4(m.dims, int(m.offset));
+    g.motion = v4(m.motion, m.keep);
+    g.material = glm::vec4(m.mu, m.thickness, m.crossing, m.closed ? 1.f : 0.f);
+    g.bound = glm::vec4(sdf_slopes_[meshes.size()], 0.f, 0.f, 0.f);
+    meshes.push_back(g);
+  }
+  // A storage buffer may not be empty when bound: keep one dummy element for zero colliders.
+  if (spheres.empty()) spheres.resize(1);
+  if (planes.empty()) planes.resize(1);
+  if (meshes.empty()) meshes.resize(1);
   const size_t mesh_bytes = meshes.size() * sizeof(meshes[0]);
   if (meshes_.size() == mesh_bytes) {
     meshes_.upload(0, mesh_bytes, meshes.data());
@@ -125,7 +130,7 @@ void GpuSimulator::set_parameters(const Scene& scene) {
     // keep their forces (the same function the reference uses, so both sides round alike).
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     State<float> s;
-    s.disp = gl::download_vector<Vec4<float>>(displacement_);
+    s.disp = download_displacement();
     s.lambda = gl::download_vector<Vec4<float>>(multipliers_);
     rescale_displacement(s, scene.dt() / dt_);
     gl::upload_vector(displacement_, s.disp);

@@ -115,6 +115,7 @@ class GpuSimulator {
   // Explicit transfers for export, validation and tests.
   void upload(const State<float>& state);  // pos, disp, and force and wind when present
   void download(State<float>& state);  // pos, disp, force, normal, and wind with wind
+  std::vector<Vec4<float>> download_displacement() const;  // w zeroed: the GPU's scratch (predict.comp)
 
   // Live edits from the viewer. Parameters that keep the grid (stiffness, damping, density,
   // gravity, steps, thickness, ...) apply without a restart; a changed mass rescales every
@@ -205,6 +206,7 @@ class GpuSimulator {
   // mesh's field, uploaded once (sdf_source_: the Constants::sdf it holds).
   gl::Buffer meshes_{"mesh colliders"}, sdf_{"mesh fields"};
   const std::vector<float>* sdf_source_ = nullptr;
+  std::vector<float> sdf_slopes_;  // per mesh collider, its field's slope bound (sdf_slopes)
   // Read-only views of the buffers above (compute/particle_views.glsl).
   gl::BufferTexture positions_view_{"positions view"}, positions_out_view_{"positions out view"};
   gl::BufferTexture displacement_view_{"displacement view"}, springs_view_{"springs view"}, spheres_view_{"spheres view"};

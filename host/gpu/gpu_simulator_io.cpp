@@ -35,11 +35,19 @@ void GpuSimulator::upload(const State<float>& s) {
   attach_views();
 }
 
+// The displacements as the state holds them: w, which the reference keeps 0, is the GPU's own
+// scratch within a substep (predict's clearance bound for the contact list, compute/predict.comp).
+std::vector<Vec4<float>> GpuSimulator::download_displacement() const {
+  std::vector<Vec4<float>> disp = gl::download_vector<Vec4<float>>(displacement_);
+  for (Vec4<float>& d : disp) d.w = 0.f;
+  return disp;
+}
+
 void GpuSimulator::download(State<float>& s) {
   // Shader writes must be visible to glGetBufferSubData.
   glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
   s.pos = gl::download_vector<Vec4<float>>(positions_);
-  s.disp = gl::download_vector<Vec4<float>>(displacement_);
+  s.disp = download_displacement();
   s.force = gl::download_vector<Vec4<float>>(forces_);
   s.normal = gl::download_vector<Vec4<float>>(normals_);
   if (constants_.wind.enabled) s.wind = gl::download_vector<Vec4<float>>(wind_forces_);
