@@ -36,12 +36,18 @@ float list_if_collider_may_move(int i, vec3 x, vec3 d) {
 }
 
 // The same after a sweep's correction (no friction: the push-out) for a spring's two ends, each
-// with the clearance predict left it, a pinned end (`free` false) never listed; and for one mass
-// (multigrid's relax_vertices: i = j). The same bits as the response inline.
+// with the clearance predict left it, a pinned end (`free` false) never listed (xpbd's sweep).
+// The same bits as the response inline.
 void list_ends_if_collider_may_move(int i, vec3 xi, vec3 di, float ci, int j, vec3 xj, vec3 dj, float cj, bvec2 free) {
   bvec2 may = may_collide_pair_after(xi, di, ci, xj, dj, cj, false);
   if (may.x && free.x) list_contact(i);
-  if (may.y && free.y && j != i) list_contact(j);
+  if (may.y && free.y) list_contact(j);
+}
+
+// One free mass after its correction, with its clearance (multigrid's relax_vertices): both
+// halves of the pair get the same values, so the compiler merges them (as in may_collide).
+void list_if_collider_may_push(int i, vec3 x, vec3 d, float clearance) {
+  if (may_collide_pair_after(x, d, clearance, x, d, clearance, false).x) list_contact(i);
 }
 
 #endif
