@@ -131,8 +131,11 @@ bool passed_through_mesh(MeshField m, vec3 p, float phi, vec3 rel, out vec3 t_mi
   precise vec3 start = p - step_all;
   float prev_phi = 0.0, prev_slope = 0.0;
   bool prev_in_grid = false;
-  for (int k = 0; k <= samples; ++k) {
-    if (m.closed && (k == 0 || k == samples)) continue;
+  // A closed mesh's ends are not sampled (the path starts and ends outside it): the loop leaves
+  // them out rather than skipping them, since llvmpipe runs a loop's body as often as its longest
+  // lane, skipped or not. The same samples in the same order as the reference.
+  int first = m.closed ? 1 : 0, last = m.closed ? samples - 1 : samples;
+  for (int k = first; k <= last; ++k) {
     precise vec3 q = start + step_all * (float(k) / float(samples));
     float phi_q;
     vec3 grad;

@@ -98,8 +98,9 @@ bool passed_through_mesh(const MeshC<R>& m, const float* sdf, const Vec3<R>& p, 
   const Vec3<R> start = p - step_all;
   R prev_phi = R(0), prev_slope = R(0);
   bool prev_in_grid = false;
-  for (int k = 0; k <= samples; ++k) {
-    if (m.closed && (k == 0 || k == samples)) continue;  // both ends are outside
+  // A closed mesh's path starts and ends outside it: its ends are not sampled.
+  const int first = m.closed ? 1 : 0, last = m.closed ? samples - 1 : samples;
+  for (int k = first; k <= last; ++k) {
     const Vec3<R> q = start + step_all * (R(k) / R(samples));
     R phi_q;
     Vec3<R> grad;
