@@ -31,6 +31,8 @@ void main() {
 #else
   collide_with_objects(x, d);
 #endif
-  pos[i] = vec4(x, p.w);
-  disp[i] = vec4(d, moved.w);  // x - d stays: so does predict's clearance bound in w
+  // Only xyz: w (the inverse mass; predict's clearance bound, which stays with x - d) is
+  // unchanged, and llvmpipe stores a storage buffer's vector component by component.
+  pos[i].xyz = x;
+  disp[i].xyz = d;
 }

@@ -33,7 +33,9 @@ void main() {
   vec4 before = displacement_of(i);
   precise vec3 d = (before.xyz + off) + e;
   precise vec3 moved = off + e;
-  pos[i] = vec4(x, p.w);
-  disp[i] = vec4(d, before.w);  // predict's clearance bound (x - d stays)
-  offset[i] = vec4(moved, 0.0);
+  // Only xyz: every w stays (the inverse mass, predict's clearance bound as x - d stays, the
+  // offset's 0), and llvmpipe stores a storage buffer's vector component by component.
+  pos[i].xyz = x;
+  disp[i].xyz = d;
+  offset[i].xyz = moved;
 }

@@ -79,7 +79,8 @@ void main() {
   // A correction must not push a mass into a collider or through a plane (as in xpbd's sweep).
   // Applied after this colour to the masses it lists (compute/contact_list.glsl).
   if (has_colliders()) list_if_collider_may_push(i, x, d, moved.w);
-  pos[i] = vec4(x, wi);
-  disp[i] = vec4(d, moved.w);
-  offset[i] = vec4(off, 0.0);
+  // Only xyz, every w unchanged (as in prolong_to_cloth).
+  pos[i].xyz = x;
+  disp[i].xyz = d;
+  offset[i].xyz = off;
 }

@@ -114,6 +114,6 @@ void main() {
     d = d + corr;  // x_prev stays where it was
   }
   if (u_collide_objects) collide_with_objects(xi, d);
-  disp[i] = vec4(d, moved.w);
+  disp[i].xyz = d;  // w, predict's clearance bound, stays with x - d
   pos_out[i] = vec4(xi, p.w);
 }

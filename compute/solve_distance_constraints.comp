@@ -64,6 +64,8 @@ void main() {
     list_ends_if_collider_may_move(i, xi, di, moved_i.w, j, xj, dj, moved_j.w, bvec2(pi.w != 0.0, pj.w != 0.0));
   pos[i].xyz = xi;
   pos[j].xyz = xj;
-  disp[i] = vec4(di, moved_i.w);
-  disp[j] = vec4(dj, moved_j.w);
+  // Only xyz: w, predict's clearance bound, stays with x - d (llvmpipe stores a storage
+  // buffer's vector component by component).
+  disp[i].xyz = di;
+  disp[j].xyz = dj;
 }

@@ -44,6 +44,7 @@ void main() {
   }
   pos[i].xyz = xi;
   pos[j].xyz = xj;
-  disp[i] = vec4(di, 0.0);
-  disp[j] = vec4(dj, 0.0);
+  // Only xyz: w, a clearance bound where predict left one, stays valid with x - d.
+  disp[i].xyz = di;
+  disp[j].xyz = dj;
 }
