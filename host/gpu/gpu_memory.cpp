@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include "context.hpp"
 #include "objects.hpp"
 #include "spatial_hash.hpp"
 #include "../../compute/layout.glsl"
@@ -27,18 +28,36 @@ bool has_extension(const char* name) {
 
 }  // namespace
 
+std::optional<GpuMemoryInfo> memory_report(const std::string& renderer, std::optional<int64_t> nvx_available_kib,
+                                           std::optional<int64_t> ati_free_kib) {
+  // Mesa's software rasterizers draw from the machine's memory, which the driver does not
+  // track as a device's: since Mesa 24 every Gallium driver exposes GL_NVX_gpu_memory_info,
+  // and llvmpipe (Mesa 25.0) answers 0 or a few MiB there, which refused a 256^2 cloth on a
+  // machine with 24 GiB free. There, as with no report, an allocation that fails says so
+  // (GL_OUT_OF_MEMORY, gl::Buffer::allocate).
+  for (const char* software : {"llvmpipe", "softpipe"})
+    if (renderer.find(software) != std::string::npos) return std::nullopt;
+  // Nothing free at all is a driver that does not count, not a full GPU: a context could not
+  // have been made on one.
+  if (nvx_available_kib && *nvx_available_kib > 0)
+    return GpuMemoryInfo{uint64_t(*nvx_available_kib) * 1024, "GL_NVX_gpu_memory_info"};
+  if (ati_free_kib && *ati_free_kib > 0) return GpuMemoryInfo{uint64_t(*ati_free_kib) * 1024, "GL_ATI_meminfo"};
+  return std::nullopt;
+}
+
 std::optional<GpuMemoryInfo> available_gpu_memory() {
+  std::optional<int64_t> nvx, ati;
   if (has_extension("GL_NVX_gpu_memory_info")) {
     GLint kib = 0;
     glGetIntegerv(kNvxCurrentAvailableVidmem, &kib);
-    return GpuMemoryInfo{uint64_t(kib) * 1024, "GL_NVX_gpu_memory_info"};
+    nvx = kib;
   }
   if (has_extension("GL_ATI_meminfo")) {
     GLint kib[4] = {};
     glGetIntegerv(kAtiVboFreeMemory, kib);
-    return GpuMemoryInfo{uint64_t(kib[0]) * 1024, "GL_ATI_meminfo"};
+    ati = kib[0];
   }
-  return std::nullopt;
+  return memory_report(gl::gl_renderer_string(), nvx, ati);
 }
 
 uint64_t simulator_bytes(const ClothModel& model) {

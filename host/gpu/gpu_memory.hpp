@@ -1,6 +1,7 @@
-// Free GPU memory, where the driver tells: GL_NVX_gpu_memory_info (NVIDIA) or GL_ATI_meminfo
-// (AMD). Mesa's llvmpipe and most other drivers have neither; there the check does not apply
-// and an allocation that fails reports GL_OUT_OF_MEMORY instead (gl::Buffer::allocate).
+// Free GPU memory, where the driver tells: GL_NVX_gpu_memory_info (NVIDIA; every Gallium driver
+// since Mesa 24) or GL_ATI_meminfo (AMD). Where it does not, or where the renderer is Mesa's
+// software rasterizer (its memory is the machine's), the check does not apply and an allocation
+// that fails reports GL_OUT_OF_MEMORY instead (gl::Buffer::allocate).
 #pragma once
 
 #include <cstdint>
@@ -17,7 +18,13 @@ struct GpuMemoryInfo {
   std::string source;  // the extension that said so
 };
 
-// Needs a current context; nullopt when the driver has neither extension.
+// What the driver's reports say is free (KiB as the extensions give them, nullopt where the
+// driver lacks one), given its GL_RENDERER: nullopt, no check, for Mesa's software
+// rasterizers (their memory is the machine's) and where a report says 0 (not counted).
+std::optional<GpuMemoryInfo> memory_report(const std::string& renderer, std::optional<int64_t> nvx_available_kib,
+                                           std::optional<int64_t> ati_free_kib);
+
+// Needs a current context: memory_report of the current driver.
 std::optional<GpuMemoryInfo> available_gpu_memory();
 
 // What the simulator's buffers (and its divergence guard's) take for this cloth.
