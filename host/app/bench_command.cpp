@@ -14,6 +14,8 @@
 #include "cli_common.hpp"
 #include "commands.hpp"
 #include "output_file.hpp"
+#include "output_plan.hpp"
+#include "gpu_simulator.hpp"
 
 namespace clothsim {
 
@@ -70,6 +72,12 @@ int run_bench(const Opts& o) {
   for (int n : o.sizes)
     if (n < 3 || n > 4096) throw ExitError(kExitBadInput, fmt::format("--sizes: {} is outside [3, 4096]", n));
   for (auto& b : o.backends) parse_backend(b);
+  if (!o.json_path.empty()) {  // checked before the minutes of timing, not after
+    OutputPlan plan;
+    plan.inputs_in("a shader bench reads", (find_project_root(o.root) / "compute").string());
+    plan.file("--json", o.json_path);
+    check_outputs(plan);
+  }
 
   BenchRunner runner(o.root, o.frames);
   nlohmann::json out = {{"gl_renderer", runner.renderer()}, {"frames", o.frames}, {"results", nlohmann::json::array()},

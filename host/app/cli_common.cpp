@@ -5,6 +5,8 @@
 #include <fmt/format.h>
 
 #include "checkpoint.hpp"
+#include "mesh_collider.hpp"
+#include "output_plan.hpp"
 
 namespace clothsim {
 
@@ -14,6 +16,12 @@ void SceneOptions::add_to(CLI::App& cmd, bool positional_required) {
   cmd.add_option("--set", sets, "override a scene value, e.g. --set cloth.ks=500 (repeatable; keys: docs/parameters.md)")
       ->type_name("KEY=VALUE")
       ->allow_extra_args(false);
+  add_no_cache_flag(cmd);
+}
+
+void add_no_cache_flag(CLI::App& cmd) {
+  cmd.add_flag_callback("--no-cache", disable_field_cache,
+                        "neither read nor keep mesh colliders' fields in the cache folder ($XDG_CACHE_HOME/clothsim)");
 }
 
 Scene SceneOptions::load() const { return path.empty() ? default_scene(sets) : load_scene(path, sets); }
@@ -22,6 +30,14 @@ BackendKind parse_backend(const std::string& name) {
   if (name == "cpu") return BackendKind::Cpu;
   if (name == "gpu") return BackendKind::Gpu;
   throw ExitError(kExitBadInput, fmt::format("--backend: expected gpu or cpu, got '{}'", name));
+}
+
+void check_outputs(const OutputPlan& plan) {
+  try {
+    plan.check();
+  } catch (const OutputError& e) {
+    throw ExitError(kExitBadInput, e.what());
+  }
 }
 
 // Reads and checks --load-state, then hands it to the backend; every failure is exit 2.

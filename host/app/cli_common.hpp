@@ -32,12 +32,19 @@ struct SceneOptions {
   Scene load() const;              // throws SceneError
 };
 
+// --no-cache: mesh colliders' fields are built, never read from or kept in the cache folder.
+void add_no_cache_flag(CLI::App& cmd);
+
 enum class BackendKind { Cpu, Gpu };
 BackendKind parse_backend(const std::string& name);
 // The backend for a scene; the GPU one needs a GL 4.3 context (exit 3 when none).
 std::unique_ptr<Backend> make_backend(BackendKind kind, const Scene& scene, const ClothModel& model);
 // A headless GL 4.3 context, or ExitError with exit code 3 and what to do.
 std::unique_ptr<gl::GlContext> require_headless_context();
+
+// Checks every output of a run before it starts (output_plan.hpp); ExitError 2 naming the
+// flag, the file and the problem.
+void check_outputs(const class OutputPlan& plan);
 
 // Reads and checks the state file of --load-state, loads it into the backend and returns its
 // frame; every failure is ExitError with exit code 2.

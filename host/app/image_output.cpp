@@ -200,6 +200,7 @@ void FrameSink::start_ffmpeg() {
     throw ExitError(kExitBadInput, fmt::format("--out {}: cannot start ffmpeg ({})", out_, std::strerror(rc)));
   }
   ffmpeg_input_ = fds[1];
+  register_writer(ffmpeg_);  // a SIGINT/SIGTERM stops it before removing its temporary
 }
 
 std::string FrameSink::stop_ffmpeg() {
@@ -210,6 +211,7 @@ std::string FrameSink::stop_ffmpeg() {
   pid_t r;
   while ((r = waitpid(ffmpeg_, &status, 0)) < 0 && errno == EINTR) {
   }
+  forget_writer(ffmpeg_);
   ffmpeg_ = -1;
   if (r < 0) return fmt::format("cannot wait for it ({})", std::strerror(errno));
   return WIFEXITED(status) && WEXITSTATUS(status) == 0 ? "" : describe_status(status);

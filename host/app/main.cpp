@@ -6,9 +6,11 @@
 #include "commands.hpp"
 #include "debug_output.hpp"
 #include "objects.hpp"
+#include "output_file.hpp"
 
 int main(int argc, char** argv) {
   using namespace clothsim;
+  remove_temporaries_on_signals();  // Ctrl-C or a kill leaves no temporary behind
   CLI::App app{"clothsim: a GPU cloth simulator (OpenGL 4.3 compute shaders) with a CPU reference", "clothsim"};
   app.require_subcommand(0, 1);
   app.failure_message(CLI::FailureMessage::help);  // a usage error shows the usage

@@ -10,6 +10,7 @@
 #include <glm/geometric.hpp>
 
 #include "cli_common.hpp"
+#include "output_plan.hpp"
 #include "commands.hpp"
 #include "gpu_simulator.hpp"
 #include "image_output.hpp"
@@ -61,6 +62,24 @@ struct FrameSource {
   Backend& backend() { return gpu ? static_cast<Backend&>(*gpu) : *cpu; }
 };
 
+// Every file the render writes, checked before anything is simulated (output_plan.hpp).
+OutputPlan plan_render_outputs(const Opts& o, const Scene& scene, const std::filesystem::path& root) {
+  OutputPlan plan;
+  plan.inputs_of(scene);
+  plan.input("the state of --load-state", o.load_path);
+  plan.inputs_in("a texture the renderer reads", (root / "textures").string());
+  plan.inputs_in("a shader the renderer reads", (root / "shaders").string());
+  const std::string ext = std::filesystem::path(o.out).extension().string();
+  if (ext == ".png" || ext == ".mp4" || ext == ".gif") {
+    plan.file("--out", o.out);
+  } else {  // a folder of PNGs, frame_0000.png on: one per kept frame
+    std::vector<std::string> names;
+    for (int k = 0; k < o.frames / o.every; ++k) names.push_back(fmt::format("frame_{:04d}.png", k));
+    plan.folder("--out", o.out, names);
+  }
+  return plan;
+}
+
 int run_render(const Opts& o) {
   std::smatch m;
   if (!std::regex_match(o.size, m, std::regex("([0-9]{1,5})x([0-9]{1,5})")))
@@ -88,10 +107,11 @@ int run_render(const Opts& o) {
   const Scene scene = o.scene.load();
   const double fps = o.fps > 0 ? o.fps : scene.simulation.frames_per_sec / o.every;
   FrameSink::check(o.out, w, h, fps);
+  const auto root = find_project_root(o.root);
+  check_outputs(plan_render_outputs(o, scene, root));
   const ClothModel model = build_cloth(scene);
   const BackendKind kind = parse_backend(o.backend);
   auto context = require_headless_context();
-  const auto root = find_project_root(o.root);
   std::optional<gl::RenderTarget> target;
   try {
     target.emplace(w, h, o.samples);

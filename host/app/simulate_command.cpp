@@ -3,7 +3,6 @@
 //  [--intersections-every K] [--stretch-every K]`
 // Every output replaces the file it names only once complete (docs/export.md).
 #include <algorithm>
-#include <unistd.h>
 
 #include <chrono>
 #include <filesystem>
@@ -15,6 +14,7 @@
 #include "frame_export.hpp"
 #include "intersections.hpp"
 #include "mesh_collider.hpp"
+#include "output_plan.hpp"
 
 namespace clothsim {
 namespace {
@@ -48,17 +48,31 @@ void print_stats(const Scene& scene, const ClothStats& st, int frames, double wa
   fmt::print("finite            {}\n", st.finite ? "yes" : "NO (a value became NaN/Inf)");
 }
 
-// An output file's directory must exist and be writable: checked before the run, so a long
-// simulation never ends in a path error.
-void check_writable(const std::string& flag, const std::string& path) {
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  const fs::path dir = fs::path(path).has_parent_path() ? fs::path(path).parent_path() : fs::path(".");
-  if (fs::is_directory(path, ec)) throw ExitError(kExitBadInput, fmt::format("{} {}: is a directory", flag, path));
-  if (!fs::is_directory(dir, ec))
-    throw ExitError(kExitBadInput, fmt::format("{} {}: the directory {} does not exist", flag, path, dir.string()));
-  if (access(dir.c_str(), W_OK) != 0)
-    throw ExitError(kExitBadInput, fmt::format("{} {}: the directory {} is not writable", flag, path, dir.string()));
+// Every file the run writes, checked before it starts (output_plan.hpp): frames of a
+// sequence from `start`, the frame the run begins at.
+OutputPlan plan_outputs(const Scene& scene, ExportKind kind, const std::string& export_path,
+                        const std::string& export_mesh, const std::string& load_path, const std::string& save_path,
+                        int64_t start, int frames, int every) {
+  OutputPlan plan;
+  plan.inputs_of(scene);
+  plan.input("the state of --load-state", load_path);
+  if (kind == ExportKind::Obj) plan.file("--export", export_path);
+  if (kind == ExportKind::PointCache) {
+    plan.file("--export", export_path);
+    const std::string by = fmt::format("--export {}", export_path);
+    if (export_mesh.empty())
+      plan.companion("--export", mesh_beside_cache(export_path), "the mesh written beside " + by);
+    else
+      plan.file("--export-mesh", export_mesh);
+    plan.companion("--export", partial_cache_path(export_path), "where " + by + " keeps the frames of a run that stops early");
+  }
+  if (kind == ExportKind::ObjSequence) {
+    std::vector<std::string> names;
+    for (int64_t f = start; f <= start + frames; f += every) names.push_back(fmt::format("frame_{:04d}.obj", f));
+    plan.folder("--export", export_path, names);
+  }
+  if (!save_path.empty()) plan.file("--save-state", save_path);
+  return plan;
 }
 
 void save_state(const std::string& path, const Scene& scene, const ClothModel& model, Backend& backend) {
@@ -123,15 +137,18 @@ void add_simulate_command(CLI::App& app, std::function<int()>& run) {
         throw ExitError(kExitBadInput, "--export-every: needs --export FILE.pc2 or --export DIR/ (an OBJ holds one frame)");
       if (!o->export_mesh.empty() && kind != ExportKind::PointCache)
         throw ExitError(kExitBadInput, "--export-mesh: needs --export FILE.pc2 (the mesh the point cache deforms)");
-      if (kind == ExportKind::Obj || kind == ExportKind::PointCache) check_writable("--export", o->export_path);
-      if (!o->export_mesh.empty()) check_writable("--export-mesh", o->export_mesh);
-      if (!o->save_path.empty()) check_writable("--save-state", o->save_path);
       const Scene scene = o->scene.load();
+      auto plan = [&](int64_t start) {
+        return plan_outputs(scene, kind, o->export_path, o->export_mesh, o->load_path, o->save_path, start, o->frames,
+                            o->export_every);
+      };
+      check_outputs(plan(0));  // before anything is built: a bad output fails at once
       const ClothModel model = build_cloth(scene);
       std::unique_ptr<Backend> backend = make_backend(parse_backend(o->backend), scene, model);
       fmt::print("{}: {}, {} substeps/frame, backend {}\n", scene.source, describe_cloth(model),
                  scene.simulation.simulation_steps, backend->name());
       const int64_t start = o->load_path.empty() ? 0 : load_state(o->load_path, scene, model, *backend);
+      if (start != 0) check_outputs(plan(start));  // a sequence's frames are numbered from the state's
       auto export_obj = [&](const ClothSnapshot& snap, const std::string& what) {
         try {
           write_obj(o->export_path, model, snap);

@@ -8,6 +8,7 @@
 #include "commands.hpp"
 #include "diagnostics.hpp"
 #include "divergence.hpp"
+#include "output_plan.hpp"
 #include "static_solve.hpp"
 
 namespace clothsim {
@@ -22,6 +23,12 @@ struct Opts {
 
 int run_static(const Opts& o) {
   const Scene scene = o.scene.load();
+  if (!o.export_path.empty()) {
+    OutputPlan plan;
+    plan.inputs_of(scene);
+    plan.file("--export", o.export_path);
+    check_outputs(plan);
+  }
   const ClothModel model = build_cloth(scene);
   fmt::print("{}: {}, static equilibrium (Newton, double)\n", scene.source, describe_cloth(model));
   StaticEquilibrium eq;

@@ -5,6 +5,7 @@
 #include "cli_common.hpp"
 #include "commands.hpp"
 #include "gpu_simulator.hpp"
+#include "output_plan.hpp"
 #include "viewer.hpp"
 
 namespace clothsim {
@@ -27,6 +28,7 @@ void add_viewer_options(CLI::App& app, std::function<int()>& run) {
   app.add_option("--frames", o->frames, "scripted: run N frames unpaused, save --screenshot, exit")
       ->check(CLI::NonNegativeNumber);
   app.add_option("--screenshot", o->screenshot, "scripted: PNG of the window (panels included) after --frames");
+  add_no_cache_flag(app);
   app.add_option("--window", o->size, "window size WIDTHxHEIGHT")->capture_default_str();
   app.final_callback([o, &app, &run] {
     if (app.get_subcommands().size() > 0) return;  // a subcommand ran its own callback
@@ -43,6 +45,14 @@ void add_viewer_options(CLI::App& app, std::function<int()>& run) {
       v.sphere_lon = o->lon;
       v.frames = o->frames;
       v.screenshot = o->screenshot;
+      if (!v.screenshot.empty()) {  // before the window opens: never a run that ends in a refusal
+        OutputPlan plan;
+        plan.inputs_of(v.scene_path.empty() ? default_scene(v.sets) : load_scene(v.scene_path, v.sets));
+        plan.inputs_in("a texture the viewer reads", (v.root / "textures").string());
+        plan.inputs_in("a shader the viewer reads", (v.root / "shaders").string());
+        plan.file("--screenshot", v.screenshot);
+        check_outputs(plan);
+      }
       if (std::sscanf(o->size.c_str(), "%dx%d", &v.width, &v.height) != 2 || v.width < 64 || v.height < 64)
         throw ExitError(kExitBadInput, fmt::format("--window {}: expected WIDTHxHEIGHT, at least 64x64", o->size));
       return run_viewer(v);

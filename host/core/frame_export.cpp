@@ -61,12 +61,15 @@ bool same_mesh(const std::string& a, const std::string& b) {
   }
 }
 
-// The rule for the PC2 (docs/export.md): the cache is streamed into PATH.partial beside PATH
-// and renamed over PATH only when the run ends successfully (finish()). A run that stops early
-// (a divergence: finish_incomplete(); any other failure: the destructor) leaves PATH as it was
-// and keeps PATH.partial, a valid cache of the frames written so far, saying so; a cache whose
-// writing failed (a full disk) is removed, since its last sample may be missing. PATH.partial
-// is clothsim's own name: a run overwrites the one an earlier run left.
+// The rule for the PC2 (docs/export.md): the cache is streamed into a temporary beside PATH
+// (created exclusively under an unguessable name, output_file.hpp) and renamed over PATH only
+// when the run ends successfully (finish()), removing a PATH.partial an earlier run left. A run
+// that stops early (a divergence: finish_incomplete(); any other failure: the destructor)
+// leaves PATH as it was and renames the temporary to PATH.partial, a valid cache of the frames
+// written so far, saying so; a cache whose writing failed (a full disk) is removed, since its
+// last sample may be missing. PATH.partial is clothsim's own name: a run replaces the one an
+// earlier run left (the name itself: a symlink there is replaced, never followed), and the
+// output checks refuse a PATH.partial that is not a regular file before the run.
 //
 // The mesh beside it (FILE.obj for FILE.pc2) is written at the start, the start state. The
 // user named only the cache, so an existing FILE.obj is replaced by nothing: if it already
@@ -76,8 +79,8 @@ class PointCacheExport final : public FrameExport {
  public:
   PointCacheExport(const std::string& path, const ClothModel& model, int64_t start, int every, const ClothSnapshot& s,
                    const std::string& mesh_path)
-      : FrameExport(start, every), path_(path), partial_(path + ".partial"),
-        mesh_(mesh_path.empty() ? fs::path(path).replace_extension(".obj").string() : mesh_path),
+      : FrameExport(start, every), path_(path), partial_(partial_cache_path(path)),
+        mesh_(mesh_path.empty() ? mesh_beside_cache(path) : mesh_path),
         points_(model.count()) {
     std::error_code ec;
     existed_ = fs::exists(path_, ec);
@@ -94,7 +97,8 @@ class PointCacheExport final : public FrameExport {
             path, mesh_));
       mesh_kept_ = true;  // already this mesh: left as it is
     }
-    pc2_.emplace(partial_, model.count(), float(start), float(every));
+    cache_.emplace(path_);
+    pc2_.emplace(cache_->temp(), model.count(), float(start), float(every));
     state_ = State::Writing;
     add(start, s);
   }
@@ -102,10 +106,9 @@ class PointCacheExport final : public FrameExport {
     if (state_ != State::Writing) return;
     // Stopped by an exception (not a divergence, not a write error): keep what was written.
     try {
-      pc2_->close();
+      keep_partial();
       fmt::print(stderr, "{}\n", kept_sentence("the run stopped"));
     } catch (...) {
-      remove_quietly(partial_);
     }
   }
   void add(int64_t, const ClothSnapshot& s) override {
@@ -113,10 +116,8 @@ class PointCacheExport final : public FrameExport {
       pc2_->add(s.pos);
     } catch (const std::runtime_error& e) {
       // A write failed: the partial cache cannot be trusted (nor, likely, the disk's space).
-      pc2_.reset();
-      remove_quietly(partial_);
-      state_ = State::Removed;
-      throw std::runtime_error(fmt::format("{}; removed {}, {} is {}", e.what(), partial_, path_,
+      drop();
+      throw std::runtime_error(fmt::format("{}; removed the partial cache, {} is {}", e.what(), path_,
                                            existed_ ? "unchanged" : "not written"));
     }
     ++written_;
@@ -124,23 +125,18 @@ class PointCacheExport final : public FrameExport {
   void finish() override {
     try {
       pc2_->close();
-      replace_file(partial_, path_);
+      cache_->commit();
     } catch (const std::runtime_error&) {
-      remove_quietly(partial_);
-      state_ = State::Removed;
+      drop();
       throw;
     }
     state_ = State::Done;
+    // A partial an earlier run left is stale now (a regular file only: checked before the run).
+    std::error_code ec;
+    if (fs::is_regular_file(fs::symlink_status(partial_, ec))) remove_quietly(partial_);
   }
   std::string finish_incomplete(const std::string& why) override {
-    state_ = State::Kept;
-    try {
-      pc2_->close();
-    } catch (const std::runtime_error&) {
-      remove_quietly(partial_);
-      state_ = State::Removed;
-      throw;
-    }
+    keep_partial();
     return kept_sentence(why);
   }
   std::string summary() const override {
@@ -151,15 +147,34 @@ class PointCacheExport final : public FrameExport {
 
  private:
   enum class State { Opening, Writing, Kept, Done, Removed };
-  int samples() const { return pc2_ ? pc2_->samples() : 0; }
+  int samples() const { return samples_ >= 0 ? samples_ : pc2_ ? pc2_->samples() : 0; }
+  // Closes the cache and renames it to PATH.partial; a failure removes it and passes on.
+  void keep_partial() {
+    try {
+      samples_ = pc2_->samples();
+      pc2_->close();
+      cache_->commit_as(partial_);
+    } catch (const std::runtime_error&) {
+      drop();
+      throw;
+    }
+    state_ = State::Kept;
+  }
+  void drop() {
+    samples_ = pc2_ ? pc2_->samples() : 0;
+    pc2_.reset();
+    if (cache_) cache_->discard();
+    state_ = State::Removed;
+  }
   std::string kept_sentence(const std::string& why) const {
     return fmt::format("kept {} ({} sample{}, the frames before {}; a valid cache, rename it to use it); {} is {}",
                        partial_, samples(), samples() == 1 ? "" : "s", why, path_,
                        existed_ ? "unchanged" : "not written");
   }
   std::string path_, partial_, mesh_;
+  std::optional<PendingFile> cache_;  // the temporary the cache streams into
   std::optional<Pc2Writer> pc2_;
-  int points_;
+  int points_, samples_ = -1;
   bool existed_ = false, mesh_kept_ = false;
   State state_ = State::Opening;
 };
@@ -194,6 +209,8 @@ class ObjSequenceExport final : public FrameExport {
 };
 
 }  // namespace
+
+std::string mesh_beside_cache(const std::string& pc2) { return fs::path(pc2).replace_extension(".obj").string(); }
 
 ExportKind export_kind(const std::string& path) {
   if (path.empty()) return ExportKind::None;

@@ -20,6 +20,10 @@ enum class ExportKind {
   ObjSequence,  // DIR/ (a trailing slash, or an existing directory): DIR/frame_NNNN.obj
 };
 ExportKind export_kind(const std::string& path);
+// Where a PC2 export keeps the frames of a run that stopped early: PATH.partial.
+inline std::string partial_cache_path(const std::string& pc2) { return pc2 + ".partial"; }
+// The mesh a PC2 export writes beside it when no --export-mesh names one: FILE.obj.
+std::string mesh_beside_cache(const std::string& pc2);
 
 class FrameExport {
  public:
@@ -27,11 +31,11 @@ class FrameExport {
   // Whether `frame` is one to write: the start frame and every `every`-th frame after it.
   bool wants(int64_t frame) const { return frame >= start_ && (frame - start_) % every_ == 0; }
   virtual void add(int64_t frame, const ClothSnapshot& s) = 0;
-  // The run ended successfully: flushes and closes (a PC2 is renamed from PATH.partial over
+  // The run ended successfully: flushes and closes (a PC2 is renamed from its temporary over
   // PATH); afterwards summary() says what was written.
   virtual void finish() = 0;
   // The run stopped early (`why`: "the divergence"): closes what was written and returns the
-  // sentence saying where it is (a PC2 stays PATH.partial; PATH is left as it was).
+  // sentence saying where it is (a PC2 is kept as PATH.partial; PATH is left as it was).
   virtual std::string finish_incomplete(const std::string& why) = 0;
   virtual std::string summary() const = 0;
   int written() const { return written_; }

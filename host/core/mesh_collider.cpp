@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <map>
 #include <mutex>
@@ -44,17 +45,30 @@ double longest_extent(const SurfaceMesh& m) {
   return std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
 }
 
-// Where a field that took long to build is kept: `.clothsim-cache/` next to the scene file,
-// named by the mesh's hash and the spacing; none for a scene that is no file (built in, a test's).
-std::filesystem::path cache_path(const Scene& scene, const std::filesystem::path& mesh, uint64_t hash, double voxel) {
-  if (scene.source.empty() || scene.source[0] == '<') return {};
-  const std::filesystem::path dir = std::filesystem::path(scene.source).parent_path() / ".clothsim-cache";
+bool g_cache_enabled = true;
+
+// Where a field that took long to build is kept: the cache folder, named by the mesh's stem and
+// hash and the spacing's bits; none with --no-cache or without a cache folder.
+std::filesystem::path cache_path(const std::filesystem::path& mesh, uint64_t hash, double voxel) {
+  const std::filesystem::path dir = field_cache_folder();
+  if (dir.empty()) return {};
   uint64_t bits;
   std::memcpy(&bits, &voxel, sizeof bits);
   return dir / fmt::format("{}-{:016x}-{:016x}.sdf", mesh.stem().string(), hash, bits);
 }
 
 }  // namespace
+
+void disable_field_cache() { g_cache_enabled = false; }
+
+std::filesystem::path field_cache_folder() {
+  if (!g_cache_enabled) return {};
+  // The XDG base directory rule: $XDG_CACHE_HOME if set to an absolute path, else ~/.cache.
+  if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && xdg[0] == '/') return std::filesystem::path(xdg) / "clothsim";
+  if (const char* home = std::getenv("HOME"); home && home[0] == '/')
+    return std::filesystem::path(home) / ".cache" / "clothsim";
+  return {};
+}
 
 std::string mesh_key(const Scene& scene, size_t index) {
   return scene.meshes.size() == 1 ? std::string("mesh") : fmt::format("mesh[{}]", index);
@@ -98,11 +112,15 @@ std::shared_ptr<const ColliderMesh> load_collider_mesh(const Scene& scene, size_
                                  kMaxSdfBytes >> 20, fits));
   }
   const uint64_t hash = mesh_hash(out->surface);
-  const std::filesystem::path cache = cache_path(scene, p.file_path, hash, voxel);
-  if (!cache.empty() && read_sdf_cache(cache, hash, voxel, out->sdf)) {
+  const std::filesystem::path cache = cache_path(p.file_path, hash, voxel);
+  std::string problem;
+  if (!cache.empty() && read_sdf_cache(cache, hash, voxel, out->sdf, &problem)) {
     out->from_cache = true;
     out->cache = cache;
   } else {
+    if (!problem.empty())
+      fmt::print(stderr, "note: {}: {}: the cached field {} failed its check ({}); building it again\n", scene.source,
+                 key, cache.string(), problem);
     const auto t0 = std::chrono::steady_clock::now();
     out->sdf = build_sdf(out->surface, voxel);
     out->build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -24,8 +24,14 @@ struct ColliderMesh {
   bool from_cache = false;
 };
 
-// A build that takes longer than this keeps its field in a cache file next to the scene.
+// A build that takes longer than this keeps its field in a cache file in field_cache_folder().
 inline constexpr double kSdfCacheSeconds = 1.0;
+
+// The cache folder (docs/model.md, "Mesh colliders"): $XDG_CACHE_HOME/clothsim, else
+// ~/.cache/clothsim; empty (no cache) without either, or after disable_field_cache()
+// (--no-cache). A cached field carries a checksum; one that fails it is built again, with a note.
+std::filesystem::path field_cache_folder();
+void disable_field_cache();
 
 // The collider `index` of the scene (`key` its key path for messages, "mesh" or "mesh[1]"):
 // loaded and its field built (or read from the cache) on first use, the same object after.

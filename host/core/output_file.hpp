@@ -2,29 +2,48 @@
 // Each output is written under a temporary name in the same folder (so the rename never
 // crosses a file system) and renamed over the name once it is complete and closed; if
 // anything fails first, the temporary is removed and the old file, if any, is untouched.
+//
+// Temporaries are created exclusively (mkstemp: O_CREAT|O_EXCL, so a symlink or any file
+// already at the name is never followed or reused) under an unguessable name, and a SIGINT or
+// SIGTERM removes every temporary still pending before the process ends.
 #pragma once
+
+#include <sys/types.h>
 
 #include <string>
 #include <utility>
 
 namespace clothsim {
 
-// Where the new version of `path` is written: `NAME.PID.tmp` in the folder of `path` (the
-// process id keeps two runs apart; the folder keeps the rename atomic).
-std::string temporary_path(const std::string& path);
+// Creates an empty temporary for `path` in its folder, `NAME.XXXXXX.tmp` with six random
+// characters, exclusively, with the permissions a new file gets (0666 less the umask), and
+// registers it for removal on SIGINT/SIGTERM. Throws std::runtime_error naming `path`.
+std::string create_temporary(const std::string& path);
 
-// Renames `from` over `to` (atomically, on the same file system); throws std::runtime_error
-// naming `to` if the rename fails, after removing `from`.
+// Renames `from` over `to` (atomically, on the same file system; a symlink at `to` is
+// replaced, not followed); throws std::runtime_error naming `to` if it fails, after removing
+// `from`.
 void replace_file(const std::string& from, const std::string& to);
 
-// Removes `path` if it exists; never throws.
+// Removes `path` if it exists (a symlink itself, never its target); never throws. Also
+// forgets it as a temporary to remove on a signal.
 void remove_quietly(const std::string& path);
+
+// Installs the SIGINT/SIGTERM handler that removes the pending temporaries (and stops the
+// child processes writing them) and then ends the process as the signal would. main() calls it
+// once, first.
+void remove_temporaries_on_signals();
+
+// A child process writing a temporary (ffmpeg): stopped, and waited for, before a signal
+// removes the temporaries, so it cannot create one again after. forget_writer when it ended.
+void register_writer(pid_t pid);
+void forget_writer(pid_t pid);
 
 // The temporary of one output: commit() renames it over the destination; destroyed without
 // commit (an exception, an early return), it removes the temporary.
 class PendingFile {
  public:
-  explicit PendingFile(std::string path) : path_(std::move(path)), temp_(temporary_path(path_)) {}
+  explicit PendingFile(std::string path) : path_(std::move(path)), temp_(create_temporary(path_)) {}
   ~PendingFile() {
     if (!done_) remove_quietly(temp_);
   }
@@ -33,9 +52,11 @@ class PendingFile {
 
   const std::string& path() const { return path_; }  // the destination
   const std::string& temp() const { return temp_; }  // what to write to
-  void commit() {
+  void commit() { commit_as(path_); }
+  // Renames the temporary to `other` instead (a PC2 kept as NAME.pc2.partial).
+  void commit_as(const std::string& other) {
     done_ = true;
-    replace_file(temp_, path_);
+    replace_file(temp_, other);
   }
   void discard() {
     done_ = true;

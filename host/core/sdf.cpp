@@ -11,6 +11,7 @@
 #include <stdexcept>
 #include <unordered_map>
 
+#include <fmt/format.h>
 #include <glm/geometric.hpp>
 
 #include "output_file.hpp"
@@ -246,21 +247,26 @@ double brute_force_signed_distance(const SurfaceMesh& mesh, const dvec3& p) {
   return std::abs(winding_number(mesh, p)) > 0.5 ? -d : d;  // either winding
 }
 
-uint64_t mesh_hash(const SurfaceMesh& mesh) {
-  uint64_t h = 0xcbf29ce484222325ull;
-  auto add = [&](const void* data, size_t bytes) {
-    const auto* p = static_cast<const unsigned char*>(data);
-    for (size_t i = 0; i < bytes; ++i) h = (h ^ p[i]) * 0x100000001b3ull;
-  };
-  add(mesh.positions.data(), mesh.positions.size() * sizeof(dvec3));
-  add(mesh.triangles.data(), mesh.triangles.size() * sizeof(glm::uvec3));
+namespace {
+
+// 64-bit FNV-1a, continued from `h`.
+uint64_t fnv1a(uint64_t h, const void* data, size_t bytes) {
+  const auto* p = static_cast<const unsigned char*>(data);
+  for (size_t i = 0; i < bytes; ++i) h = (h ^ p[i]) * 0x100000001b3ull;
   return h;
+}
+
+}  // namespace
+
+uint64_t mesh_hash(const SurfaceMesh& mesh) {
+  const uint64_t h = fnv1a(0xcbf29ce484222325ull, mesh.positions.data(), mesh.positions.size() * sizeof(dvec3));
+  return fnv1a(h, mesh.triangles.data(), mesh.triangles.size() * sizeof(glm::uvec3));
 }
 
 namespace {
 
 constexpr char kCacheMagic[16] = "clothsim sdf\n";
-constexpr uint32_t kCacheVersion = 1;
+constexpr uint32_t kCacheVersion = 2;  // 2: a checksum after the grid
 
 struct CacheHeader {
   char magic[16];
@@ -274,14 +280,24 @@ struct CacheHeader {
 
 }  // namespace
 
-bool read_sdf_cache(const std::filesystem::path& file, uint64_t hash, double voxel, SdfGrid& out) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) return false;
-  CacheHeader h{};
-  if (!in.read(reinterpret_cast<char*>(&h), sizeof h)) return false;
-  if (std::memcmp(h.magic, kCacheMagic, sizeof kCacheMagic) != 0 || h.version != kCacheVersion || h.hash != hash ||
-      std::memcmp(&h.voxel, &voxel, sizeof voxel) != 0)
+bool read_sdf_cache(const std::filesystem::path& file, uint64_t hash, double voxel, SdfGrid& out, std::string* problem) {
+  std::string ignored;
+  std::string& why = problem ? *problem : ignored;
+  why.clear();
+  std::error_code ec;
+  if (!std::filesystem::exists(std::filesystem::symlink_status(file, ec))) return false;  // none yet: not a problem
+  if (!std::filesystem::is_regular_file(std::filesystem::symlink_status(file, ec))) {
+    why = "not a regular file";
     return false;
+  }
+  std::ifstream in(file, std::ios::binary);
+  if (!in) return (why = "cannot be read", false);
+  CacheHeader h{};
+  if (!in.read(reinterpret_cast<char*>(&h), sizeof h)) return (why = "shorter than its header", false);
+  if (std::memcmp(h.magic, kCacheMagic, sizeof kCacheMagic) != 0) return (why = "not a clothsim field", false);
+  if (h.version != kCacheVersion) return (why = fmt::format("version {}, this clothsim writes {}", h.version, kCacheVersion), false);
+  if (h.hash != hash || std::memcmp(&h.voxel, &voxel, sizeof voxel) != 0)
+    return (why = "made from another mesh or spacing", false);
   SdfGrid g;
   g.min = dvec3(h.min[0], h.min[1], h.min[2]);
   g.voxel = h.voxel;
@@ -289,12 +305,19 @@ bool read_sdf_cache(const std::filesystem::path& file, uint64_t hash, double vox
   g.dims = glm::ivec3(h.dims[0], h.dims[1], h.dims[2]);
   g.closed = h.closed != 0;
   g.boundary_edges = h.boundary_edges;
-  if (g.dims.x < 2 || g.dims.y < 2 || g.dims.z < 2 || g.bytes() > kMaxSdfBytes) return false;
+  if (g.dims.x < 2 || g.dims.y < 2 || g.dims.z < 2 || g.bytes() > kMaxSdfBytes) return (why = "a grid out of range", false);
   g.values.resize(g.nodes());
-  if (!in.read(reinterpret_cast<char*>(g.values.data()), std::streamsize(g.bytes()))) return false;
-  if (in.peek() != std::char_traits<char>::eof()) return false;
+  uint64_t sum = 0;
+  if (!in.read(reinterpret_cast<char*>(g.values.data()), std::streamsize(g.bytes())) ||
+      !in.read(reinterpret_cast<char*>(&sum), sizeof sum))
+    return (why = "truncated", false);
+  if (in.peek() != std::char_traits<char>::eof()) return (why = "longer than its grid", false);
+  // The checksum covers the header and every value: a flipped bit anywhere is caught, not only
+  // one that makes a value NaN (a corrupted field once let a cloth fall through its collider).
+  const uint64_t expected = fnv1a(fnv1a(0xcbf29ce484222325ull, &h, sizeof h), g.values.data(), g.bytes());
+  if (sum != expected) return (why = "its checksum does not match its content", false);
   for (float v : g.values)
-    if (!std::isfinite(v)) return false;
+    if (!std::isfinite(v)) return (why = "holds a value that is not finite", false);
   out = std::move(g);
   return true;
 }
@@ -314,8 +337,10 @@ void write_sdf_cache(const std::filesystem::path& file, uint64_t hash, const Sdf
       h.dims[a] = g.dims[a];
     }
     h.boundary_edges = g.boundary_edges;
+    const uint64_t sum = fnv1a(fnv1a(0xcbf29ce484222325ull, &h, sizeof h), g.values.data(), g.bytes());
     o.write(reinterpret_cast<const char*>(&h), sizeof h);
     o.write(reinterpret_cast<const char*>(g.values.data()), std::streamsize(g.bytes()));
+    o.write(reinterpret_cast<const char*>(&sum), sizeof sum);
     if (!o.flush()) throw std::runtime_error("could not write the SDF cache " + file.string());
   });
 }

@@ -72,9 +72,12 @@ glm::dvec3 closest_point_on_triangle(const glm::dvec3& p, const glm::dvec3& a, c
 uint64_t mesh_hash(const SurfaceMesh& mesh);
 
 // The cache file format (docs/model.md, "Mesh colliders"): "clothsim sdf\n" magic, version,
-// mesh hash, spacing bits, then the grid. read_sdf_cache returns false for a file that is
-// absent, of another version, or for another mesh or spacing (it is then rebuilt).
-bool read_sdf_cache(const std::filesystem::path& file, uint64_t hash, double voxel, SdfGrid& out);
+// mesh hash, spacing bits, the grid, then a 64-bit FNV-1a checksum of all before it.
+// read_sdf_cache returns false for a file that is absent (`problem` left empty) or that fails a
+// check: another version, mesh or spacing, truncated, a checksum that does not match
+// (`problem` says which); the field is then rebuilt.
+bool read_sdf_cache(const std::filesystem::path& file, uint64_t hash, double voxel, SdfGrid& out,
+                    std::string* problem = nullptr);
 void write_sdf_cache(const std::filesystem::path& file, uint64_t hash, const SdfGrid& grid);
 
 }  // namespace clothsim
