@@ -82,6 +82,10 @@ struct ClothModel {
 std::string describe_cloth(const ClothModel& model);
 
 // Every cloth of the scene, in order, as one model. Throws SceneError for a bad mesh.
+// Throws SceneError when self-collision would compare a particle with more than
+// kMaxSelfCollisionNeighbours others (a thickness many times the spacing), HostOutOfMemory when
+// the model does not fit in memory.
+inline constexpr double kMaxSelfCollisionNeighbours = 1000;
 ClothModel build_cloth(const Scene& scene);
 
 // The pieces the builders share (cloth.cpp). A builder appends one part's particles,
