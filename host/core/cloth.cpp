@@ -147,7 +147,7 @@ static ClothModel build_cloth_model(const Scene& scene);
 // it: on a flat cloth about 36 (thickness / spacing)^2 of them. A thickness many times the
 // spacing makes that thousands (a substep of minutes, with no sign of why): refused, naming the
 // cost and the largest thickness that keeps it in bounds. Real scenes stay below 1 x spacing.
-static void check_self_collision_cost(const Scene& scene, const ClothModel& m) {
+void check_self_collision_cost(const Scene& scene, const ClothModel& m) {
   if (!scene.simulation.self_collision || m.count() == 0) return;
   std::vector<double> rest;
   for (const Spring& s : m.springs)
@@ -180,7 +180,6 @@ ClothModel build_cloth(const Scene& scene) {
   const uint64_t bytes = particles * (sizeof(glm::dvec3) * 2 + sizeof(double) * 2 + 8 * sizeof(Spring) + 16);
   ClothModel m = allocating(fmt::format("the cloth model of {} particles", particles), bytes,
                             [&] { return build_cloth_model(scene); });
-  check_self_collision_cost(scene, m);
   return m;
 }
 

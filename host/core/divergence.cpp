@@ -64,9 +64,10 @@ std::optional<std::string> divergence_message(const Scene& scene, const ClothMod
   // The particle with the least mass per stiffness sets the stable step: the model's own masses
   // (a mesh cloth's differ per vertex) and its cloth's ks.
   const auto cloths = scene.cloths();
+  const std::vector<double> masses = particle_masses(scene, model);  // follows a live density edit
   double ks = 0, mass = 0, ratio = HUGE_VAL;
   for (size_t i = 0; i < size_t(model.count()); ++i) {
-    const double k = cloths[model.material[i]]->ks, m = model.mass[i];
+    const double k = cloths[model.material[i]]->ks, m = masses[i];
     if (model.pinned[i] || !(k > 0) || !(m / k < ratio)) continue;
     ratio = m / k, ks = k, mass = m;
   }
