@@ -63,6 +63,11 @@ CLI::Validator number_in(double lo, double hi) {
 }
 CLI::Validator positive_number() { return range_validator(std::nextafter(0.0, 1.0), HUGE_VAL, "a number > 0"); }
 CLI::Validator non_negative_number() { return range_validator(0.0, HUGE_VAL, "a number >= 0"); }
+CLI::Validator non_empty_path() {
+  return CLI::Validator(
+      [](std::string& text) { return text.empty() ? std::string("an empty path (expected a file name)") : std::string(); },
+      "");
+}
 
 void refuse_non_finite(CLI::App& app) {
   // CLI11 names a numeric option's type FLOAT, INT or UINT (also for vectors and with a

@@ -39,6 +39,7 @@ struct SceneOptions {
 CLI::Validator number_in(double lo, double hi);
 CLI::Validator positive_number();      // > 0
 CLI::Validator non_negative_number();  // >= 0
+CLI::Validator non_empty_path();       // a file option given as "" names no file
 // Adds the NaN/infinity check to every numeric option of `app` and its subcommands, the ones
 // without a range check included: one place, so no option can forget it.
 void refuse_non_finite(CLI::App& app);

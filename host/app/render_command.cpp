@@ -211,7 +211,7 @@ void add_render_command(CLI::App& app, std::function<int()>& run) {
   cmd->add_option("--light", o->light, "direction X,Y,Z from the camera's target to the key light (world axes)")
       ->delimiter(',')
       ->expected(3);
-  cmd->add_option("--load-state", o->load_path, "start from a state saved by simulate --save-state (--frames more)");
+  cmd->add_option("--load-state", o->load_path, "start from a state saved by simulate --save-state (--frames more)")->check(non_empty_path());
   cmd->add_flag("--stats", o->stats, "time the drawing's passes and print their mean per frame");
   cmd->add_option("-r,--root", o->root, "project root (shaders/, compute/, textures/)");
   cmd->callback([o, &run] { run = [o] { return run_render(*o); }; });

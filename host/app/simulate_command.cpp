@@ -107,7 +107,7 @@ void add_simulate_command(CLI::App& app, std::function<int()>& run) {
                   "if absent or already that mesh)");
   cmd->add_option("--export-every", o->export_every, "with a .pc2 or DIR/ export: write every K-th frame")
       ->check(positive_number());
-  cmd->add_option("--load-state", o->load_path, "continue from a state saved by --save-state");
+  cmd->add_option("--load-state", o->load_path, "continue from a state saved by --save-state")->check(non_empty_path());
   cmd->add_option("--save-state", o->save_path, "save the final state (positions, displacements, time)");
   cmd->add_flag("--stats", o->stats, "print frames, timing, stretch, energy, clearances, self-intersections");
   cmd->add_option("--intersections-every", o->intersections_every,
