@@ -2,10 +2,7 @@
 // exit codes, messages and the OBJ export.
 #include <catch2/catch.hpp>
 
-#include "bad_scenes.hpp"
-
-#include <sys/wait.h>
-#include <unistd.h>
+#include "cli_support.hpp"
 
 #include <algorithm>
 #include <cstdio>
@@ -18,63 +15,7 @@
 
 namespace fs = std::filesystem;
 
-namespace {
-
-const fs::path kSource = CLOTHSIM_SOURCE_DIR;
-const fs::path kBinary = CLOTHSIM_BINARY;
-const fs::path kBad = clothsim::test::kBadScenes;
-
-std::string quote(const std::string& s) {
-  std::string q = "'";
-  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
-}
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-// A scratch path unique to this process, removed when the test ends.
-struct TempFile {
-  fs::path path;
-  explicit TempFile(const std::string& name)
-      : path(fs::temp_directory_path() / ("clothsim_test_cli_" + std::to_string(getpid()) + "_" + name)) {
-    fs::remove(path);
-  }
-  ~TempFile() { std::error_code ec; fs::remove(path, ec); }
-};
-
-struct Result {
-  int code = -1;
-  std::string out, err;
-  std::string both() const { return out + err; }
-};
-
-// Runs `clothsim ARGS...` with stdout and stderr captured separately.
-Result run(const std::vector<std::string>& args) {
-  TempFile err_file("stderr.txt");
-  std::string cmd = quote(kBinary.string());
-  for (const auto& a : args) cmd += " " + quote(a);
-  cmd += " 2>" + quote(err_file.path.string()) + " </dev/null";
-  INFO("$ " << cmd);
-  Result r;
-  std::FILE* p = popen(cmd.c_str(), "r");
-  REQUIRE(p != nullptr);
-  char buf[4096];
-  size_t n;
-  while ((n = std::fread(buf, 1, sizeof buf, p)) > 0) r.out.append(buf, n);
-  const int status = pclose(p);
-  REQUIRE(WIFEXITED(status));
-  r.code = WEXITSTATUS(status);
-  r.err = slurp(err_file.path);
-  return r;
-}
-
-
-}  // namespace
+using namespace clothsim::test;
 
 TEST_CASE("the clothsim binary has been built", "[cli]") { REQUIRE(fs::exists(kBinary)); }
 
@@ -101,7 +42,9 @@ TEST_CASE("every bad mesh cloth exits 2 naming the scene, the mesh file and what
     const size_t tab1 = line.find('\t'), tab2 = line.find('\t', tab1 + 1);
     REQUIRE(tab2 != std::string::npos);
     const std::string scene = (dir / line.substr(0, tab1)).string();
-    const Result r = run({"simulate", scene, "--frames", "1", "--backend", "cpu"});
+    // A bad mesh never needs gigabytes: the limit makes a header that lies about its counts
+    // (which Assimp once allocated 17 GB for) fail here, not take the machine's memory.
+    const Result r = run({"simulate", scene, "--frames", "1", "--backend", "cpu"}, "ulimit -v 4000000;");
     INFO(line << "\nstderr: " << r.err);
     CHECK(r.code == 2);
     CHECK_THAT(r.err, Catch::Contains(scene));
@@ -109,7 +52,7 @@ TEST_CASE("every bad mesh cloth exits 2 naming the scene, the mesh file and what
     CHECK_THAT(r.err, Catch::Contains(line.substr(tab2 + 1)));
     ++cases;
   }
-  CHECK(cases >= 6);
+  CHECK(cases >= 15);
 }
 
 TEST_CASE("a missing scene file exits 2 naming the file", "[cli]") {

@@ -317,7 +317,7 @@ TEST_CASE("the field cache lives in $XDG_CACHE_HOME/clothsim, never beside the s
   fs::copy_file(fmt::format("{}/scenes/drape_wuson.json", CLOTHSIM_SOURCE_DIR), scene);
   // A field fine enough to take over the second that makes a build worth keeping.
   const std::string args = fmt::format(
-      "simulate '{}' --backend cpu --frames 0 --set mesh.voxel_size=0.0025 --set cloth.num_width_points=5 "
+      "simulate '{}' --backend cpu --frames 0 --set mesh.voxel_size=0.003 --set cloth.num_width_points=5 "
       "--set cloth.num_height_points=5 --stats",
       scene);
   const std::string env = fmt::format("XDG_CACHE_HOME='{}'", dir / "xdg");

@@ -1,6 +1,7 @@
 #include <fmt/format.h>
 
 #include "cli_common.hpp"
+#include "host_memory.hpp"
 #include "debug_output.hpp"
 #include "gpu_simulator.hpp"
 
@@ -28,7 +29,13 @@ std::unique_ptr<gl::GlContext> require_headless_context() {
 }
 
 std::unique_ptr<Backend> make_backend(BackendKind kind, const Scene& scene, const ClothModel& model) {
-  if (kind == BackendKind::Cpu) return std::make_unique<CpuBackend<double>>(scene, model);
+  if (kind == BackendKind::Cpu) {
+    // Positions, displacements, forces and normals (4 doubles each) and a multiplier per spring.
+    const uint64_t bytes = (uint64_t(model.count()) * 4 + model.springs.size()) * 4 * sizeof(double);
+    return allocating(fmt::format("the CPU backend's state for {} particles and {} springs", model.count(),
+                                  model.springs.size()),
+                      bytes, [&] { return std::make_unique<CpuBackend<double>>(scene, model); });
+  }
   auto context = require_headless_context();
   return std::make_unique<GpuBackend>(std::move(context), scene, model, find_project_root() / "compute");
 }

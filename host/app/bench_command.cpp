@@ -148,7 +148,7 @@ void add_bench_command(CLI::App& app, std::function<int()>& run) {
       ->check(CLI::IsMember({"classic", "xpbd", "multigrid"}))
       ->capture_default_str();
   cmd->add_option("--frames", o->frames, "timed frames per configuration (after 2 warm-up frames)")
-      ->check(CLI::PositiveNumber)
+      ->check(positive_number())
       ->capture_default_str();
   cmd->add_option("--self-collision", o->self_collision, "on, off or both")
       ->check(CLI::IsMember({"on", "off", "both"}))

@@ -12,6 +12,7 @@
 
 #include "backend.hpp"
 #include "context.hpp"
+#include "input_file.hpp"
 #include "scene.hpp"
 
 namespace clothsim {
@@ -26,14 +27,24 @@ struct ExitError : std::runtime_error {
 
 // The scene options common to commands that take a scene.
 struct SceneOptions {
-  std::string path;                // empty: the built-in default
+  std::string path;                // not given: the built-in default; given as "": exit 2
   std::vector<std::string> sets;   // --set key.path=value
   void add_to(CLI::App& cmd, bool positional_required);
   Scene load() const;              // throws SceneError
+  CLI::Option* option = nullptr;   // the positional, to tell "" from absent
 };
 
 // --no-cache: mesh colliders' fields are built, never read from or kept in the cache folder.
 void add_no_cache_flag(CLI::App& cmd);
+// Numeric option checks with readable limits ("a number in [0.01, 100]", never DBL_MAX's 309
+// digits); each also refuses NaN and infinity by name.
+CLI::Validator number_in(double lo, double hi);
+CLI::Validator positive_number();      // > 0
+CLI::Validator non_negative_number();  // >= 0
+CLI::Validator non_empty_path();       // a file option given as "" names no file
+// Adds the NaN/infinity check to every numeric option of `app` and its subcommands, the ones
+// without a range check included: one place, so no option can forget it.
+void refuse_non_finite(CLI::App& app);
 
 enum class BackendKind { Cpu, Gpu };
 BackendKind parse_backend(const std::string& name);

@@ -5,6 +5,7 @@
 #include "cli_common.hpp"
 #include "commands.hpp"
 #include "debug_output.hpp"
+#include "host_memory.hpp"
 #include "objects.hpp"
 #include "output_file.hpp"
 
@@ -25,6 +26,7 @@ int main(int argc, char** argv) {
 #else
   app.require_subcommand(1);  // the headless build has no viewer to default to
 #endif
+  refuse_non_finite(app);  // every numeric option of every command, after all are added
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -35,32 +37,41 @@ int main(int argc, char** argv) {
     app.exit(e);  // prints the message and usage
     return kExitBadInput;
   }
+  // Messages quote names read from files (keys, mesh paths, a state's scene name): printable()
+  // escapes their control characters so no file can drive the terminal.
+  auto say = [](const char* what) { fmt::print(stderr, "error: {}\n", printable(what, /*keep_newlines=*/true)); };
   try {
     return run();
   } catch (const SceneError& e) {
-    fmt::print(stderr, "error: {}\n", e.what());
+    say(e.what());
+    return kExitBadInput;
+  } catch (const HostOutOfMemory& e) {
+    say(e.what());
+    return kExitBadInput;
+  } catch (const std::bad_alloc&) {
+    // An allocation without its own HostOutOfMemory: too large an input all the same.
+    say("out of host memory (std::bad_alloc): the scene needs more memory than this machine gives; use fewer "
+        "points (cloth.num_width_points, cloth.num_height_points) or a smaller mesh");
     return kExitBadInput;
   } catch (const gl::OutOfMemoryError& e) {
     // Like a grid too large for the GPU's limits (DESIGN.md section 4): too large an input.
-    fmt::print(stderr,
-               "error: {}\n  The cloth does not fit in this GPU's memory: use fewer points "
-               "(cloth.num_width_points, cloth.num_height_points), close other programs using the GPU, or run "
-               "on the CPU: --backend cpu\n",
-               e.what());
+    say(fmt::format("{}\n  The cloth does not fit in this GPU's memory: use fewer points "
+                    "(cloth.num_width_points, cloth.num_height_points), close other programs using the GPU, or run "
+                    "on the CPU: --backend cpu",
+                    e.what()).c_str());
     return kExitBadInput;
   } catch (const gl::GlError& e) {
     // glGetError reported an error during a GPU run (checked once per frame, in release builds
     // too): the run's own check failed, so exit 1 like a divergence; 2 stays bad input.
-    fmt::print(stderr,
-               "error: {}\n  A GL call failed: a bug in clothsim or in the GPU driver, not in the scene. The CPU "
-               "reference computes the same model: --backend cpu\n",
-               e.what());
+    say(fmt::format("{}\n  A GL call failed: a bug in clothsim or in the GPU driver, not in the scene. The CPU "
+                    "reference computes the same model: --backend cpu",
+                    e.what()).c_str());
     return kExitCheckFailed;
   } catch (const ExitError& e) {
-    fmt::print(stderr, "error: {}\n", e.what());
+    say(e.what());
     return e.code;
   } catch (const std::exception& e) {
-    fmt::print(stderr, "error: {}\n", e.what());
+    say(e.what());
     return kExitCheckFailed;
   }
 }

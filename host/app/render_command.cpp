@@ -190,29 +190,29 @@ void add_render_command(CLI::App& app, std::function<int()>& run) {
   auto o = std::make_shared<Opts>();
   CLI::App* cmd = app.add_subcommand("render", "simulate and render headless to PNGs, an MP4 or a GIF");
   o->scene.add_to(*cmd, true);
-  cmd->add_option("--frames", o->frames, "frames to simulate and render")->check(CLI::PositiveNumber)->capture_default_str();
+  cmd->add_option("--frames", o->frames, "frames to simulate and render")->check(positive_number())->capture_default_str();
   cmd->add_option("--out", o->out, "DIR (frame_0000.png ...), FILE.png (the last frame), FILE.mp4 or FILE.gif")
       ->required();
   cmd->add_option("--shader", o->shader, "Wireframe, Normal, Diffuse, Phong, Texture, Bump, Displacement or Mirror")
       ->capture_default_str();
   cmd->add_option("--size", o->size, "image size WIDTHxHEIGHT")->capture_default_str();
   cmd->add_option("--samples", o->samples, "multisample anti-aliasing: samples per pixel, 1 = off")
-      ->check(CLI::Range(1, 64))
+      ->check(number_in(1, 64))
       ->capture_default_str();
   cmd->add_option("--exposure", o->exposure, "light scale before the tone map (2 = one stop brighter)")
-      ->check(CLI::Range(0.01f, 100.f))
+      ->check(number_in(0.01f, 100.f))
       ->capture_default_str();
   cmd->add_option("--every", o->every, "keep every K-th frame (frames K, 2K, ...), e.g. 2 for a GIF")
-      ->check(CLI::PositiveNumber)
+      ->check(positive_number())
       ->capture_default_str();
   cmd->add_option("--fps", o->fps, "frame rate of the MP4 or GIF (default: the scene's, divided by --every)")
-      ->check(CLI::Range(0.01, 1000.0));
+      ->check(number_in(0.01, 1000.0));
   cmd->add_option("--backend", o->backend, "gpu, or cpu (reference positions uploaded per frame)")
       ->check(CLI::IsMember({"gpu", "cpu"}))
       ->capture_default_str();
   cmd->add_option("--camera", o->camera, "eye and target: EX,EY,EZ,TX,TY,TZ")->delimiter(',')->expected(6);
-  cmd->add_option("-a", o->lat, "sphere latitude resolution")->check(CLI::Range(3, 1000))->capture_default_str();
-  cmd->add_option("-o", o->lon, "sphere longitude resolution")->check(CLI::Range(3, 1000))->capture_default_str();
+  cmd->add_option("-a", o->lat, "sphere latitude resolution")->check(number_in(3, 1000))->capture_default_str();
+  cmd->add_option("-o", o->lon, "sphere longitude resolution")->check(number_in(3, 1000))->capture_default_str();
   cmd->add_option("--shadows", o->shadows, "soft shadows of the key light (lit shaders): on or off")
       ->check(CLI::IsMember({"on", "off"}))
       ->capture_default_str();
@@ -226,12 +226,12 @@ void add_render_command(CLI::App& app, std::function<int()>& run) {
   cmd->add_option("--back-tint", o->back_tint, "R,G,B multiplying the colour of the cloth's back (1,1,1: none)")
       ->delimiter(',')
       ->expected(3)
-      ->check(CLI::Range(0.f, 4.f))
+      ->check(number_in(0.f, 4.f))
       ->capture_default_str();
   cmd->add_option("--light", o->light, "direction X,Y,Z from the camera's target to the key light (world axes)")
       ->delimiter(',')
       ->expected(3);
-  cmd->add_option("--load-state", o->load_path, "start from a state saved by simulate --save-state (--frames more)");
+  cmd->add_option("--load-state", o->load_path, "start from a state saved by simulate --save-state (--frames more)")->check(non_empty_path());
   cmd->add_flag("--stats", o->stats, "time the drawing's passes and print their mean per frame");
   cmd->add_option("-r,--root", o->root, "project root (shaders/, compute/, textures/)");
   cmd->callback([o, &run] { run = [o] { return run_render(*o); }; });

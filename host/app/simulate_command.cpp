@@ -44,7 +44,8 @@ void print_stats(const Scene& scene, const ClothStats& st, int frames, double wa
   for (size_t k = 0; k < st.mesh_clearance.size(); ++k)
     fmt::print("mesh[{}] clearance   {:.6f} m (to its surface; thickness {} m)\n", k, st.mesh_clearance[k],
                scene.meshes[k].thickness);
-  for (const std::string& line : collider_mesh_report()) fmt::print("mesh collider     {}\n", line);
+  // Names a mesh file that the scene file named: printed escaped.
+  for (const std::string& line : collider_mesh_report()) fmt::print("mesh collider     {}\n", printable(line));
   fmt::print("finite            {}\n", st.finite ? "yes" : "NO (a value became NaN/Inf)");
 }
 
@@ -108,7 +109,7 @@ void add_simulate_command(CLI::App& app, std::function<int()>& run) {
   auto o = std::make_shared<Opts>();
   CLI::App* cmd = app.add_subcommand("simulate", "run a scene headless and report or export the result");
   o->scene.add_to(*cmd, true);
-  cmd->add_option("--frames", o->frames, "frames to simulate")->check(CLI::NonNegativeNumber);
+  cmd->add_option("--frames", o->frames, "frames to simulate")->check(non_negative_number());
   cmd->add_option("--backend", o->backend, "gpu (compute shaders) or cpu (the reference)")
       ->check(CLI::IsMember({"gpu", "cpu"}))
       ->capture_default_str();
@@ -119,16 +120,16 @@ void add_simulate_command(CLI::App& app, std::function<int()>& run) {
                   "with --export FILE.pc2: where the mesh goes (default FILE.obj beside it, which is written only "
                   "if absent or already that mesh)");
   cmd->add_option("--export-every", o->export_every, "with a .pc2 or DIR/ export: write every K-th frame")
-      ->check(CLI::PositiveNumber);
-  cmd->add_option("--load-state", o->load_path, "continue from a state saved by --save-state");
+      ->check(positive_number());
+  cmd->add_option("--load-state", o->load_path, "continue from a state saved by --save-state")->check(non_empty_path());
   cmd->add_option("--save-state", o->save_path, "save the final state (positions, displacements, time)");
   cmd->add_flag("--stats", o->stats, "print frames, timing, stretch, energy, clearances, self-intersections");
   cmd->add_option("--intersections-every", o->intersections_every,
                   "every K-th frame print the exact self-intersection count (CPU, reads the frame back)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   cmd->add_option("--stretch-every", o->stretch_every,
                   "every K-th frame print the largest and the 99th-percentile spring stretch (reads the frame back)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   cmd->callback([o, &run] {
     run = [o]() -> int {
       const ExportKind kind = export_kind(o->export_path);

@@ -2,6 +2,7 @@
 // cloth's static equilibrium by Newton's method in double (static_solve.hpp), independent of both
 // solvers: where a run of the scene should come to rest. The physical answer a solver's rest
 // state is compared with (scripts/xpbd-resolution prints it next to each solver's sag).
+#include <algorithm>
 #include <fmt/format.h>
 
 #include "cli_common.hpp"
@@ -31,6 +32,10 @@ int run_static(const Opts& o) {
   }
   const ClothModel model = build_cloth(scene);
   fmt::print("{}: {}, static equilibrium (Newton, double)\n", scene.source, describe_cloth(model));
+  // Nothing free to move: the cloth rests where it starts. Exit 0 (the answer is exact), said
+  // plainly so a scene whose pins cover everything by mistake is noticed.
+  if (std::all_of(model.pinned.begin(), model.pinned.end(), [](uint8_t p) { return p != 0; }))
+    fmt::print("nothing to solve: every particle is pinned (the cloth rests where it starts)\n");
   StaticEquilibrium eq;
   try {
     eq = solve_static_equilibrium(scene, model, o.tolerance, o.max_iterations);
@@ -74,10 +79,10 @@ void add_static_command(CLI::App& app, std::function<int()>& run) {
   o->scene.add_to(*cmd, true);
   cmd->add_option("--export", o->export_path, "FILE.obj: the cloth at rest (written once complete)");
   cmd->add_option("--tolerance", o->tolerance, "stop when no free mass has a net force above this (N)")
-      ->check(CLI::PositiveNumber)
+      ->check(positive_number())
       ->capture_default_str();
   cmd->add_option("--max-iterations", o->max_iterations, "Newton steps at most")
-      ->check(CLI::Range(1, 100000))
+      ->check(number_in(1, 100000))
       ->capture_default_str();
   cmd->callback([o, &run] { run = [o] { return run_static(*o); }; });
 }

@@ -104,15 +104,15 @@ void add_validate_command(CLI::App& app, std::function<int()>& run) {
   auto o = std::make_shared<Opts>();
   CLI::App* cmd = app.add_subcommand("validate", "check the GPU passes and a whole GPU run against the CPU reference");
   o->scene.add_to(*cmd, true);
-  cmd->add_option("--frames", o->frames, "frames to run in lock step")->check(CLI::PositiveNumber)->capture_default_str();
+  cmd->add_option("--frames", o->frames, "frames to run in lock step")->check(positive_number())->capture_default_str();
   cmd->add_option("--tolerance", o->tolerance,
                   "max GPU-CPU distance in metres over the run (default: 0 on llvmpipe, which rounds like "
                   "the reference; elsewhere twice the float32 noise floor, CPU float vs double, at least 1e-5 m)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative_number());
   cmd->add_option("--pass-tolerance", o->pass_tolerance, "max error of each pass alone, metres (default: 0 on llvmpipe, 1e-5 elsewhere)")
-      ->check(CLI::NonNegativeNumber);
-  cmd->add_option("--report-every", o->report_every, "print every K frames")->check(CLI::PositiveNumber)->capture_default_str();
-  cmd->add_option("--warmup", o->warmup, "CPU frames before the per-pass check")->check(CLI::NonNegativeNumber)->capture_default_str();
+      ->check(non_negative_number());
+  cmd->add_option("--report-every", o->report_every, "print every K frames")->check(positive_number())->capture_default_str();
+  cmd->add_option("--warmup", o->warmup, "CPU frames before the per-pass check")->check(non_negative_number())->capture_default_str();
   cmd->callback([o, &run] { run = [o] { return run_validate(*o); }; });
 }
 

@@ -17,22 +17,25 @@ void add_viewer_options(CLI::App& app, std::function<int()>& run) {
     int lat = 40, lon = 40, frames = -1;
   };
   auto o = std::make_shared<Opts>();
-  app.add_option("scene", o->positional, "scene JSON file for the viewer (default: the built-in pinned2)");
-  app.add_option("-f", o->file, "scene JSON file (the classic flag)");
-  app.add_option("-a", o->lat, "sphere latitude resolution")->check(CLI::Range(3, 1000))->capture_default_str();
-  app.add_option("-o", o->lon, "sphere longitude resolution")->check(CLI::Range(3, 1000))->capture_default_str();
+  CLI::Option* positional = app.add_option("scene", o->positional, "scene JSON file for the viewer (default: the built-in pinned2)");
+  CLI::Option* file = app.add_option("-f", o->file, "scene JSON file (the classic flag)");
+  app.add_option("-a", o->lat, "sphere latitude resolution")->check(number_in(3, 1000))->capture_default_str();
+  app.add_option("-o", o->lon, "sphere longitude resolution")->check(number_in(3, 1000))->capture_default_str();
   app.add_option("-r", o->root, "project root with shaders/, compute/, textures/ (found automatically)");
   app.add_option("--set", o->sets, "override a scene value, e.g. --set cloth.ks=500 (repeatable)")
       ->type_name("KEY=VALUE")
       ->allow_extra_args(false);
   app.add_option("--frames", o->frames, "scripted: run N frames unpaused, save --screenshot, exit")
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative_number());
   app.add_option("--screenshot", o->screenshot, "scripted: PNG of the window (panels included) after --frames");
   add_no_cache_flag(app);
   app.add_option("--window", o->size, "window size WIDTHxHEIGHT")->capture_default_str();
-  app.final_callback([o, &app, &run] {
+  app.final_callback([o, &app, &run, positional, file] {
     if (app.get_subcommands().size() > 0) return;  // a subcommand ran its own callback
-    run = [o]() -> int {
+    // An empty name given as the scene is no scene file, not "the built-in one".
+    const bool empty_given = (positional->count() > 0 && o->positional.empty()) || (file->count() > 0 && o->file.empty());
+    run = [o, empty_given]() -> int {
+      if (empty_given) throw ExitError(kExitBadInput, "scene \"\": an empty path (expected a scene JSON file)");
       if (!o->positional.empty() && !o->file.empty())
         throw ExitError(kExitBadInput, "give the scene once: either SCENE or -f SCENE");
       if ((o->frames >= 0) != !o->screenshot.empty())

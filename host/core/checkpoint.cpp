@@ -1,5 +1,7 @@
 #include "checkpoint.hpp"
 
+#include "input_file.hpp"
+
 #include <algorithm>
 #include <bit>
 #include <cmath>
@@ -167,10 +169,12 @@ void write_checkpoint(const std::string& path, const Checkpoint& c) {
 }
 
 Checkpoint read_checkpoint(const std::string& path) {
-  std::error_code ec;
-  const uintmax_t size = std::filesystem::file_size(path, ec);
+  // stat first: a FIFO or a device would block the read or never end.
+  uint64_t size = 0;
+  if (auto problem = input_file_problem(path, &size))
+    throw CheckpointError(fmt::format("{}: cannot open the state file: {}", path.empty() ? "\"\"" : printable(path), *problem));
   std::ifstream in(path, std::ios::binary);
-  if (ec || !in) throw CheckpointError(fmt::format("{}: cannot open the state file", path));
+  if (!in) throw CheckpointError(fmt::format("{}: cannot open the state file", printable(path)));
   return read_checkpoint(in, size, path);
 }
 
@@ -267,12 +271,12 @@ void check_fits(const Checkpoint& c, const std::string& path, const Scene& scene
         "{}: a different cloth: the state was saved from a {}x{} cloth with {} pinned particles (scene {}, cloth "
         "hash {:016x}), but scene {} has a {}x{} cloth with {} (cloth hash {:016x}). A state loads only into the "
         "cloth it was saved from: same grid, width, height, orientation and pins (other parameters may change)",
-        path, c.nw, c.nh, c.pins, c.scene, c.cloth, scene.source, model.nw, model.nh, pinned_count(model), here));
+        path, c.nw, c.nh, c.pins, printable(c.scene), c.cloth, scene.source, model.nw, model.nh, pinned_count(model), here));
   if (c.state.scalar_bytes != scalar_bytes)
     throw CheckpointError(fmt::format(
         "{}: the state holds {}-byte ({}) scalars, saved by backend {}, but backend {} runs in {}-byte ({}). "
         "States are kept bit for bit, so they load only into a backend of the same precision",
-        path, c.state.scalar_bytes, scalar_name(c.state.scalar_bytes), c.backend, backend, scalar_bytes,
+        path, c.state.scalar_bytes, scalar_name(c.state.scalar_bytes), printable(c.backend), backend, scalar_bytes,
         scalar_name(scalar_bytes)));
 }
 

@@ -2,6 +2,8 @@
 // force gather, the triangles around each particle, the tethers) and the masses.
 #include "cloth.hpp"
 
+#include "host_memory.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <numeric>
@@ -139,7 +141,49 @@ std::string describe_cloth(const ClothModel& m) {
                      m.colours());
 }
 
+static ClothModel build_cloth_model(const Scene& scene);
+
+// Self-collision compares each particle with those in the 27 hash cells of 2 x thickness around
+// it: on a flat cloth about 36 (thickness / spacing)^2 of them. A thickness many times the
+// spacing makes that thousands (a substep of minutes, with no sign of why): refused, naming the
+// cost and the largest thickness that keeps it in bounds. Real scenes stay below 1 x spacing.
+void check_self_collision_cost(const Scene& scene, const ClothModel& m) {
+  if (!scene.simulation.self_collision || m.count() == 0) return;
+  std::vector<double> rest;
+  for (const Spring& s : m.springs)
+    if (s.type == SpringType::Structural && s.rest > 0) rest.push_back(s.rest);
+  if (rest.empty()) return;
+  std::nth_element(rest.begin(), rest.begin() + long(rest.size() / 2), rest.end());
+  const double spacing = rest[rest.size() / 2];  // the median: one odd edge does not decide
+  const auto cloths = scene.cloths();
+  const ClothParams* thickest = cloths[0];
+  for (const ClothParams* c : cloths)
+    if (c->thickness > thickest->thickness) thickest = c;
+  const double ratio = thickest->thickness / spacing;
+  const double neighbours = std::min(double(m.count()), 36.0 * ratio * ratio);
+  if (neighbours <= kMaxSelfCollisionNeighbours) return;
+  const double largest = spacing * std::sqrt(kMaxSelfCollisionNeighbours / 36.0);
+  std::string key = "cloth";
+  for (size_t k = 0; k < cloths.size(); ++k)
+    if (cloths[k] == thickest && cloths.size() > 1) key = fmt::format("cloth[{}]", k);
+  throw SceneError(fmt::format(
+      "{}: {}.thickness: {:g} m is {:.3g} x the particle spacing ({:.3g} m): self-collision would compare each particle "
+      "with about {:.0f} others ({:.3g} pairs a substep); at most {:g} are accepted: expected a thickness of at most "
+      "{:.3g} m, or simulation.self_collision false",
+      scene.source, key, thickest->thickness, ratio, spacing, neighbours, neighbours * m.count(),
+      kMaxSelfCollisionNeighbours, largest));
+}
+
 ClothModel build_cloth(const Scene& scene) {
+  // The model's arrays for the grid cloths: positions, uv, masses, about 8 springs a particle.
+  const uint64_t particles = uint64_t(scene.particle_count());
+  const uint64_t bytes = particles * (sizeof(glm::dvec3) * 2 + sizeof(double) * 2 + 8 * sizeof(Spring) + 16);
+  ClothModel m = allocating(fmt::format("the cloth model of {} particles", particles), bytes,
+                            [&] { return build_cloth_model(scene); });
+  return m;
+}
+
+static ClothModel build_cloth_model(const Scene& scene) {
   ClothModel m;
   std::vector<PartSprings> parts;
   const auto cloths = scene.cloths();

@@ -82,7 +82,13 @@ struct ClothModel {
 std::string describe_cloth(const ClothModel& model);
 
 // Every cloth of the scene, in order, as one model. Throws SceneError for a bad mesh.
+// Throws HostOutOfMemory when the model does not fit in memory.
 ClothModel build_cloth(const Scene& scene);
+// With self-collision on, throws SceneError when it would compare a particle with more than
+// kMaxSelfCollisionNeighbours others (a thickness many times the spacing). Called by
+// make_constants, so every run (either backend, the viewer) is checked, not a mere model.
+inline constexpr double kMaxSelfCollisionNeighbours = 1000;
+void check_self_collision_cost(const Scene& scene, const ClothModel& model);
 
 // The pieces the builders share (cloth.cpp). A builder appends one part's particles,
 // triangles and springs (each with its colour within its type), then finish_model sorts the

@@ -3,9 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <string_view>
 
 #include <fmt/format.h>
 #include <glm/common.hpp>
+
+#include "scene_table.hpp"
 
 namespace clothsim {
 namespace {
@@ -21,13 +24,24 @@ double farthest_reach(const ClothBounds& b, const DivergenceLimits& l) {
   return reach;
 }
 
+// The largest simulation_steps the loader accepts, from its row: advice never suggests more.
+int max_simulation_steps() {
+  for (const Param<SimulationParams>& p : param_rows<SimulationParams>())
+    if (std::string_view(p.info.key) == "simulation_steps") return int(p.info.hi);
+  return 1;
+}
+
 }  // namespace
 
-DivergenceLimits divergence_limits(const Scene& scene, const ClothModel& model) {
-  glm::dvec3 centre(0);
-  for (const glm::dvec3& p : model.initial) centre += p;
+DivergenceLimits divergence_limits(const Scene&, const ClothModel& model) {
+  // The cloth's own extent, not the grid's width and height (a mesh cloth has none of its own):
+  // a mesh in millimetres or with one stray vertex far out starts within its limit.
+  glm::dvec3 centre(0), lo(HUGE_VAL), hi(-HUGE_VAL);
+  for (const glm::dvec3& p : model.initial) centre += p, lo = glm::min(lo, p), hi = glm::max(hi, p);
   centre /= double(model.count());
-  return {glm::vec3(centre), float(1000.0 * std::max(scene.cloth.width, scene.cloth.height))};
+  // The start's own reach from its centre is at most its largest side, far within the limit.
+  const glm::dvec3 size = hi - lo;
+  return {glm::vec3(centre), float(1000.0 * std::max({size.x, size.y, size.z}))};
 }
 
 bool within_limits(const ClothBounds& b, const DivergenceLimits& l) {
@@ -47,26 +61,48 @@ std::optional<std::string> divergence_message(const Scene& scene, const ClothMod
           ? fmt::format("the cloth reached {:.3g} m from where it started (limit {:.3g} m)",
                         farthest_reach(check.bounds, limits), limits.limit)
           : std::string("a particle position became NaN/Inf");
-  const double ks = scene.cloth.ks, mass = particle_mass(scene.cloth), dt = scene.dt();
+  // The particle with the least mass per stiffness sets the stable step: the model's own masses
+  // (a mesh cloth's differ per vertex) and its cloth's ks.
+  const auto cloths = scene.cloths();
+  const std::vector<double> masses = particle_masses(scene, model);  // follows a live density edit
+  double ks = 0, mass = 0, ratio = HUGE_VAL;
+  for (size_t i = 0; i < size_t(model.count()); ++i) {
+    const double k = cloths[model.material[i]]->ks, m = masses[i];
+    if (model.pinned[i] || !(k > 0) || !(m / k < ratio)) continue;
+    ratio = m / k, ks = k, mass = m;
+  }
+  const double dt = scene.dt();
   const int steps = scene.simulation.simulation_steps;
-  const double stable_dt =
-      ks > 0 ? kStableStepFraction * std::sqrt(mass / ks) : std::numeric_limits<double>::infinity();
+  const int max_steps = max_simulation_steps();
+  const double stable_dt = ratio < HUGE_VAL ? kStableStepFraction * std::sqrt(ratio) : HUGE_VAL;
   std::string cause;
   if (dt > stable_dt) {
-    // Enough substeps for stable_dt, rounded up to a multiple of 10 and at least twice as many.
+    // Enough substeps for stable_dt, rounded up to a multiple of 10 and at least twice as many,
+    // and never more than the loader accepts; past that, only a softer cloth is stable.
     const double needed = std::ceil(1.0 / (scene.simulation.frames_per_sec * stable_dt) / 10.0) * 10.0;
-    const long long suggest = std::max(2LL * steps, (long long)std::min(needed, 1e9));
+    const long long suggest = std::min<long long>(std::max(2LL * steps, (long long)std::min(needed, 1e9)), max_steps);
+    // The ks at which the present substeps are stable.
+    const double soft_ks = mass * std::pow(kStableStepFraction / dt, 2);
     cause = fmt::format(
         "Likely cause: the springs are too stiff for the time step (ks {:g} N/m on {:.3g} kg particles needs "
-        "substeps shorter than about {:.2g} s; these are {:.2g} s). Lower cloth.ks (now {:g}) or raise "
-        "simulation.simulation_steps (now {}), e.g. --set simulation.simulation_steps={}",
-        ks, mass, stable_dt, dt, ks, steps, suggest);
-  } else {
+        "substeps shorter than about {:.2g} s; these are {:.2g} s). Lower cloth.ks (now {:g}; about {:.3g} is stable "
+        "with these substeps)",
+        ks, mass, stable_dt, dt, ks, soft_ks);
+    if (steps < max_steps)
+      cause += fmt::format(" or raise simulation.simulation_steps (now {}, at most {}), e.g. --set "
+                           "simulation.simulation_steps={}",
+                           steps, max_steps, suggest);
+  } else if (steps < max_steps) {
     cause = fmt::format(
         "Likely cause: extreme parameters (cloth.ks {:g}, cloth.density {:g}, simulation.gravity, colliders); "
         "more substeps usually help: raise simulation.simulation_steps (now {}), e.g. --set "
         "simulation.simulation_steps={}",
-        ks, scene.cloth.density, steps, 4 * steps);
+        scene.cloth.ks, scene.cloth.density, steps, std::min(4LL * steps, (long long)max_steps));
+  } else {
+    cause = fmt::format(
+        "Likely cause: extreme parameters (cloth.ks {:g}, cloth.density {:g}, simulation.gravity, colliders); "
+        "simulation.simulation_steps is already at its largest ({}): soften the cloth or the colliders' motion",
+        scene.cloth.ks, scene.cloth.density, steps);
   }
   return fmt::format("the simulation diverged at frame {}: {}. {}", check.frame, what, cause);
 }

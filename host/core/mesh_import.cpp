@@ -18,6 +18,8 @@
 #include <glm/geometric.hpp>
 #include <glm/mat4x4.hpp>
 
+#include "input_file.hpp"
+#include "ply_check.hpp"
 #include "scene.hpp"
 
 namespace clothsim {
@@ -30,10 +32,10 @@ struct Context {
   const std::string& what;
 
   [[noreturn]] void fail(const std::string& problem) const {
-    throw SceneError(fmt::format("{}: {}: {}", what, file.string(), problem));
+    throw SceneError(fmt::format("{}: {}: {}", what, printable(file.string()), problem));
   }
   void warn(const std::string& problem) const {
-    fmt::print(stderr, "warning: {}: {}: {}\n", what, file.string(), problem);
+    fmt::print(stderr, "warning: {}: {}: {}\n", what, printable(file.string()), printable(problem));
   }
 };
 
@@ -226,10 +228,16 @@ bool zero_area(const std::vector<glm::dvec3>& p, const uint32_t* c, size_t n) {
 
 PolyMesh load_mesh(const std::filesystem::path& file, const std::string& what, bool manifold) {
   const Context cx{file, what};
-  std::error_code ec;
-  if (!fs::exists(file, ec)) cx.fail("the mesh file does not exist");
-  if (fs::is_directory(file, ec)) cx.fail("is a directory, not a mesh file");
+  // stat first: Assimp would block on a FIFO or read /dev/zero without end.
+  uint64_t size = 0;
+  if (auto problem = input_file_problem(file, &size)) {
+    if (*problem == "does not exist") cx.fail("the mesh file does not exist");
+    cx.fail(fmt::format("the mesh file {}", *problem));
+  }
   if (!std::ifstream(file, std::ios::binary)) cx.fail("cannot open the mesh file (is it readable?)");
+  // Assimp trusts a PLY header's counts and allocates from them: they are checked against the
+  // file's size first (ply_check.hpp), and an ASCII PLY's data lines against them.
+  if (auto problem = ply_problem(file, size)) cx.fail(*problem);
 
   // No post-processing: not aiProcess_Triangulate (quads stay quads), not JoinIdenticalVertices
   // (it keeps a uv seam apart; welding here is by position alone), not ValidateDataStructure

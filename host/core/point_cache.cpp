@@ -11,6 +11,8 @@
 
 #include <fmt/format.h>
 
+#include "input_file.hpp"
+
 namespace clothsim {
 namespace {
 
@@ -104,9 +106,10 @@ Pc2Header read_checked_header(std::istream& in, uint64_t size, const std::string
 
 // The file's size and an open stream on it.
 uint64_t open_for_reading(const std::string& path, std::ifstream& in) {
-  std::error_code ec;
-  const uintmax_t size = std::filesystem::file_size(path, ec);
-  if (ec) throw Pc2Error(fmt::format("{}: cannot open ({})", path, ec.message()));
+  // stat first: a FIFO or a device would block the read or never end.
+  uint64_t size = 0;
+  if (auto problem = input_file_problem(path, &size))
+    throw Pc2Error(fmt::format("{}: cannot open: {}", path.empty() ? "\"\"" : printable(path), *problem));
   in.open(path, std::ios::binary);
   if (!in) throw Pc2Error(fmt::format("{}: cannot open", path));
   return size;

@@ -141,6 +141,7 @@ Constants<R> make_constants(const Scene& scene, const ClothModel& model, std::sh
   for (const ClothParams* k : scene.cloths()) thickness = std::max(thickness, k->thickness);
   c.contact_distance = R(2.0 * thickness);
   c.inv_cell = R(1.0 / (2.0 * thickness));
+  check_self_collision_cost(scene, model);  // a thickness many times the spacing: refused
   c.steps = R(sp.simulation_steps);
   for (const ClothParams* k : scene.cloths()) {
     MaterialC<R> mat{};

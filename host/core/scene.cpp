@@ -3,12 +3,11 @@
 #include "scene.hpp"
 
 #include <algorithm>
-#include <fstream>
-#include <sstream>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "input_file.hpp"
 #include "scene_overrides.hpp"
 #include "scene_table.hpp"
 
@@ -131,12 +130,16 @@ Scene parse_scene(const std::string& text, const std::string& source, const std:
 }
 
 Scene load_scene(const std::filesystem::path& file, const std::vector<std::string>& overrides) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in || std::filesystem::is_directory(file))
-    throw SceneError(fmt::format("{}: cannot open the scene file (does it exist and is it readable?)", file.string()));
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return parse_scene(ss.str(), file.string(), overrides);
+  // Checked and read by read_input_file: a FIFO or /dev/zero given as the scene is refused
+  // before any read, never read forever. 256 MiB holds the pins of the largest cloth.
+  std::string text;
+  try {
+    text = read_input_file(file, uint64_t(256) << 20);
+  } catch (const std::runtime_error& e) {
+    throw SceneError(fmt::format("{}: cannot read the scene file: {}", file.empty() ? "\"\"" : printable(file.string()),
+                                 e.what()));
+  }
+  return parse_scene(text, file.string(), overrides);
 }
 
 Scene default_scene(const std::vector<std::string>& overrides) {

@@ -112,6 +112,12 @@ StaticEquilibrium solve_static_equilibrium(const Scene& scene, const ClothModel&
   const Problem p(scene, model);
   StaticEquilibrium out;
   out.pos = model.initial;
+  // Every particle pinned: the start is the equilibrium, and an empty system is no system for
+  // Eigen (it crashed on one). Converged, with no step taken.
+  if (p.n == 0) {
+    out.converged = true;
+    return out;
+  }
   double largest = 0;
   Eigen::VectorXd f = p.force(out.pos, &largest);
   double e = p.energy(out.pos);

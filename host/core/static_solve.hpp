@@ -26,6 +26,7 @@ struct StaticEquilibrium {
 // clamped, so each step solves a positive definite sparse system, Eigen's LDL^T) from the
 // cloth's start positions, until the largest net force is at most `tolerance` newtons. No
 // colliders, wind or self-collision: a scene with any of them is refused (std::invalid_argument).
+// A cloth with every particle pinned is at rest where it starts: converged in 0 steps.
 StaticEquilibrium solve_static_equilibrium(const Scene& scene, const ClothModel& model, double tolerance = 1e-10,
                                            int max_iterations = 200);
 

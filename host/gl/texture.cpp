@@ -7,6 +7,8 @@
 #include <fmt/format.h>
 #include <stb/stb_image.h>
 
+#include "input_file.hpp"  // clothsim_core
+
 namespace clothsim::gl {
 
 void detail::delete_texture(GLuint id) { glDeleteTextures(1, &id); }
@@ -49,6 +51,9 @@ struct Image {
 Image read_png(const std::filesystem::path& path) {
   Image im;
   int channels = 0;
+  // stat first: stb would block on a FIFO or read a device without end.
+  if (auto problem = input_file_problem(path))
+    throw std::runtime_error(fmt::format("{}: cannot load the image: {}", printable(path.string()), *problem));
   stbi_uc* data = stbi_load(path.string().c_str(), &im.w, &im.h, &channels, 4);
   if (!data)
     throw std::runtime_error(fmt::format("{}: cannot load the image ({})", path.string(), stbi_failure_reason()));
