@@ -21,7 +21,7 @@ struct MeshField {
 MeshField mesh_field(int k) {
   vec4 r0 = texelFetch(meshes_view, MESH_TEXELS * k), r1 = texelFetch(meshes_view, MESH_TEXELS * k + 1);
   vec4 r2 = texelFetch(meshes_view, MESH_TEXELS * k + 2), grid = texelFetch(meshes_view, MESH_TEXELS * k + 3);
-  ivec4 dims = floatBitsToInt(texelFetch(meshes_view, MESH_TEXELS * k + 4));
+  ivec4 dims = texelFetch(meshes_int_view, MESH_TEXELS * k + 4);  // integers: through the integer view
   vec4 motion = texelFetch(meshes_view, MESH_TEXELS * k + 5), material = texelFetch(meshes_view, MESH_TEXELS * k + 6);
   vec4 bound = texelFetch(meshes_view, MESH_TEXELS * k + 7);
   MeshField m;

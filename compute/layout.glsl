@@ -99,6 +99,9 @@ using uint = uint32_t;
 #define TEXTURE_MULTIPLIERS 24       // RGBA32F, per spring: BINDING_MULTIPLIERS, read by predict and the sweep
 #define TEXTURE_MESHES 25            // RGBA32F, MESH_TEXELS per MeshCollider
 #define TEXTURE_SDF 26               // RGBA32F, per field node its value and its +x, +y, +x+y neighbours' (BINDING_SDF)
+// The same buffer as TEXTURE_MESHES as RGBA32I, for MeshCollider's integers (dims): read through
+// the float view they would be denormal floats, which a driver may flush to zero (AMD and Intel do).
+#define TEXTURE_MESHES_INT 35        // RGBA32I, MESH_TEXELS per MeshCollider
 // The multigrid hierarchy (Hierarchy in host/core/hierarchy.hpp), static over a run, and the views of its scratch.
 #define TEXTURE_MG_VERTICES 27       // RGBA32UI, per coarse vertex + 1: x its particle, y its first child, z its first parent, w its first spring (entries of TEXTURE_MG_LISTS)
 #define TEXTURE_MG_LISTS 28          // RGBA32UI, MultigridEntry: the children, then the parents, the springs, the particles' parents
@@ -165,7 +168,7 @@ struct MeshCollider {
   vec4 row1;       // xyz the second row, w origin.y
   vec4 row2;       // xyz the third row, w origin.z
   vec4 grid;       // xyz grid_min, w 1 / node spacing
-  ivec4 dims;      // xyz nodes along x, y, z, w the offset of node (0, 0, 0) (read as floatBitsToInt)
+  ivec4 dims;      // xyz nodes along x, y, z, w the offset of node (0, 0, 0) (read through TEXTURE_MESHES_INT)
   vec4 motion;     // xyz m over this substep, w = 1 - friction
   vec4 material;   // x friction (xpbd's Coulomb mu), y thickness (m), z crossing (MeshC), w 1 closed, 0 open
   vec4 bound;      // x the field's slope bound in the world (sdf_slopes), yzw unused

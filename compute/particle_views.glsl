@@ -26,6 +26,7 @@ layout(binding = TEXTURE_TRIANGLES) uniform usamplerBuffer triangles_view;
 layout(binding = TEXTURE_REST_POSITIONS) uniform samplerBuffer rest_positions_view;
 layout(binding = TEXTURE_MULTIPLIERS) uniform samplerBuffer multipliers_view;
 layout(binding = TEXTURE_MESHES) uniform samplerBuffer meshes_view;
+layout(binding = TEXTURE_MESHES_INT) uniform isamplerBuffer meshes_int_view;
 layout(binding = TEXTURE_SDF) uniform samplerBuffer sdf_view;
 
 vec4 position_of(int i) { return texelFetch(positions_view, i); }

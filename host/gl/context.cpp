@@ -39,10 +39,18 @@ static std::string gl_string(GLenum name) {
 std::string gl_renderer_string() { return gl_string(GL_RENDERER); }
 std::string gl_version_string() { return gl_string(GL_VERSION); }
 
-bool gl_renderer_is_llvmpipe() { return gl_renderer_string().find("llvmpipe") != std::string::npos; }
+bool renderer_is_bit_exact(std::string_view renderer) { return renderer.starts_with("llvmpipe"); }
+
+bool renderer_is_software(std::string_view renderer) {
+  for (std::string_view software : {"llvmpipe", "softpipe", "lavapipe"})
+    if (renderer.find(software) != std::string_view::npos) return true;
+  return false;
+}
+
+bool gl_renderer_is_llvmpipe() { return renderer_is_bit_exact(gl_renderer_string()); }
 
 std::string software_renderer_notice() {
-  if (!gl_renderer_is_llvmpipe()) return {};
+  if (!renderer_is_software(gl_renderer_string())) return {};
   return "note: OpenGL runs on " + gl_renderer_string() +
          ", Mesa's software rasterizer on the CPU: fine for tests and small cloths, slow for large ones "
          "(README: Troubleshooting)";

@@ -5,6 +5,7 @@
 
 #include <memory>
 #include <string>
+#include <string_view>
 
 namespace clothsim::gl {
 
@@ -44,9 +45,20 @@ bool load_gl_functions(GlProcLoader loader, std::string* why_not);
 // Facts about the current context, for logs and for tests that expect llvmpipe's exactness.
 std::string gl_renderer_string();  // GL_RENDERER, e.g. "llvmpipe (LLVM 15.0.6, 256 bits)"
 std::string gl_version_string();   // GL_VERSION, e.g. "4.5 (Core Profile) Mesa 22.3.6"
+
+// Whether a renderer rounds exactly like the CPU reference, so that GPU results must equal it
+// bit for bit: plain llvmpipe only, the renderer string starting with "llvmpipe". Zink on
+// lavapipe says "zink (llvmpipe (LLVM ...))": the same LLVM back end, but the shaders reach it
+// through SPIR-V and lavapipe's compiler, not the path the reference was made to match, so it
+// runs in tolerance mode like a GPU (docs/testing.md, "The zink lane").
+bool renderer_is_bit_exact(std::string_view renderer);
+// Whether a renderer is one of Mesa's rasterizers on the CPU (llvmpipe, softpipe, lavapipe, zink
+// on either): slow for large cloths, and its timestamps are not a GPU's.
+bool renderer_is_software(std::string_view renderer);
+// renderer_is_bit_exact of the current context: the tests' and `validate`'s exact mode.
 bool gl_renderer_is_llvmpipe();
-// One line for stderr when the context is a software rasterizer (llvmpipe), so a slow run
-// says why; empty on a GPU.
+// One line for stderr when the context is a software rasterizer (llvmpipe, or zink on
+// lavapipe), so a slow run says why; empty on a GPU.
 std::string software_renderer_notice();
 
 }  // namespace clothsim::gl

@@ -57,6 +57,7 @@ void GpuSimulator::upload_colliders() {
   } else {
     gl::upload_vector(meshes_, meshes, GL_DYNAMIC_DRAW);
     meshes_view_.attach(meshes_, GL_RGBA32F);
+    meshes_int_view_.attach(meshes_, GL_RGBA32I);
   }
   const size_t sphere_bytes = spheres.size() * sizeof(spheres[0]), plane_bytes = planes.size() * sizeof(planes[0]);
   if (spheres_.size() == sphere_bytes && planes_.size() == plane_bytes) {

@@ -190,6 +190,7 @@ void GpuSimulator::upload_multipliers(std::vector<Vec4<float>> multipliers) {
   gl::upload_vector(multipliers_, multipliers);
   multipliers_view_.attach(multipliers_, GL_RGBA32F);
   meshes_view_.attach(meshes_, GL_RGBA32F);
+  meshes_int_view_.attach(meshes_, GL_RGBA32I);
   sdf_view_.attach(sdf_, GL_RGBA32F);
 }
 
@@ -262,6 +263,7 @@ void GpuSimulator::bind_all() const {
   multipliers_view_.bind(TEXTURE_MULTIPLIERS);
   meshes_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_MESHES);
   meshes_view_.bind(TEXTURE_MESHES);
+  meshes_int_view_.bind(TEXTURE_MESHES_INT);
   sdf_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_SDF);
   sdf_view_.bind(TEXTURE_SDF);
   bind_multigrid();
@@ -287,6 +289,7 @@ void GpuSimulator::attach_views() {
   rest_positions_view_.attach(rest_positions_, GL_RGBA32F);
   multipliers_view_.attach(multipliers_, GL_RGBA32F);
   meshes_view_.attach(meshes_, GL_RGBA32F);
+  meshes_int_view_.attach(meshes_, GL_RGBA32I);
   sdf_view_.attach(sdf_, GL_RGBA32F);
 }
 

@@ -219,6 +219,8 @@ class GpuSimulator {
   gl::BufferTexture rest_positions_view_{"rest positions view"};
   gl::BufferTexture multipliers_view_{"multipliers view"};
   gl::BufferTexture meshes_view_{"mesh colliders view"}, sdf_view_{"mesh fields view"};
+  // The same buffer as integers (TEXTURE_MESHES_INT): MeshCollider::dims, which the float view could flush.
+  gl::BufferTexture meshes_int_view_{"mesh colliders integer view"};
   uint32_t table_size_ = 0;
   bool in_step_ = false;
   bool in_frame_ = false;  // within step_frame's substeps

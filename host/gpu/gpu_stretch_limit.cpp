@@ -46,8 +46,11 @@ void GpuSimulator::settling_passes(int fixed) {
     p.arm.set(p.first_watched, int(pass == fixed - 1));
     p.arm.dispatch(1);
     dispatched(p.arm);
-    // The watched pass's dispatches read their workgroups from what the arm wrote.
-    barrier(GL_COMMAND_BARRIER_BIT);
+    // The watched pass's dispatches read their workgroups from what the arm wrote (COMMAND: the
+    // indirect-dispatch read), and its invocations store the settling flag the arm cleared
+    // through the same storage buffer (SHADER_STORAGE: their store must land after the arm's,
+    // which COMMAND alone does not order).
+    barrier(GL_COMMAND_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
     for (int colour = 0; colour < colours; ++colour) {
       if (!enabled_colour(colour)) continue;
       const uint32_t first = model_.colour_start[colour];
