@@ -65,7 +65,7 @@ double gpu_sheet_error(const std::string& solver) {
 
 }  // namespace
 
-TEST_CASE("on the GPU a hanging chain's links stretch by the weight below over ks, within 1 %, every solver", "[gpu]") {
+TEST_CASE("on the GPU a hanging chain's links stretch by the weight below over ks, within 1 %, every solver", "[gpu][long]") {
   REQUIRE_GL_CONTEXT();
   const std::string solver = GENERATE("classic", "xpbd", "multigrid");
   const double e = gpu_chain_error(solver);
@@ -75,7 +75,7 @@ TEST_CASE("on the GPU a hanging chain's links stretch by the weight below over k
 }
 
 TEST_CASE("on the GPU a chain released from its lowest mode swings at its frequency, within 5 %, every solver",
-          "[gpu]") {
+          "[gpu][long]") {
   REQUIRE_GL_CONTEXT();
   const std::string solver = GENERATE("classic", "xpbd", "multigrid");
   int periods = 0;
@@ -86,7 +86,7 @@ TEST_CASE("on the GPU a chain released from its lowest mode swings at its freque
 }
 
 TEST_CASE("on the GPU a sheet pinned along its border rests where the static solve puts it, within 1 mm, every solver",
-          "[gpu]") {
+          "[gpu][long]") {
   REQUIRE_GL_CONTEXT();
   const std::string solver = GENERATE("classic", "xpbd", "multigrid");
   const double e = gpu_sheet_error(solver);

@@ -129,7 +129,7 @@ TEST_CASE("the contact list holds every mass a collider moves, and colliding it 
 // A mesh collider's early test (mesh_leaves_alone: outside its field's grid, or too far from its
 // surface to have reached it) lists only the masses near the mesh: a 13² cloth, 1 m wide, lying
 // on the icosphere and the torus of the mesh-collider tests.
-TEST_CASE("the contact list holds every mass a mesh collider moves, and only masses near it", "[gpu][contact]") {
+TEST_CASE("the contact list holds every mass a mesh collider moves, and only masses near it", "[gpu][contact][long]") {
   REQUIRE_GL_CONTEXT();
   test::TempDir dir("gpu_contact_list", "meshes");
   for (const test::Shape& shape : test::shapes()) {

@@ -290,7 +290,7 @@ void run_gpu_stress(const std::string& name) {
 }  // namespace
 
 #define GPU_STRESS_TEST(NAME)                                                     \
-  TEST_CASE("10,000 substeps on the GPU: " NAME, "[gpu][divergence][stress]") { \
+  TEST_CASE("10,000 substeps on the GPU: " NAME, "[gpu][divergence][stress][long]") { \
     REQUIRE_GL_CONTEXT();                                                         \
     run_gpu_stress(NAME);                                                         \
     CHECK_NO_GL_ERRORS();                                                         \

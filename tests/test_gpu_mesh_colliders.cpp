@@ -13,7 +13,7 @@
 #include "sdf_texels.hpp"
 
 TEST_CASE("mesh colliders on the GPU: every pass and a whole drop as the reference, and nothing inside",
-          "[gpu][mesh_collider]") {
+          "[gpu][mesh_collider][long]") {
   REQUIRE_GL_CONTEXT();
   test::TempDir dir("gpu_mesh_colliders", "drop");
   for (const test::Shape& shape : test::shapes()) {
@@ -62,7 +62,7 @@ TEST_CASE("mesh colliders on the GPU: every pass and a whole drop as the referen
 // Two meshes side by side, their grids overlapping under the cloth: the sweeps' clearance bound
 // is the least over the meshes (meshes_leave_alone), and a whole drop onto both is still the
 // reference's, bit for bit on llvmpipe.
-TEST_CASE("a drop onto two mesh colliders on the GPU is the reference's", "[gpu][mesh_collider]") {
+TEST_CASE("a drop onto two mesh colliders on the GPU is the reference's", "[gpu][mesh_collider][long]") {
   REQUIRE_GL_CONTEXT();
   test::TempDir dir("gpu_mesh_colliders", "two");
   const std::vector<test::Shape> shapes = test::shapes();

@@ -85,7 +85,7 @@ TEST_CASE("a wind across a cloth pinned along one edge blows it downwind and one
   check_wind_moves_the_cloth(false);
 }
 
-TEST_CASE("a wind across a cloth pinned along one edge blows it downwind on the GPU and one along it barely moves it", "[gpu]") {
+TEST_CASE("a wind across a cloth pinned along one edge blows it downwind on the GPU and one along it barely moves it", "[gpu][long]") {
   REQUIRE_GL_CONTEXT();
   check_wind_moves_the_cloth(true);
   CHECK_NO_GL_ERRORS();

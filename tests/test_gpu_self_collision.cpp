@@ -88,7 +88,7 @@ void check_heap_spacing(const Scene& scene, const ClothModel& model, const State
 
 TEST_CASE("the selfCollision cloth heaps on the plane without non-neighbours closer than the thickness, "
           "and without intersecting triangles at any tenth frame to 300",
-          "[gpu][self_collision]") {
+          "[gpu][self_collision][long]") {
   REQUIRE_GL_CONTEXT();
   // The classic scene as shipped: 50x50, 300 frames (9000 substeps; about 40 s on llvmpipe).
   const Scene scene = load_scene(test::source_path("scenes/selfCollision.json"));

@@ -39,7 +39,7 @@ State<float> run_both(const Scene& s, const ClothModel& m, int frames, bool* div
 
 }  // namespace
 
-TEST_CASE("xpbd on the GPU: a hanging cloth's bottom centre is within 2 cm at 33² and 65²", "[gpu][xpbd]") {
+TEST_CASE("xpbd on the GPU: a hanging cloth's bottom centre is within 2 cm at 33² and 65²", "[gpu][xpbd][long]") {
   REQUIRE_GL_CONTEXT();
   double y[2];
   int k = 0;
@@ -56,7 +56,7 @@ TEST_CASE("xpbd on the GPU: a hanging cloth's bottom centre is within 2 cm at 33
   CHECK_NO_GL_ERRORS();
 }
 
-TEST_CASE("xpbd on the GPU: no NaN and no divergence for ks from 10 to 1e9 at fabric density", "[gpu][xpbd]") {
+TEST_CASE("xpbd on the GPU: no NaN and no divergence for ks from 10 to 1e9 at fabric density", "[gpu][xpbd][long]") {
   REQUIRE_GL_CONTEXT();
   for (double ks : test::kXpbdStiffnesses) {
     const Scene s = test::hanging_cloth(17, ks);

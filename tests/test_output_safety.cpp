@@ -311,7 +311,7 @@ TEST_CASE("a cached field carries a checksum: a corrupted one is rebuilt, not tr
   CHECK(problem.empty());  // no cache yet is not a problem
 }
 
-TEST_CASE("the field cache lives in $XDG_CACHE_HOME/clothsim, never beside the scene", "[mesh_collider][outputs][cli]") {
+TEST_CASE("the field cache lives in $XDG_CACHE_HOME/clothsim, never beside the scene", "[mesh_collider][outputs][cli][long]") {
   TempDir dir("sdf_folder");
   const std::string scene = dir / "bull.json";
   fs::copy_file(fmt::format("{}/scenes/drape_wuson.json", CLOTHSIM_SOURCE_DIR), scene);

@@ -199,7 +199,7 @@ TEST_CASE("pinned4 renders like its golden image", "[gpu][render][golden]") {
   check_golden("pinned4", 40, ShaderKind::Normal);
   CHECK_NO_GL_ERRORS();
 }
-TEST_CASE("sphere renders like its golden image", "[gpu][render][golden]") {
+TEST_CASE("sphere renders like its golden image", "[gpu][render][golden][long]") {
   REQUIRE_GL_CONTEXT();
   check_golden("sphere", 60, ShaderKind::Texture);
   CHECK_NO_GL_ERRORS();
@@ -209,7 +209,7 @@ TEST_CASE("plane renders like its golden image", "[gpu][render][golden]") {
   check_golden("plane", 65, ShaderKind::Diffuse);
   CHECK_NO_GL_ERRORS();
 }
-TEST_CASE("selfCollision renders like its golden image", "[gpu][render][golden]") {
+TEST_CASE("selfCollision renders like its golden image", "[gpu][render][golden][long]") {
   REQUIRE_GL_CONTEXT();
   check_golden("selfCollision", 40, ShaderKind::Phong);
   CHECK_NO_GL_ERRORS();

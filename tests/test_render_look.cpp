@@ -101,7 +101,7 @@ std::pair<float, float> rise(const FloorStage& s, const Image& im, float from, f
 }  // namespace
 
 TEST_CASE("the cloth's shadow on the floor 5 cm below is over 35 % darker, and within 2 % with shadows off",
-          "[gpu][render][look]") {
+          "[gpu][render][look][long]") {
   REQUIRE_GL_CONTEXT();
   FloorStage s(0.05f);
   const float edge = s.shadow_edge_z();  // about -3.4 cm: the shadow reaches past the cloth's edge
@@ -120,7 +120,7 @@ TEST_CASE("the cloth's shadow on the floor 5 cm below is over 35 % darker, and w
 }
 
 TEST_CASE("a cloth 0.5 mm above the floor casts its shadow at its edge, farther up a detached one, softer the farther",
-          "[gpu][render][look]") {
+          "[gpu][render][look][long]") {
   REQUIRE_GL_CONTEXT();
   FloorStage touching(0.0005f), low(0.01f), apart(0.05f);
   const Image touching_image = touching.draw(true), apart_image = apart.draw(true);
@@ -150,7 +150,7 @@ TEST_CASE("a cloth 0.5 mm above the floor casts its shadow at its edge, farther 
   CHECK_NO_GL_ERRORS();
 }
 
-TEST_CASE("shadows put no pixel-scale acne on the lit side of a cloth draped over the sphere", "[gpu][render][look]") {
+TEST_CASE("shadows put no pixel-scale acne on the lit side of a cloth draped over the sphere", "[gpu][render][look][long]") {
   REQUIRE_GL_CONTEXT();
   Stage stage("sphere", 320, 240);
   stage.run(100);
@@ -194,7 +194,7 @@ TEST_CASE("shadows put no pixel-scale acne on the lit side of a cloth draped ove
 }
 
 TEST_CASE("ambient occlusion darkens the creases of a cloth draped over the sphere, not its smooth top",
-          "[gpu][render][look]") {
+          "[gpu][render][look][long]") {
   REQUIRE_GL_CONTEXT();
   Stage stage("sphere", 320, 240);
   stage.run(100);

@@ -54,7 +54,7 @@ TEST_CASE("a keyframed sphere is drawn where the simulation has it at a later fr
   CHECK(near_from == 0);
 }
 
-TEST_CASE("a mesh collider is drawn, with every shader, and moves where its keyframes put it", "[gpu][render]") {
+TEST_CASE("a mesh collider is drawn, with every shader, and moves where its keyframes put it", "[gpu][render][long]") {
   REQUIRE_GL_CONTEXT();
   // flag_pole's pole (meshes/pole.obj), keyframed 0.5 m along -x over its first 0.1 s; the
   // flag is weightless and windless, so it stays in its plane at x >= 0, and the camera looks

@@ -104,7 +104,7 @@ TEST_CASE("2-D textures are mipmapped and filtered anisotropically where the dri
   CHECK_NO_GL_ERRORS();
 }
 
-TEST_CASE("a textured cloth far away is not aliased into moire", "[gpu][render]") {
+TEST_CASE("a textured cloth far away is not aliased into moire", "[gpu][render][long]") {
   REQUIRE_GL_CONTEXT();
   // Measured on llvmpipe: 2.0 mipmapped + 16x anisotropic, 4.3 mipmapped only (trilinear
   // picks one level for both axes: too sharp along the view), 20.8 with GL_LINEAR alone.
@@ -142,7 +142,7 @@ BumpVsPhong bump_vs_phong(Stage& stage, float exposure) {
   return r;
 }
 
-TEST_CASE("Bump differs visibly from Phong on the flat cloth of the sphere scene at frame 30", "[gpu][render]") {
+TEST_CASE("Bump differs visibly from Phong on the flat cloth of the sphere scene at frame 30", "[gpu][render][long]") {
   REQUIRE_GL_CONTEXT();
   // As `clothsim render scenes/sphere.json --frames 30` draws it: 800x600, the default camera.
   Stage stage("sphere", 800, 600);
