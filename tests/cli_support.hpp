@@ -5,6 +5,7 @@
 #include <catch2/catch.hpp>
 
 #include "bad_scenes.hpp"
+#include "file_support.hpp"
 
 #include <sys/wait.h>
 #include <unistd.h>
@@ -28,13 +29,6 @@ inline std::string quote(const std::string& s) {
   std::string q = "'";
   for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
   return q + "'";
-}
-
-inline std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
 }
 
 // A scratch path unique to this process, removed when the test ends.

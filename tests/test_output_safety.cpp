@@ -25,49 +25,25 @@
 #include "output_file.hpp"
 #include "mesh_collider_cases.hpp"
 #include "sdf.hpp"
+#include "output_support.hpp"
 #include "test_helpers.hpp"
 
 extern char** environ;
 
 using namespace clothsim;
 namespace fs = std::filesystem;
+using test::kDiverging;
+using test::kSmall;
+using test::listing;
+using test::run_binary;
+using test::put_file;
+using test::slurp;
 
 namespace {
 
 struct TempDir : test::TempDir {
   explicit TempDir(const std::string& name) : test::TempDir("output_safety", name) {}
 };
-
-std::string slurp(const std::string& path) {
-  std::stringstream ss;
-  ss << std::ifstream(path, std::ios::binary).rdbuf();
-  return ss.str();
-}
-
-void put_file(const std::string& path, const std::string& bytes) { std::ofstream(path, std::ios::binary) << bytes; }
-
-std::set<std::string> listing(const fs::path& dir) {
-  std::set<std::string> names;
-  for (const auto& e : fs::directory_iterator(dir)) names.insert(e.path().filename().string());
-  return names;
-}
-
-// `clothsim ARGS` under a 60 s timeout (a run that blocks on a FIFO fails, it does not hang the
-// suite), stdout and stderr together in *output; `env` is put before it ("XDG_CACHE_HOME=...").
-int run_binary(const std::string& args, std::string* output = nullptr, const std::string& env = "") {
-  const fs::path log = fs::temp_directory_path() / fmt::format("clothsim_test_output_safety_{}.log", getpid());
-  const int status = std::system(
-      fmt::format("env {} timeout 60 '{}' {} >'{}' 2>&1 </dev/null", env, CLOTHSIM_BINARY, args, log.string()).c_str());
-  if (output) *output = slurp(log.string());
-  fs::remove(log);
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
-
-const std::string kSmall = fmt::format(
-    "'{}/scenes/pinned2.json' --set cloth.num_width_points=7 --set cloth.num_height_points=5 "
-    "--set 'cloth.pinned=[[0,0],[6,0]]' --backend cpu",
-    CLOTHSIM_SOURCE_DIR);
-const std::string kDiverging = kSmall + " --set cloth.ks=1e9 --set simulation.self_collision=false";
 
 // A socket file at `path` (bound, then the descriptor closed: the file stays).
 void make_socket(const std::string& path) {

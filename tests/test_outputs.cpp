@@ -22,10 +22,17 @@
 #include "diagnostics.hpp"
 #include "output_file.hpp"
 #include "point_cache.hpp"
+#include "output_support.hpp"
 #include "test_helpers.hpp"
 
 using namespace clothsim;
 namespace fs = std::filesystem;
+using test::kDiverging;
+using test::kSmall;
+using test::listing;
+using test::run_binary;
+using test::put_file;
+using test::slurp;
 
 namespace {
 
@@ -33,37 +40,6 @@ struct TempDir : test::TempDir {
   explicit TempDir(const std::string& name) : test::TempDir("outputs", name) {}
 };
 
-std::string slurp(const std::string& path) {
-  std::stringstream ss;
-  ss << std::ifstream(path, std::ios::binary).rdbuf();
-  return ss.str();
-}
-
-void put_file(const std::string& path, const std::string& bytes) { std::ofstream(path, std::ios::binary) << bytes; }
-
-// The names in a directory (not recursive).
-std::set<std::string> listing(const fs::path& dir) {
-  std::set<std::string> names;
-  for (const auto& e : fs::directory_iterator(dir)) names.insert(e.path().filename().string());
-  return names;
-}
-
-// `clothsim ARGS` with stdout and stderr together in *output.
-int run_binary(const std::string& args, std::string* output = nullptr) {
-  const fs::path log = fs::temp_directory_path() / fmt::format("clothsim_test_outputs_{}.log", getpid());
-  const int status = std::system(fmt::format("'{}' {} >'{}' 2>&1", CLOTHSIM_BINARY, args, log.string()).c_str());
-  if (output) *output = slurp(log.string());
-  fs::remove(log);
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
-
-// The pinned2 scene on a 7x5 grid, on the CPU: milliseconds per run.
-const std::string kSmall = fmt::format(
-    "'{}/scenes/pinned2.json' --set cloth.num_width_points=7 --set cloth.num_height_points=5 "
-    "--set 'cloth.pinned=[[0,0],[6,0]]' --backend cpu",
-    CLOTHSIM_SOURCE_DIR);
-// The same cloth far too stiff for its substeps: diverges within a few frames.
-const std::string kDiverging = kSmall + " --set cloth.ks=1e9 --set simulation.self_collision=false";
 
 std::string pc2_header_bytes(int32_t points, int32_t samples) {
   std::string h("POINTCACHE2\0", 12);
