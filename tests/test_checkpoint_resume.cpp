@@ -95,14 +95,14 @@ TEST_CASE("save and resume is bitwise on a moving scene (living: wind, gusts, a 
   check_resumes_bitwise<float>(s, 12);
 }
 
-TEST_CASE("save and resume is bitwise on a windy xpbd scene (flag_pole) and on hang_xpbd", "[checkpoint]") {
+TEST_CASE("save and resume is bitwise on a windy xpbd scene (flag_pole) and on hang_xpbd", "[checkpoint][long]") {
   check_resumes_bitwise<double>(scene_file("flag_pole"), 6);
   check_resumes_bitwise<double>(scene_file("hang_xpbd"), 10);
   check_resumes_bitwise<float>(scene_file("hang_xpbd"), 10);
 }
 
 TEST_CASE("a state loaded with another substep length keeps the cloth's kinetic energy (pinned2, 30 -> 60 substeps)",
-          "[checkpoint]") {
+          "[checkpoint][long]") {
   // Without damping: the classic solver damps per substep (keep_velocity = 1 - damping / 100
   // each substep), so at the default 0.2 % twice the substeps take about 11 % more kinetic
   // energy out of a frame, whatever the state was loaded with. Undamped, what is left between

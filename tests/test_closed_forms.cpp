@@ -89,7 +89,7 @@ TEMPLATE_TEST_CASE("classic: a chain stretched into its lowest mode and released
 
 TEMPLATE_TEST_CASE("classic: a sheet pinned along its border rests under its weight where the static solve puts it, "
                    "within 1 mm",
-                   "[closed-form]", float, double) {
+                   "[closed-form][long]", float, double) {
   double sag = 0;
   const double e = sheet_error<TestType>("classic", &sag);
   INFO("static sag " << sag << " m; largest distance from it after 300 frames " << e << " m");
@@ -114,7 +114,7 @@ TEMPLATE_TEST_CASE("xpbd: a hanging chain at rest stretches each link by the wei
 
 TEMPLATE_TEST_CASE("xpbd: a sheet pinned along its border rests under its weight where the static solve puts it, "
                    "within 1 mm",
-                   "[closed-form]", float, double) {
+                   "[closed-form][long]", float, double) {
   double sag = 0;
   const double e = sheet_error<TestType>("xpbd", &sag);
   INFO("static sag " << sag << " m; largest distance from it after 300 frames " << e
@@ -170,7 +170,7 @@ TEMPLATE_TEST_CASE("multigrid: a hanging chain at rest stretches each link by th
 
 TEMPLATE_TEST_CASE("multigrid: a sheet pinned along its border rests under its weight where the static solve puts it, "
                    "within 1 mm",
-                   "[closed-form]", float, double) {
+                   "[closed-form][long]", float, double) {
   double sag = 0;
   const double e = sheet_error<TestType>("multigrid", &sag);
   INFO("static sag " << sag << " m; largest distance from it after 300 frames " << e << " m");

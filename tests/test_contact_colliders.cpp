@@ -77,7 +77,7 @@ TEST_CASE("a cloth falling fast onto a small sphere never passes through it, nor
   }
 }
 
-TEST_CASE("the classic sphere scene: no mass ends a substep more than 0.1 mm inside the sphere", "[contact]") {
+TEST_CASE("the classic sphere scene: no mass ends a substep more than 0.1 mm inside the sphere", "[contact][long]") {
   // Before, its Provot corrections left masses up to a few tenths of a millimetre inside.
   const Scene s = load_scene(std::filesystem::path(CLOTHSIM_SOURCE_DIR) / "scenes/sphere.json");
   const ClothModel m = build_cloth(s);

@@ -41,7 +41,7 @@ double float_drift(const char* scene_name, int frames) {
 // discontinuous (a mass that just crosses is lifted to SURFACE_OFFSET, one that just does not
 // is not), so there a 4e-16 change of gravity alone moves the double run by 0.2 mm by frame
 // 100, and only pass checks mean anything.
-TEST_CASE("float32 tracks float64 on the shipped scenes (self-collision off)", "[reference][fidelity]") {
+TEST_CASE("float32 tracks float64 on the shipped scenes (self-collision off)", "[reference][fidelity][long]") {
   struct Case {
     const char* scene;
     int frames;

@@ -127,7 +127,7 @@ TEST_CASE("a field's texel holds its node and the node's +x, +y and +x+y neighbo
 // field's slope bound (sdf_slopes) to hold between any two points: checked on the sampled
 // fields of the three shapes and of an open box (an unsigned field), 4,000 pairs each, within
 // a cell and across the grid; and exactly on a field that is a linear function.
-TEST_CASE("a field's slope bound holds between any two points of its grid", "[mesh_collider]") {
+TEST_CASE("a field's slope bound holds between any two points of its grid", "[mesh_collider][long]") {
   test::TempDir dir("gpu_mesh_colliders", "slopes");
   std::vector<test::Shape> shapes = test::shapes();
   test::Shape open_box = shapes[0];

@@ -81,7 +81,7 @@ void check_wind_moves_the_cloth(bool gpu) {
 
 }  // namespace
 
-TEST_CASE("a wind across a cloth pinned along one edge blows it downwind and one along it barely moves it") {
+TEST_CASE("a wind across a cloth pinned along one edge blows it downwind and one along it barely moves it", "[long]") {
   check_wind_moves_the_cloth(false);
 }
 

@@ -90,7 +90,7 @@ TEST_CASE("a grid loaded from an OBJ of quads moves as the grid built from num_w
   fs::remove_all(dir);
 }
 
-TEST_CASE("a triangulated disc with a hole, pinned by pinned_box, hangs from its pins", "[mesh]") {
+TEST_CASE("a triangulated disc with a hole, pinned by pinned_box, hangs from its pins", "[mesh][long]") {
   const Scene s = load_scene(fs::path(CLOTHSIM_SOURCE_DIR) / "scenes/disc_hole.json");
   const ClothModel m = build_cloth(s);
   CHECK(m.count() == 421);

@@ -32,7 +32,7 @@ MeshC<double> identity_collider(const SdfGrid& g) {
 }  // namespace
 
 TEST_CASE("a mesh's signed distance field agrees with the exact distance in its band and has the right sign",
-          "[mesh_collider]") {
+          "[mesh_collider][long]") {
   for (const test::Shape& shape : test::shapes()) {
     INFO(shape.name << ": " << shape.mesh.triangles.size() << " triangles");
     const SdfGrid g = build_sdf(shape.mesh, 0.01);
@@ -103,7 +103,7 @@ TEST_CASE("an inside-out mesh has the same inside as the right way round", "[mes
 
 TEST_CASE("a cloth dropped onto a mesh cube, sphere and torus never has a mass deeper than half a node + 0.1 mm "
           "inside the exact shape",
-          "[mesh_collider]") {
+          "[mesh_collider][long]") {
   test::TempDir dir("mesh_colliders", "drop");
   for (const test::Shape& shape : test::shapes()) {
     const std::string obj = dir / (shape.name + ".obj");
@@ -130,7 +130,7 @@ TEST_CASE("a cloth dropped onto a mesh cube, sphere and torus never has a mass d
   }
 }
 
-TEST_CASE("a cloth on the mesh sphere rests within 2 mm of where it rests on the analytic sphere", "[mesh_collider]") {
+TEST_CASE("a cloth on the mesh sphere rests within 2 mm of where it rests on the analytic sphere", "[mesh_collider][long]") {
   // A frictionless tent: the cloth pinned at its four corners at y 1 sags onto a sphere whose
   // top is 5 mm below them. Frictionless, its rest is one static equilibrium (with friction the rest depends
   // on the path, which a different contact normal a micrometre off changes), so the two

@@ -252,7 +252,7 @@ TEST_CASE("multigrid at 120 substeps: a 65² heap collapses within its Provot li
 // springs by the pins out again (1.88 at frame 27 on the 50² scene). stretch_passes passes of
 // the limit alone after the sweep hold it, as for xpbd (docs/model.md, step 7).
 TEST_CASE("multigrid: stretch_passes hold max_stretch on a cloth that leans on it, which the sweep alone does not",
-          "[multigrid]") {
+          "[multigrid][long]") {
   auto worst_stretch = [](int passes) {
     return test::worst_stretch_over_frames(
         load_scene(std::filesystem::path(CLOTHSIM_SOURCE_DIR) / "scenes" / "pinned2.json",

@@ -7,7 +7,7 @@
 
 using namespace clothsim;
 
-TEST_CASE("every scene under scenes/ loads and runs 30 frames with finite results", "[scenes]") {
+TEST_CASE("every scene under scenes/ loads and runs 30 frames with finite results", "[scenes][long]") {
   int scenes = 0;
   for (auto& entry : std::filesystem::directory_iterator(std::filesystem::path(CLOTHSIM_SOURCE_DIR) / "scenes")) {
     if (entry.path().extension() != ".json") continue;

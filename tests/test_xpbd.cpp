@@ -17,7 +17,7 @@
 
 using namespace clothsim;
 
-TEST_CASE("xpbd: a hanging cloth's bottom centre is within 2 cm at 33² and 65² (CPU reference)", "[reference][xpbd]") {
+TEST_CASE("xpbd: a hanging cloth's bottom centre is within 2 cm at 33² and 65² (CPU reference)", "[reference][xpbd][long]") {
   double y[2];
   int k = 0;
   for (int n : {33, 65}) {
@@ -67,7 +67,7 @@ TEST_CASE("the classic solver diverges on the same fabric cloth that xpbd keeps 
   CHECK(diverged);
 }
 
-TEST_CASE("the vertical jitter is at most 5 % of the spacing, and the classic 1 mm at the classic spacing", "[cloth]") {
+TEST_CASE("the vertical jitter is at most 5 % of the spacing, and the classic 1 mm at the classic spacing", "[cloth][long]") {
   CHECK(jitter_amplitude(1.0 / 49) == 1e-3);
   CHECK(jitter_amplitude(0.5) == 1e-3);
   for (int n : {50, 257, 1024}) {
@@ -104,7 +104,7 @@ TEST_CASE("xpbd: a grid's tether is the straight rest distance to its nearest pi
 
 TEST_CASE("xpbd: the tethers hold a soft hanging cloth to 1 % over its rest distances from the pins, and without "
           "them it stretches further",
-          "[xpbd]") {
+          "[xpbd][long]") {
   // ks 20: soft enough that the cloth's own springs let it sag far more than 1 %.
   auto worst_ratio = [](const std::string& tether_stretch) {
     Scene s = test::hanging_cloth(33, 20);
