@@ -44,7 +44,7 @@ TEST_CASE("every bad mesh cloth exits 2 naming the scene, the mesh file and what
     const std::string scene = (dir / line.substr(0, tab1)).string();
     // A bad mesh never needs gigabytes: the limit makes a header that lies about its counts
     // (which Assimp once allocated 17 GB for) fail here, not take the machine's memory.
-    const Result r = run({"simulate", scene, "--frames", "1", "--backend", "cpu"}, "ulimit -v 4000000;");
+    const Result r = run({"simulate", scene, "--frames", "1", "--backend", "cpu"}, address_space_limit("4000000"));
     INFO(line << "\nstderr: " << r.err);
     CHECK(r.code == 2);
     CHECK_THAT(r.err, Catch::Contains(scene));
