@@ -11,9 +11,8 @@
 #include <fmt/format.h>
 
 namespace clothsim {
-namespace {
 
-// errno of stat/open in words; the two a hostile path provokes most also give their name.
+// The two a hostile path provokes most also give their name.
 std::string errno_words(int e) {
   switch (e) {
     case ENOENT: return "does not exist";
@@ -25,15 +24,21 @@ std::string errno_words(int e) {
   }
 }
 
+std::string file_kind(unsigned mode) {
+  return S_ISREG(mode)    ? "a regular file"
+         : S_ISDIR(mode)  ? "a directory"
+         : S_ISFIFO(mode) ? "a FIFO (named pipe)"
+         : S_ISCHR(mode)  ? "a character device"
+         : S_ISBLK(mode)  ? "a block device"
+         : S_ISSOCK(mode) ? "a socket"
+                          : "not a plain file";
+}
+
+namespace {
+
 std::optional<std::string> kind_problem(mode_t mode) {
   if (S_ISREG(mode)) return std::nullopt;
-  const char* kind = S_ISDIR(mode)    ? "a directory"
-                     : S_ISFIFO(mode) ? "a FIFO (named pipe)"
-                     : S_ISCHR(mode)  ? "a character device"
-                     : S_ISBLK(mode)  ? "a block device"
-                     : S_ISSOCK(mode) ? "a socket"
-                                      : "not a plain file";
-  return fmt::format("is {}, not a regular file", kind);
+  return fmt::format("is {}, not a regular file", file_kind(mode));
 }
 
 }  // namespace

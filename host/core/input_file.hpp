@@ -11,6 +11,13 @@
 
 namespace clothsim {
 
+// A failed stat/open's errno in words ("does not exist", "a loop of symbolic links (ELOOP: ...)",
+// "the name is too long (ENAMETOOLONG)", ...): shared by the input and the output checks.
+std::string errno_words(int e);
+// What a file of mode `mode` is, for a message: "a directory", "a FIFO (named pipe)", "a
+// character device", "a block device", "a socket", "a regular file" or "not a plain file".
+std::string file_kind(unsigned mode);
+
 // Why `path` cannot be read as an input file, in words ("is a FIFO (named pipe), not a regular
 // file", "a loop of symbolic links (ELOOP)", ...), or nullopt when it is a regular file; then
 // `size` (if given) gets its size in bytes. Only stat(2): nothing is opened, nothing blocks.

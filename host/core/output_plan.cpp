@@ -6,35 +6,17 @@
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
+#include <map>
 #include <optional>
 
 #include <fmt/format.h>
 
+#include "input_file.hpp"
 #include "scene.hpp"
 
 namespace clothsim {
 namespace fs = std::filesystem;
 namespace {
-
-// What a failed stat/lstat means, in words (the common ones said plainly, the rest by strerror).
-std::string why_unreachable(int err) {
-  switch (err) {
-    case ELOOP: return "a symlink loop (too many levels of symbolic links)";
-    case ENAMETOOLONG: return "the name is too long (at most 255 bytes a name, 4,095 a path)";
-    case ENOTDIR: return "a part of the path is a file, not a folder";
-    case EACCES: return "permission denied on a folder of the path";
-    default: return std::strerror(err);
-  }
-}
-
-std::string kind_of(mode_t mode) {
-  if (S_ISDIR(mode)) return "a directory";
-  if (S_ISFIFO(mode)) return "a FIFO (named pipe)";
-  if (S_ISCHR(mode)) return "a character device";
-  if (S_ISBLK(mode)) return "a block device";
-  if (S_ISSOCK(mode)) return "a socket";
-  return "not a regular file";
-}
 
 // The same file whatever the spelling: the folder resolved (symlinks, "..") and the name as
 // written; and, for a file that exists, the device and inode it leads to (hard links, a
@@ -68,7 +50,7 @@ std::optional<std::string> folder_problem(const fs::path& file) {
   struct stat st {};
   if (stat(dir.c_str(), &st) != 0)
     return errno == ENOENT ? fmt::format("the directory {} does not exist", dir.string())
-                           : fmt::format("the directory {}: {}", dir.string(), why_unreachable(errno));
+                           : fmt::format("the directory {}: {}", dir.string(), errno_words(errno));
   if (!S_ISDIR(st.st_mode)) return fmt::format("{} is not a directory", dir.string());
   if (access(dir.c_str(), W_OK) != 0) return fmt::format("the directory {} is not writable", dir.string());
   return std::nullopt;
@@ -96,16 +78,16 @@ std::optional<std::string> file_problem(const std::string& path) {
   if (path.empty()) return "expected a file name, got an empty one";
   struct stat st {};
   if (lstat(path.c_str(), &st) != 0) {
-    if (errno != ENOENT) return why_unreachable(errno);
+    if (errno != ENOENT) return errno_words(errno);
     return folder_problem(path);
   }
   if (S_ISLNK(st.st_mode) && stat(path.c_str(), &st) != 0)
     return errno == ENOENT ? std::string("is a symlink to nothing (it is not replaced)")
-                           : fmt::format("is a symlink: {}", why_unreachable(errno));
+                           : fmt::format("is a symlink: {}", errno_words(errno));
   if (links_to_special(path)) return "is a symlink into /proc or /dev (an open file or a device), so it is left alone";
   if (S_ISDIR(st.st_mode)) return "is a directory; expected a file";
   if (!S_ISREG(st.st_mode))
-    return fmt::format("is {}; clothsim replaces only regular files, so it is left alone", kind_of(st.st_mode));
+    return fmt::format("is {}; clothsim replaces only regular files, so it is left alone", file_kind(st.st_mode));
   return folder_problem(path);
 }
 
@@ -154,11 +136,11 @@ void OutputPlan::check() const {
     if (stat(dir.c_str(), &st) == 0) {
       if (!S_ISDIR(st.st_mode))
         throw OutputError(fmt::format("{} {}: is {}; expected a folder", folder_flags_[k], dir,
-                                      S_ISREG(st.st_mode) ? std::string("a file") : kind_of(st.st_mode)));
+                                      file_kind(st.st_mode)));
       if (access(dir.c_str(), W_OK) != 0)
         throw OutputError(fmt::format("{} {}: the folder is not writable", folder_flags_[k], dir));
     } else if (errno != ENOENT) {
-      throw OutputError(fmt::format("{} {}: {}", folder_flags_[k], dir, why_unreachable(errno)));
+      throw OutputError(fmt::format("{} {}: {}", folder_flags_[k], dir, errno_words(errno)));
     } else {
       // Created by the run, with its missing parents: the nearest folder that exists must be writable.
       fs::path up = fs::absolute(strip_slashes(dir)).parent_path();
@@ -169,33 +151,48 @@ void OutputPlan::check() const {
                                       up.string()));
     }
   }
+  // Each path is identified once (a sequence of thousands of frames is thousands of outputs),
+  // and clashes are found through maps, not by comparing every pair.
+  std::vector<std::string> folder_keys;
+  std::map<std::string, bool> folder_exists;
+  for (const std::string& dir : folders_) {
+    folder_keys.push_back(identify(dir).key);
+    folder_exists[dir] = fs::is_directory(dir);
+  }
   std::vector<Identity> ids;
   for (const Output& o : outputs_) {
     // A frame of a folder that does not exist yet has nothing to check but the folder, above.
-    if (!o.folder.empty() && !fs::is_directory(o.folder)) {
-      ids.push_back(identify(o.path));
-      continue;
-    }
-    if (const auto problem = file_problem(o.path)) throw OutputError(fmt::format("{}: {}", said(o), *problem));
+    if (o.folder.empty() || folder_exists[o.folder])
+      if (const auto problem = file_problem(o.path)) throw OutputError(fmt::format("{}: {}", said(o), *problem));
     ids.push_back(identify(o.path));
   }
+  std::map<std::string, size_t> by_key;
+  std::map<std::pair<dev_t, ino_t>, size_t> by_inode;
   for (size_t a = 0; a < outputs_.size(); ++a) {
-    for (size_t b = 0; b < a; ++b)
-      if (ids[a].same(ids[b]))
-        throw OutputError(fmt::format("{} and {} name the same file: one would overwrite the other; name "
-                                      "different files",
-                                      said(outputs_[b]), said(outputs_[a])));
+    auto b = by_key.find(ids[a].key);
+    if (b == by_key.end() && ids[a].inode) {
+      const auto same_inode = by_inode.find(*ids[a].inode);
+      if (same_inode != by_inode.end()) b = by_key.find(ids[same_inode->second].key);
+    }
+    if (b != by_key.end())
+      throw OutputError(fmt::format("{} and {} name the same file: one would overwrite the other; name "
+                                    "different files",
+                                    said(outputs_[b->second]), said(outputs_[a])));
+    by_key.emplace(ids[a].key, a);
+    if (ids[a].inode) by_inode.emplace(*ids[a].inode, a);
     // A sequence folder holds its frames only: another output inside it could be one of them
     // now, or be taken for one (a later run's --export-every).
-    for (size_t k = 0; k < folders_.size(); ++k) {
-      if (!outputs_[a].folder.empty()) continue;
-      if (fs::path(ids[a].key).parent_path().string() == identify(folders_[k]).key)
-        throw OutputError(fmt::format("{}: is inside {} {}, the folder of a sequence of frames, which holds "
-                                      "only its frames; put it elsewhere",
-                                      said(outputs_[a]), folder_flags_[k], folders_[k]));
-    }
-    for (const Input& in : inputs_)
-      if (ids[a].same(identify(in.path)))
+    if (outputs_[a].folder.empty())
+      for (size_t k = 0; k < folders_.size(); ++k)
+        if (fs::path(ids[a].key).parent_path().string() == folder_keys[k])
+          throw OutputError(fmt::format("{}: is inside {} {}, the folder of a sequence of frames, which holds "
+                                        "only its frames; put it elsewhere",
+                                        said(outputs_[a]), folder_flags_[k], folders_[k]));
+  }
+  for (const Input& in : inputs_) {
+    const Identity input = identify(in.path);
+    for (size_t a = 0; a < outputs_.size(); ++a)
+      if (ids[a].same(input))
         throw OutputError(fmt::format("{}: is {} this run reads ({}); an output never replaces an input of "
                                       "its run: name another file",
                                       said(outputs_[a]), in.what, in.path));
