@@ -1,4 +1,4 @@
-// One particle against every sphere in file order, then every plane (DESIGN.md §1.4), then
+// One particle against every sphere in file order, then every plane (docs/design.md §1.4), then
 // every mesh collider (docs/model.md), as
 // collide_objects in host/core/reference.cpp. x is its position, d its displacement of this
 // substep (x_prev = x - d); both change. Shared by collide_objects.comp and the passes it is

@@ -1,4 +1,4 @@
-// The force on one particle (DESIGN.md §1.1): gravity plus its springs, summed in the model's
+// The force on one particle (docs/design.md §1.1): gravity plus its springs, summed in the model's
 // gather order (ClothModel::gather: on a grid kGatherOrder, per direction the spring stored
 // here, then the one stored at the neighbour behind), exactly as accumulate_forces in
 // host/core/reference_forces.cpp.

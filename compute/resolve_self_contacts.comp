@@ -1,7 +1,7 @@
 // Reads positions, the bucket starts and the positions in cell order (sort_cells wrote them,
 // so a candidate costs one read, not an id and then a position); writes the Jacobi output
 // positions and, in place, the displacements. One invocation per particle: it visits the 27 cells around it and averages the
-// push-out from every particle closer than 2 * thickness (DESIGN.md §1.3), in the order of
+// push-out from every particle closer than 2 * thickness (docs/design.md §1.3), in the order of
 // resolve_self_contacts in host/core/reference.cpp. The last stage of collide_self, after
 // count_cells, scan_cells, fill_cells and sort_cells built the hash. With u_collide_objects the collision objects follow in the same
 // invocation (step 4 reads only the particle's own position and displacement).
@@ -104,7 +104,7 @@ void main() {
   vec4 moved = displacement_of(i);  // w: predict's clearance bound (x - d stays)
   precise vec3 d = moved.xyz;
   if (hits > 0u) {
-    // Classic: the average over the contacts, spread over the substeps (DESIGN.md §1.3).
+    // Classic: the average over the contacts, spread over the substeps (docs/design.md §1.3).
     // Bounded: the average, whole, every substep.
     precise float classic_scale = 1.0 / (float(hits) * params.steps);
     precise float bounded_scale = 1.0 / float(hits);

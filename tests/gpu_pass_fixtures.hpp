@@ -19,7 +19,7 @@ namespace pass_fixtures {
 using Vec4s = std::vector<Vec4<float>>;
 
 // Off llvmpipe: one pass from an identical state (the `validate` default), and a short run,
-// whose few-ULP differences the Verlet velocity carries on for a while (DESIGN.md §6).
+// whose few-ULP differences the Verlet velocity carries on for a while (docs/design.md §6).
 inline constexpr double kPassTolerance = 1e-5;  // m
 inline constexpr double kRunTolerance = 1e-4;   // m, after at most 50 substeps
 

@@ -41,7 +41,7 @@ inline size_t intersections_of(const ClothModel& model, const State<float>& s) {
   return count_self_intersections(model.triangles, at);
 }
 
-// One pass from an identical state: bit for bit on llvmpipe (DESIGN.md §6), else within 1e-6 m.
+// One pass from an identical state: bit for bit on llvmpipe (docs/design.md §6), else within 1e-6 m.
 inline void check_same_pass_result(const Positions& gpu, const Positions& cpu) {
   INFO("max |GPU - CPU| = " << max_diff(gpu, cpu) << " m");
   if (gl::gl_renderer_is_llvmpipe())

@@ -1,4 +1,4 @@
-// The command line as a user meets it (DESIGN.md §3): runs the built `clothsim` binary and checks
+// The command line as a user meets it (docs/design.md §3): runs the built `clothsim` binary and checks
 // exit codes, messages and the OBJ export.
 #include <catch2/catch.hpp>
 
@@ -161,7 +161,7 @@ TEST_CASE("simulate --export writes the cloth as OBJ in particle order", "[cli]"
       FAIL("unexpected OBJ line: " << line);
     }
   }
-  CHECK(kinds == " v vt vn f");  // each kind in one block, in the order of DESIGN.md §3
+  CHECK(kinds == " v vt vn f");  // each kind in one block, in the order of docs/design.md §3
   CHECK(v == 2500);
   CHECK(vt == 2500);
   CHECK(vn == 2500);

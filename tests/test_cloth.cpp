@@ -1,4 +1,4 @@
-// Cloth construction (DESIGN.md §1, docs/model.md "The cloth model"): counts, rest lengths,
+// Cloth construction (docs/design.md §1, docs/model.md "The cloth model"): counts, rest lengths,
 // masses, orientations, colours and the derived lists of the grid builder.
 #include <catch2/catch.hpp>
 

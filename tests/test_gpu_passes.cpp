@@ -1,4 +1,4 @@
-// Every compute pass of the GPU simulator against its CPU twin (DESIGN.md §1, §6): each pass
+// Every compute pass of the GPU simulator against its CPU twin (docs/design.md §1, §6): each pass
 // alone from an identical state, on a grid within one workgroup (7x5), one of a few (33x17)
 // and one wider and taller than a workgroup (131x129); whole runs; pins; determinism; collider
 // arrays; other settings. On llvmpipe the reference rounds exactly like the shaders, so

@@ -1,4 +1,4 @@
-// GPU hashed-grid self-collision (DESIGN.md §1 step 3) against the CPU reference: the push-out
+// GPU hashed-grid self-collision (docs/design.md §1 step 3) against the CPU reference: the push-out
 // on a folded cloth, determinism of whole runs, and the heap of the classic scene. The hash
 // stages themselves are tested in test_gpu_hash.cpp.
 #include "gpu_self_collision_fixtures.hpp"

@@ -1,4 +1,4 @@
-// The CPU reference against the numbers DESIGN.md §1 says the model must show.
+// The CPU reference against the numbers docs/design.md §1 says the model must show.
 #include <catch2/catch.hpp>
 
 #include <algorithm>

@@ -1,4 +1,4 @@
-// Scene loading (DESIGN.md §4): the classic files load unchanged, the extensions load, and every
+// Scene loading (docs/design.md §4): the classic files load unchanged, the extensions load, and every
 // kind of bad input is a SceneError that names the file and the key path.
 #include <catch2/catch.hpp>
 
@@ -207,7 +207,7 @@ TEST_CASE("the simulation block loads its values", "[scene]") {
   CHECK(s.simulation.constraint_iterations == 4);
   CHECK_FALSE(s.simulation.self_collision);
   CHECK(s.dt() == Approx(1.0 / 60 / 45));
-  // Without the block: the defaults of DESIGN.md §1.
+  // Without the block: the defaults of docs/design.md §1.
   const Scene d = parse_with("");
   CHECK(d.simulation.frames_per_sec == 90);
   CHECK(d.simulation.simulation_steps == 30);

@@ -1,4 +1,4 @@
-// Hashed-grid self-collision of the reference (DESIGN.md §1 step 3).
+// Hashed-grid self-collision of the reference (docs/design.md §1 step 3).
 #include <catch2/catch.hpp>
 
 #include <algorithm>

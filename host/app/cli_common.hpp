@@ -1,4 +1,4 @@
-// Pieces every command shares: exit codes (DESIGN.md §3), scene loading from flags,
+// Pieces every command shares: exit codes (docs/design.md §3), scene loading from flags,
 // terminal progress.
 #pragma once
 

@@ -1,5 +1,5 @@
 // clothsim: command-line entry. Parses, runs one command, maps failures to the exit codes
-// of DESIGN.md §3.
+// of docs/design.md §3.
 #include <fmt/format.h>
 
 #include "cli_common.hpp"
@@ -54,7 +54,7 @@ int main(int argc, char** argv) {
         "points (cloth.num_width_points, cloth.num_height_points) or a smaller mesh");
     return kExitBadInput;
   } catch (const gl::OutOfMemoryError& e) {
-    // Like a grid too large for the GPU's limits (DESIGN.md section 4): too large an input.
+    // Like a grid too large for the GPU's limits (docs/design.md section 4): too large an input.
     say(fmt::format("{}\n  The cloth does not fit in this GPU's memory: use fewer points "
                     "(cloth.num_width_points, cloth.num_height_points), close other programs using the GPU, or run "
                     "on the CPU: --backend cpu",

@@ -1,6 +1,6 @@
 // `clothsim validate SCENE --frames N [--tolerance METRES]`: every GPU pass against its CPU
 // twin from an identical state, then a lock-step run GPU vs CPU(float), with CPU(float) vs
-// CPU(double) alongside as the float32 noise floor (DESIGN.md §6).
+// CPU(double) alongside as the float32 noise floor (docs/design.md §6).
 #include <algorithm>
 #include <cmath>
 
@@ -32,7 +32,7 @@ int run_validate(const Opts& o) {
              scene.simulation.simulation_steps, gl::gl_renderer_string());
 
   // llvmpipe rounds exactly like the reference (no FMA, IEEE sqrt and division), so there
-  // any difference at all is a bug; real GPUs get the float32 noise floor (DESIGN.md §6).
+  // any difference at all is a bug; real GPUs get the float32 noise floor (docs/design.md §6).
   const bool exact = gl::gl_renderer_is_llvmpipe();
   const double pass_tolerance = o.pass_tolerance >= 0 ? o.pass_tolerance : (exact ? 0.0 : 1e-5);
   const std::string run_rule = o.tolerance >= 0 ? fmt::format("{:g} m", o.tolerance)

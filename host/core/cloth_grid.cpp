@@ -1,4 +1,4 @@
-// The CS184 grid as a builder of the cloth model (DESIGN.md §1 "Cloth construction"): particles
+// The CS184 grid as a builder of the cloth model (docs/design.md §1 "Cloth construction"): particles
 // row-major, two triangles per cell, the springs of kDirections with the grid's own twelve
 // colours and the classic gather order, so the classic scenes compute what they always did.
 #include <cmath>

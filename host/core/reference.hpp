@@ -1,4 +1,4 @@
-// The CPU reference: DESIGN.md §1, one function per pass, named like the compute shader
+// The CPU reference: docs/design.md §1, one function per pass, named like the compute shader
 // that mirrors it. Templated on the scalar so the same code runs in float (compared with
 // the GPU bit for bit on llvmpipe) and in double (the noise floor of a float32 run).
 // Every expression is written in the same operation order as its GLSL twin.
@@ -291,7 +291,7 @@ template <class R> void relax_vertices(const ClothModel& m, const Constants<R>& 
 template <class R> void cycle_levels(const Constants<R>& c, State<R>& s);
 template <class R> void solve_multigrid(const ClothModel& m, const Constants<R>& c, State<R>& s);
 
-// One substep: the pass list of DESIGN.md §1, or of docs/model.md for xpbd.
+// One substep: the pass list of docs/design.md §1, or of docs/model.md for xpbd.
 template <class R> void step(const ClothModel& m, const Constants<R>& c, State<R>& s) {
   if (c.wind.enabled) compute_wind_forces(m, c, s);  // advance or predict add them
   if (c.xpbd) {

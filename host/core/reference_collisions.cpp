@@ -1,4 +1,4 @@
-// The reference's collision passes (DESIGN.md §1 steps 3-4): self-collision over the hashed
+// The reference's collision passes (docs/design.md §1 steps 3-4): self-collision over the hashed
 // grid and the spheres and planes, with the friction blend written on small differences.
 #include "reference.hpp"
 #include "reference_detail.hpp"
@@ -36,7 +36,7 @@ template <class R> void resolve_self_contacts(const Constants<R>& c, State<R>& s
       ++hits;
     });
     if (hits > 0) {
-      // Classic: the average over the contacts, spread over the substeps (DESIGN.md §1.3).
+      // Classic: the average over the contacts, spread over the substeps (docs/design.md §1.3).
       // Bounded: the average, whole, every substep.
       const R scale = c.bounded_contact ? R(1) / R(hits) : R(1) / (R(hits) * c.steps);
       const Vec3<R> corr = sum * scale;

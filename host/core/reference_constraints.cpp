@@ -1,4 +1,4 @@
-// The reference's constraint passes: Provot's length limit (classic, DESIGN.md §1 step 5) and
+// The reference's constraint passes: Provot's length limit (classic, docs/design.md §1 step 5) and
 // xpbd's distance constraints (docs/model.md), colour by colour in the GPU's order.
 #include <algorithm>
 

@@ -1,4 +1,4 @@
-// The reference's force, integration and normal passes (DESIGN.md §1 steps 1-2, the wind, xpbd's
+// The reference's force, integration and normal passes (docs/design.md §1 steps 1-2, the wind, xpbd's
 // predict): one function per pass, each the twin of the compute shader of the same name.
 #include "reference.hpp"
 

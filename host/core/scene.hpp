@@ -1,4 +1,4 @@
-// Scene description: what a scene JSON file says, validated (DESIGN.md §4).
+// Scene description: what a scene JSON file says, validated (docs/design.md §4).
 #pragma once
 
 #include <array>

@@ -1,5 +1,5 @@
 // Table-driven scene JSON: the loader and the writer walk the rows of scene_table.cpp, so they
-// name no parameter. Every error names the file and the key path (DESIGN.md §4).
+// name no parameter. Every error names the file and the key path (docs/design.md §4).
 #include <algorithm>
 #include <climits>
 #include <cmath>

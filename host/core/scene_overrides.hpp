@@ -1,5 +1,5 @@
 // `--set key.path=value` overrides, applied to the scene JSON before validation so an
-// override is checked exactly like the file (DESIGN.md §3).
+// override is checked exactly like the file (docs/design.md §3).
 #pragma once
 
 #include <string>

@@ -1,4 +1,4 @@
-// The model of DESIGN.md §1 as compute passes over shader-storage buffers. The passes have
+// The model of docs/design.md §1 as compute passes over shader-storage buffers. The passes have
 // the names of the CPU reference functions they mirror; step() is the same pass list.
 // Positions stay on the GPU: the only read-backs are download() and snapshot(), on request.
 // Split by concern: gpu_simulator.cpp (buffers, bindings, limits), gpu_step.cpp (the passes

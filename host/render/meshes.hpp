@@ -29,7 +29,7 @@ MeshData plane_mesh(const glm::vec3& centre, const glm::vec3& normal, float half
 // the face's, where the face's is kept (a cube's edges stay sharp, a curved model smooth).
 MeshData surface_mesh(const SurfaceMesh& surface, const glm::mat3& rotation, const glm::vec3& origin);
 
-// The cloth's triangles (DESIGN.md §1), and its springs of one type as line pairs.
+// The cloth's triangles (docs/design.md §1), and its springs of one type as line pairs.
 std::vector<uint32_t> cloth_triangle_indices(const ClothModel& model);
 std::vector<uint32_t> cloth_spring_indices(const ClothModel& model, SpringType type);
 
