@@ -1,6 +1,6 @@
 // Forces, then damped Verlet, then (with u_collide_objects) the collision objects: steps 1,
 // 2 and 4 of docs/design.md §1 for one particle, fused so the force never leaves registers. The
-// CPU twin is advance() in host/core/reference.hpp. Reads positions (its own and its
+// CPU twin is advance() in host/core/reference/reference.hpp. Reads positions (its own and its
 // neighbours') and displacements through the views; writes the new position to the output
 // buffer (neighbours still read the old one: ping-pong, the host swaps) and the new
 // displacement in place. One invocation per particle; pinned particles (w = 0) stay.

@@ -4,7 +4,7 @@
 // the first watched pass always runs. Writes each colour's indirect dispatch, the colour's
 // workgroups or none, so a settled substep skips the rest with no read-back to the host; clears
 // the flag for the pass it arms; counts the settling passes run. The CPU twin is
-// arm_stretch_pass in host/core/reference.hpp.
+// arm_stretch_pass in host/core/reference/reference.hpp.
 #include "layout.glsl"
 
 layout(local_size_x = 1) in;

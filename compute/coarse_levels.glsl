@@ -4,12 +4,12 @@
 // workgroup). The includer declares the storage buffers residual[], rhs[] and corr[] that these
 // write, and includes collide_objects.glsl and multigrid.glsl first (with MG_*_OF defined to
 // read in place where it reads what it wrote). The CPU twins are the passes of the same names in
-// host/core/reference_multigrid.cpp, per vertex in the same arithmetic.
+// host/core/reference/reference_multigrid.cpp, per vertex in the same arithmetic.
 #ifndef CLOTHSIM_COARSE_LEVELS_GLSL
 #define CLOTHSIM_COARSE_LEVELS_GLSL
 
 // Coarse vertex g (its row v) in a fold: a coarse spring shorter than FOLDED_CHORD of its rest
-// length (folded in host/core/reference_multigrid.cpp).
+// length (folded in host/core/reference/reference_multigrid.cpp).
 bool folded(uint g, uvec4 v) {
   vec3 p = position_of(int(v.x)).xyz;
   uint last = mg_vertex(g + 1u).w;

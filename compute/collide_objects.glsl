@@ -1,6 +1,6 @@
 // One particle against every sphere in file order, then every plane (docs/design.md §1.4), then
 // every mesh collider (docs/model.md), as
-// collide_objects in host/core/reference.cpp. x is its position, d its displacement of this
+// collide_objects in host/core/reference/reference.cpp. x is its position, d its displacement of this
 // substep (x_prev = x - d); both change. Shared by collide_objects.comp and the passes it is
 // fused into (advance, resolve_self_contacts).
 #ifndef CLOTHSIM_COLLIDE_OBJECTS_GLSL
@@ -56,7 +56,7 @@ bool path_stays_outside(float dist, float r, vec3 rel) {
 // A mass outside a sphere at the end of the substep (e = x - o, dist = |e| > r) that moved by
 // rel = d - m relative to it: true if its path went into the sphere deeper than 0.1 mm, with
 // t - x the push back to where the path entered the surface (passed_through_sphere in
-// host/core/reference_collisions.cpp).
+// host/core/reference/reference_collisions.cpp).
 bool passed_through_sphere(vec3 e, float dist, float r, vec3 rel, out vec3 t_minus_x) {
   t_minus_x = vec3(0.0);
   if (path_stays_outside(dist, r, rel)) return false;
@@ -87,7 +87,7 @@ bool passed_through_sphere(vec3 e, float dist, float r, vec3 rel, out vec3 t_min
 
 // After the friction blend (whose chord from x_prev can run inside the sphere), a mass deeper
 // than 0.1 mm goes back to the surface along e, without friction (keep_out_of_sphere in
-// host/core/reference_collisions.cpp).
+// host/core/reference/reference_collisions.cpp).
 void keep_out_of_sphere(vec3 o, float r, inout vec3 x, inout vec3 d) {
   vec3 e = x - o;
   float dist = length3(e);
@@ -101,7 +101,7 @@ void keep_out_of_sphere(vec3 o, float r, inout vec3 x, inout vec3 d) {
 }
 
 // A mass deeper than 0.1 mm behind a plane's front goes to its surface offset on the front,
-// along n, without friction (keep_in_front_of_plane in host/core/reference_collisions.cpp).
+// along n, without friction (keep_in_front_of_plane in host/core/reference/reference_collisions.cpp).
 void keep_in_front_of_plane(vec3 p, vec3 n, float front, inout vec3 x, inout vec3 d) {
   float dist = dot3(x - p, n);
   precise float behind = dist * front;
@@ -113,7 +113,7 @@ void keep_in_front_of_plane(vec3 p, vec3 n, float front, inout vec3 x, inout vec
   d = nd;
 }
 
-// xpbd's contact response (coulomb_respond in host/core/reference_collisions.cpp): the push
+// xpbd's contact response (coulomb_respond in host/core/reference/reference_collisions.cpp): the push
 // along the outward contact normal n, then Coulomb friction on the substep's displacement
 // relative to the collider: its tangential part cancelled up to mu times the push's depth along n.
 void coulomb_respond(vec3 t_minus_x, vec3 n, float mu, vec3 m, inout vec3 x, inout vec3 d) {
@@ -332,7 +332,7 @@ bvec2 may_collide_pair_after(vec3 xi, vec3 di, float ci, vec3 xj, vec3 dj, float
 }
 
 // A mass deeper than 0.1 mm inside a sphere, or behind a plane's front, goes back to the
-// surface without friction (keep_out_of_colliders in host/core/reference_collisions.cpp).
+// surface without friction (keep_out_of_colliders in host/core/reference/reference_collisions.cpp).
 void keep_out_of_colliders(inout vec3 x, inout vec3 d) {
   for (int s = 0; s < sphere_count(); ++s) {
     vec4 origin_radius = texelFetch(spheres_view, SPHERE_TEXELS * s);

@@ -1,5 +1,5 @@
 // Helpers every pass shares, written in exactly the operation order of the C++ reference
-// (host/core/reference.hpp) so that llvmpipe and the reference round identically.
+// (host/core/reference/reference.hpp) so that llvmpipe and the reference round identically.
 // `precise` forbids the compiler from fusing a*b+c into an FMA, which rounds differently.
 #ifndef CLOTHSIM_COMMON_GLSL
 #define CLOTHSIM_COMMON_GLSL

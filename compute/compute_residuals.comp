@@ -2,7 +2,7 @@
 // per particle, the multigrid solve's first pass (docs/model.md): the residual force of the
 // implicit step at the start x = y + offset (predict's offset: minus the external forces'
 // share), -m/dt^2 (x - y) + the springs' forces summed in the gather order; w its mass (0 for a pinned or held mass, which does not take part). The CPU twin is
-// compute_residuals in host/core/reference_multigrid.cpp.
+// compute_residuals in host/core/reference/reference_multigrid.cpp.
 #include "layout.glsl"
 #include "common.glsl"
 #include "particle_views.glsl"
@@ -22,7 +22,7 @@ void main() {
   }
   float mass;
   Material mat = material_and_mass_of(i, mass);
-  // -m/dt^2 (x - y) + the springs' force (compute_residuals in host/core/reference_multigrid.cpp).
+  // -m/dt^2 (x - y) + the springs' force (compute_residuals in host/core/reference/reference_multigrid.cpp).
   precise float inertia = mass * params.inv_dt2;
   vec3 off = offset_of(i);
   precise vec3 xi = p.xyz + off;

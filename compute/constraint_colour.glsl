@@ -1,6 +1,6 @@
 // What the two constraint passes (solve_length_constraints, solve_distance_constraints) share:
 // the spring of this invocation within one colour, and Provot's stretch limit. The CPU
-// twins are for_each_spring_of_colour and limit_stretch in host/core/reference_constraints.cpp.
+// twins are for_each_spring_of_colour and limit_stretch in host/core/reference/reference_constraints.cpp.
 #ifndef CLOTHSIM_CONSTRAINT_COLOUR_GLSL
 #define CLOTHSIM_CONSTRAINT_COLOUR_GLSL
 

@@ -5,7 +5,7 @@
 // each level prolonged and swept once on the way back up, the invocations striding over a
 // level's vertices or a colour's, a barrier between each step and the next. These levels
 // (kSmallLevelVertices) are too small for a dispatch per level and colour to pay: this is one.
-// The CPU twin is cycle_small_levels in host/core/reference_multigrid.cpp, the same steps
+// The CPU twin is cycle_small_levels in host/core/reference/reference_multigrid.cpp, the same steps
 // (coarse_levels.glsl) in the same order.
 #include "layout.glsl"
 #include "common.glsl"

@@ -1,5 +1,5 @@
 // The divergence guard's helpers, shared by check_divergence and keep_last_good. The C++
-// twins are in host/core/divergence.cpp (within_limits) and host/gpu/gpu_divergence.cpp
+// twins are in host/core/analysis/divergence.cpp (within_limits) and host/gpu/gpu_divergence.cpp
 // (ordered bits).
 #ifndef CLOTHSIM_DIVERGENCE_GLSL
 #define CLOTHSIM_DIVERGENCE_GLSL

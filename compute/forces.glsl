@@ -1,7 +1,7 @@
 // The force on one particle (docs/design.md §1.1): gravity plus its springs, summed in the model's
 // gather order (ClothModel::gather: on a grid kGatherOrder, per direction the spring stored
 // here, then the one stored at the neighbour behind), exactly as accumulate_forces in
-// host/core/reference_forces.cpp.
+// host/core/reference/reference_forces.cpp.
 #ifndef CLOTHSIM_FORCES_GLSL
 #define CLOTHSIM_FORCES_GLSL
 

@@ -4,7 +4,7 @@
 // would have a 16-byte stride in GLSL and 12 in C++); the parameter block is named scalars.
 // tests/test_gpu_layout.cpp asks GL for the real offsets and strides and compares them with
 // sizeof/offsetof here. Constants and functions that both languages need beyond the layout
-// (the hash) live in spatial_hash.glsl. The cloth model's lists (host/core/cloth.hpp) are read
+// (the hash) live in spatial_hash.glsl. The cloth model's lists (host/core/cloth/cloth.hpp) are read
 // through texel views of the layouts below.
 #ifndef CLOTHSIM_LAYOUT_GLSL
 #define CLOTHSIM_LAYOUT_GLSL
@@ -63,7 +63,7 @@ using uint = uint32_t;
 #define BINDING_MULTIPLIERS 25
 #define BINDING_MESHES 26  // MeshCollider[] (the passes read them through TEXTURE_MESHES)
 #define BINDING_SDF 27     // vec4 per field node (host/gpu/sdf_texels.hpp), every mesh collider's field in turn
-// The multigrid solver's scratch (docs/model.md, host/core/hierarchy.hpp), vec4 each.
+// The multigrid solver's scratch (docs/model.md, host/core/cloth/hierarchy.hpp), vec4 each.
 #define BINDING_MG_RESIDUALS 28  // per particle its residual force (w its mass), then per coarse vertex its coarse residual (w the mass it stands for)
 #define BINDING_MG_OFFSET 29     // per particle: xyz its move since the prediction (x - y)
 #define BINDING_MG_RHS 30        // per coarse vertex: xyz the restricted force, w the mass it stands for
@@ -87,7 +87,7 @@ using uint = uint32_t;
 #define TEXTURE_CELL_START 13        // R32UI, one texel per hash bucket (+1 sentinel)
 #define TEXTURE_SORTED_POSITIONS 14  // RGBA32F, one texel per hash entry
 #define TEXTURE_TETHERS 15           // RGBA32F, one texel per particle: x its nearest pin (-1: none), y the rest distance
-// The rest of the cloth model (ClothModel in host/core/cloth.hpp), static over a run.
+// The rest of the cloth model (ClothModel in host/core/cloth/cloth.hpp), static over a run.
 #define TEXTURE_GATHER_START 16      // R32UI, per particle + 1: its first entry in the gather list
 #define TEXTURE_GATHER 17            // RGBA32UI, per gather entry: x the other end | type << 30, y the rest length's bits, z the spring, w 1 if the particle is its i end
 #define TEXTURE_PARTICLES 18         // RGBA32F, per particle: x mass (kg), y its cloth's material index
@@ -102,7 +102,7 @@ using uint = uint32_t;
 // The same buffer as TEXTURE_MESHES as RGBA32I, for MeshCollider's integers (dims): read through
 // the float view they would be denormal floats, which a driver may flush to zero (AMD and Intel do).
 #define TEXTURE_MESHES_INT 35        // RGBA32I, MESH_TEXELS per MeshCollider
-// The multigrid hierarchy (Hierarchy in host/core/hierarchy.hpp), static over a run, and the views of its scratch.
+// The multigrid hierarchy (Hierarchy in host/core/cloth/hierarchy.hpp), static over a run, and the views of its scratch.
 #define TEXTURE_MG_VERTICES 27       // RGBA32UI, per coarse vertex + 1: x its particle, y its first child, z its first parent, w its first spring (entries of TEXTURE_MG_LISTS)
 #define TEXTURE_MG_LISTS 28          // RGBA32UI, MultigridEntry: the children, then the parents, the springs, the particles' parents
 #define TEXTURE_MG_FINE 29           // R32UI, per particle + 1: its first parent (an entry of TEXTURE_MG_LISTS)
@@ -140,7 +140,7 @@ struct MultigridEntry {
   uvec4 index_weight;
 };
 
-// One cloth's material (MaterialC in host/core/reference.hpp).
+// One cloth's material (MaterialC in host/core/reference/reference.hpp).
 struct MaterialTexels {
   vec4 stiffness;  // ks, ks_bending (N/m), alpha, alpha_bending (xpbd compliance / dt^2)
   vec4 keep;       // x 1 - damping / 100; y, z, w 1 where structural, shearing, bending springs are enabled
@@ -160,7 +160,7 @@ struct PlaneCollider {
   vec4 motion;  // xyz m over this substep, w = friction (xpbd's Coulomb mu)
 };
 
-// A mesh collider (MeshC in host/core/reference.hpp): a mass at x is at local =
+// A mesh collider (MeshC in host/core/reference/reference.hpp): a mass at x is at local =
 // rows (x - origin) in its field's frame; node (0, 0, 0) of the field is at grid_min, its nodes
 // are the texels of TEXTURE_SDF from dims.w on, x fastest (each with its +x, +y, +x+y neighbours).
 struct MeshCollider {
@@ -206,7 +206,7 @@ struct ShadowFrame {
 #define STEP_PARAMS_FIELDS(F)                                                               \
   F(vec3, gravity)             /* m/s^2 */                                                 \
   F(float, dt2)                /* s^2, the substep squared */                              \
-  F(vec3, wind_velocity)       /* m/s, of the air (WindC in host/core/reference.hpp) */    \
+  F(vec3, wind_velocity)       /* m/s, of the air (WindC in host/core/reference/reference.hpp) */    \
   F(float, wind_drag)          /* -rho C_d / 12 */                                         \
   F(vec3, gust_velocity)       /* m/s, strength * wind_velocity */                         \
   F(float, wind_lift)          /* -rho C_l / 12 */                                         \

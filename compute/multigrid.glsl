@@ -1,6 +1,6 @@
 // What the multigrid solver's passes share (docs/model.md, "One substep (multigrid solver)"):
 // the hierarchy's views, a symmetric 3x3 block, a spring's Hessian terms and the coarse
-// residual. The CPU twins are in host/core/reference_multigrid.cpp, in the same operation order.
+// residual. The CPU twins are in host/core/reference/reference_multigrid.cpp, in the same operation order.
 #ifndef CLOTHSIM_MULTIGRID_GLSL
 #define CLOTHSIM_MULTIGRID_GLSL
 
@@ -95,7 +95,7 @@ bool solve3(Sym3 h, vec3 f, out vec3 x) {
 }
 
 // A mass at x within CONTACT_REACH of a collider's surface, which holds it with a force the
-// coarse problem does not know (touches_colliders in host/core/reference_multigrid.cpp). The
+// coarse problem does not know (touches_colliders in host/core/reference/reference_multigrid.cpp). The
 // pass includes collide_objects.glsl first (spheres, planes, meshes).
 #ifdef CLOTHSIM_COLLIDE_OBJECTS_GLSL
 bool touches_colliders(vec3 x) {

@@ -34,7 +34,7 @@ vec4 displacement_of(int i) { return texelFetch(displacement_view, i); }
 float mass_of(int i) { return texelFetch(particles_view, i).x; }
 int material_index_of(int i) { return int(texelFetch(particles_view, i).y); }
 
-// One cloth's material (MaterialTexels in layout.glsl, MaterialC in host/core/reference.hpp).
+// One cloth's material (MaterialTexels in layout.glsl, MaterialC in host/core/reference/reference.hpp).
 struct Material {
   vec4 stiffness;  // ks, ks_bending, alpha, alpha_bending
   vec4 keep;       // keep_velocity, then 1 per enabled spring type

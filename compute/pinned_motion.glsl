@@ -1,6 +1,6 @@
 // Pinned masses that follow cloth.pinned_motion: at the end of every substep a pinned mass is
 // at its start position plus the offset of the substep's end, and its displacement is that
-// move, exactly as integrate in host/core/reference.cpp. Held particles (the viewer's grab,
+// move, exactly as integrate in host/core/reference/reference.cpp. Held particles (the viewer's grab,
 // also w = 0) have anchor w 0 and stay where they are held.
 #ifndef CLOTHSIM_PINNED_MOTION_GLSL
 #define CLOTHSIM_PINNED_MOTION_GLSL

@@ -3,7 +3,7 @@
 // xpbd solver's first pass (docs/model.md), damped Verlet under gravity (and the wind) alone,
 // the springs being constraints solved after it, then the particle's tether to its nearest pin;
 // with u_collide_objects the collision objects follow in the same invocation. The CPU twin is
-// predict() in host/core/reference.cpp. Pinned particles (w = 0) stay, or follow pinned_motion.
+// predict() in host/core/reference/reference.cpp. Pinned particles (w = 0) stay, or follow pinned_motion.
 #include "layout.glsl"
 #include "common.glsl"
 #include "collide_objects.glsl"
@@ -66,12 +66,12 @@ void main() {
   }
   precise vec3 next = p.xyz + d;
   // The multigrid solve's offset: the external forces' share, which it applies with the
-  // springs (predict in host/core/reference_forces.cpp).
+  // springs (predict in host/core/reference/reference_forces.cpp).
   if (MULTIGRID_SOLVER) {
     precise vec3 applied = acc * params.dt2;
     offset[i] = vec4(-applied, 0.0);
   }
-  // The tether to the nearest pin (long-range attachments, host/core/tethers.cpp): xpbd's only,
+  // The tether to the nearest pin (long-range attachments, host/core/cloth/tethers.cpp): xpbd's only,
   // the multigrid solve needs none (docs/solvers.md).
   vec4 tether = MULTIGRID_SOLVER ? vec4(-1.0) : texelFetch(tethers_view, i);
   if (tether.x >= 0.0) {

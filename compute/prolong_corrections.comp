@@ -1,7 +1,7 @@
 // Reads the corrections (through their view: the coarser level's); writes the corrections of
 // one level. One invocation per coarse vertex of the level (vertices [u_first, u_first +
 // u_count)): prolong_vertex (coarse_levels.glsl), its parents' corrections, weighted, added to
-// its own. The CPU twin is prolong_corrections in host/core/reference_multigrid.cpp.
+// its own. The CPU twin is prolong_corrections in host/core/reference/reference_multigrid.cpp.
 #include "layout.glsl"
 #include "common.glsl"
 #include "collide_objects.glsl"

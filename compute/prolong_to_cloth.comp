@@ -2,7 +2,7 @@
 // writes positions, displacements and the offsets. One invocation per particle: its parents'
 // corrections, weighted, moved by (x and d alike, x - d stays the previous position), and kept
 // as x - y for the sweep's inertia. The CPU twin is prolong_to_cloth in
-// host/core/reference_multigrid.cpp.
+// host/core/reference/reference_multigrid.cpp.
 #include "layout.glsl"
 #include "common.glsl"
 #include "collide_objects.glsl"

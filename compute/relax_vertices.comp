@@ -4,7 +4,7 @@
 // step's energy on the mass's 3x3 block, f = -m/dt^2 (x - y) + its springs' forces, H = m/dt^2 I
 // + their Hessians; then max_stretch as a hard limit and the colliders' push-out. No spring
 // joins two particles of a colour, so the writes never race with a read. The CPU twin is
-// relax_vertices in host/core/reference_multigrid.cpp.
+// relax_vertices in host/core/reference/reference_multigrid.cpp.
 #include "layout.glsl"
 #include "common.glsl"
 #include "collide_objects.glsl"

@@ -2,7 +2,7 @@
 // so a candidate costs one read, not an id and then a position); writes the Jacobi output
 // positions and, in place, the displacements. One invocation per particle: it visits the 27 cells around it and averages the
 // push-out from every particle closer than 2 * thickness (docs/design.md §1.3), in the order of
-// resolve_self_contacts in host/core/reference.cpp. The last stage of collide_self, after
+// resolve_self_contacts in host/core/reference/reference.cpp. The last stage of collide_self, after
 // count_cells, scan_cells, fill_cells and sort_cells built the hash. With u_collide_objects the collision objects follow in the same
 // invocation (step 4 reads only the particle's own position and displacement).
 #include "layout.glsl"

@@ -2,7 +2,7 @@
 // sides, the level's residuals (the same: its correction starts at zero) and zeroes its
 // corrections. One invocation per coarse vertex of the level (vertices [u_first, u_first +
 // u_count)): restrict_vertex (coarse_levels.glsl), the weighted sum of its children's residual
-// forces and masses. The CPU twin is restrict_residuals in host/core/reference_multigrid.cpp.
+// forces and masses. The CPU twin is restrict_residuals in host/core/reference/reference_multigrid.cpp.
 #include "layout.glsl"
 #include "common.glsl"
 #include "collide_objects.glsl"

@@ -2,7 +2,7 @@
 // corrections of one colour of one level. One invocation per coarse vertex of the colour
 // (order entries [u_first, u_first + u_count)): smooth_vertex (coarse_levels.glsl), a
 // Gauss-Seidel step of the linear coarse problem on the vertex's 3x3 block. The CPU twin is
-// smooth_corrections in host/core/reference_multigrid.cpp.
+// smooth_corrections in host/core/reference/reference_multigrid.cpp.
 #include "layout.glsl"
 #include "common.glsl"
 #include "collide_objects.glsl"

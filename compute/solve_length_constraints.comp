@@ -4,7 +4,7 @@
 // race (Provot 1995). The CPU twin is solve_length_constraint_colour. Compiled with
 // STRETCH_SETTLED (1 + 2^-16), a watched pass of enforce_stretch_limit: it also raises the
 // settling flag where a spring is longer than that times its limit (limit_colour in
-// host/core/reference_constraints.cpp), for arm_stretch_pass to read.
+// host/core/reference/reference_constraints.cpp), for arm_stretch_pass to read.
 #include "layout.glsl"
 #include "common.glsl"
 #include "particle_views.glsl"

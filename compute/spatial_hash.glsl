@@ -1,5 +1,5 @@
 // The hashed uniform grid of self-collision. The hash is written once for both languages
-// (compute/shared.glsl); host/core/spatial_hash.hpp includes this file. Rows (y, z) are
+// (compute/shared.glsl); host/core/reference/spatial_hash.hpp includes this file. Rows (y, z) are
 // scattered by the products; along x consecutive cells get consecutive buckets, so the three
 // cells of a row that a particle visits are three adjacent buckets: one contiguous run of
 // entries (resolve_self_contacts.comp reads them as one range; the table has at least 4
@@ -22,7 +22,7 @@ SHARED uint hash_cell(int x, int y, int z, uint table_size) { return (hash_row(y
 SHARED_END
 
 #ifndef __cplusplus
-// The twin of cell_coord in host/core/spatial_hash.hpp: floor of a multiplication, so both
+// The twin of cell_coord in host/core/reference/spatial_hash.hpp: floor of a multiplication, so both
 // sides round alike, then the clamp above.
 int cell_axis(float scaled) {
   float f = floor(scaled);

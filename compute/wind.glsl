@@ -1,6 +1,6 @@
 // The aerodynamic force of the air on the cloth (docs/model.md, "Wind"), per particle as a
 // gather over the up to six triangles around it, exactly as compute_wind_forces and
-// triangle_wind_share in host/core/reference.cpp. Reads positions and displacements of the
+// triangle_wind_share in host/core/reference/reference.cpp. Reads positions and displacements of the
 // particle and its neighbours through the views, so it runs in its own pass
 // (compute_wind_forces.comp) before the one that writes them (advance, or XPBD's predict),
 // which adds wind_force_of(i) to its force.

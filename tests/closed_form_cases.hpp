@@ -14,7 +14,7 @@
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
-#include "cloth.hpp"
+#include "cloth/cloth.hpp"
 #include "test_helpers.hpp"
 
 namespace clothsim::test {

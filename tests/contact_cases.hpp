@@ -3,7 +3,7 @@
 // that a fast sphere passed over within the substep, each set up as a state on a 3x3 cloth.
 #pragma once
 
-#include "reference.hpp"
+#include "reference/reference.hpp"
 #include "test_helpers.hpp"
 
 namespace clothsim::test {

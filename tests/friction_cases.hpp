@@ -7,8 +7,8 @@
 #include <fmt/format.h>
 #include <glm/geometric.hpp>
 
-#include "cloth.hpp"
-#include "reference.hpp"
+#include "cloth/cloth.hpp"
+#include "reference/reference.hpp"
 #include "test_helpers.hpp"
 
 namespace clothsim::test {

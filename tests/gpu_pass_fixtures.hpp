@@ -8,7 +8,7 @@
 #include "gl_test_support.hpp"
 #include "gpu_simulator.hpp"
 #include "pass_check.hpp"
-#include "reference.hpp"
+#include "reference/reference.hpp"
 #include "test_helpers.hpp"
 
 using namespace clothsim;

@@ -11,9 +11,9 @@
 #include <random>
 #include "gl_test_support.hpp"
 #include "gpu_simulator.hpp"
-#include "intersections.hpp"
+#include "analysis/intersections.hpp"
 #include "prefix_scan.hpp"
-#include "reference.hpp"
+#include "reference/reference.hpp"
 #include "test_helpers.hpp"
 
 using namespace clothsim;
@@ -34,7 +34,7 @@ inline float max_diff(const Positions& a, const Positions& b) {
   return m;
 }
 
-// The exact count of intersecting triangle pairs (host/core/intersections.hpp) of a downloaded state.
+// The exact count of intersecting triangle pairs (host/core/analysis/intersections.hpp) of a downloaded state.
 inline size_t intersections_of(const ClothModel& model, const State<float>& s) {
   std::vector<glm::dvec3> at;
   for (auto& p : s.pos) at.emplace_back(p.x, p.y, p.z);

@@ -9,7 +9,7 @@
 
 #include <glm/vec3.hpp>
 
-#include "intersections.hpp"
+#include "analysis/intersections.hpp"
 
 namespace clothsim::test {
 

@@ -12,8 +12,8 @@
 #include <fmt/format.h>
 #include <glm/geometric.hpp>
 
-#include "scene.hpp"
-#include "sdf.hpp"
+#include "scene/scene.hpp"
+#include "colliders/sdf.hpp"
 #include "test_helpers.hpp"
 
 namespace clothsim::test {

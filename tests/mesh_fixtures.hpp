@@ -19,7 +19,7 @@
 #include <fmt/format.h>
 #include <glm/vec3.hpp>
 
-#include "mesh_springs.hpp"
+#include "cloth/mesh_springs.hpp"
 
 namespace clothsim::test {
 
@@ -51,7 +51,7 @@ inline PairSet unordered(const Pairs& pairs) {
   return out;
 }
 
-// The CS184 grid's positions (horizontal, as host/core/cloth.cpp makes them), its quads
+// The CS184 grid's positions (horizontal, as host/core/cloth/cloth.cpp makes them), its quads
 // (A B D C per cell, row major) and its spring sets.
 struct Grid {
   int nw, nh;

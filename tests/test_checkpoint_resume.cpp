@@ -17,8 +17,8 @@
 #include <sstream>
 
 #include "backend.hpp"
-#include "checkpoint.hpp"
-#include "diagnostics.hpp"
+#include "export/checkpoint.hpp"
+#include "analysis/diagnostics.hpp"
 #include "test_helpers.hpp"
 
 using namespace clothsim;

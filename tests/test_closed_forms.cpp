@@ -13,7 +13,7 @@
 
 #include "backend.hpp"
 #include "closed_form_cases.hpp"
-#include "static_solve.hpp"
+#include "analysis/static_solve.hpp"
 
 using namespace clothsim;
 

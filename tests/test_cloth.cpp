@@ -4,8 +4,8 @@
 
 #include <set>
 
-#include "cloth.hpp"
-#include "spring_grid.hpp"
+#include "cloth/cloth.hpp"
+#include "cloth/spring_grid.hpp"
 #include "test_helpers.hpp"
 
 using namespace clothsim;

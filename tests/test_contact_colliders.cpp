@@ -6,9 +6,9 @@
 #include <filesystem>
 
 #include "backend.hpp"
-#include "cloth.hpp"
+#include "cloth/cloth.hpp"
 #include "contact_cases.hpp"
-#include "diagnostics.hpp"
+#include "analysis/diagnostics.hpp"
 
 using namespace clothsim;
 

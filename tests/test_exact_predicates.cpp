@@ -14,7 +14,7 @@
 #include <glm/geometric.hpp>
 
 #include "intersection_fixtures.hpp"
-#include "intersections.hpp"
+#include "analysis/intersections.hpp"
 
 using namespace clothsim;
 using test::Mesh;

@@ -12,9 +12,9 @@
 #include <sstream>
 
 #include "backend.hpp"
-#include "checkpoint.hpp"
-#include "frame_export.hpp"
-#include "point_cache.hpp"
+#include "export/checkpoint.hpp"
+#include "export/frame_export.hpp"
+#include "export/point_cache.hpp"
 #include "test_helpers.hpp"
 
 using namespace clothsim;

@@ -6,7 +6,7 @@
 
 #include <filesystem>
 
-#include "checkpoint.hpp"
+#include "export/checkpoint.hpp"
 #include "gpu_simulator.hpp"
 #include "test_helpers.hpp"
 

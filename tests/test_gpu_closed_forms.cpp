@@ -8,7 +8,7 @@
 #include "gl_test_support.hpp"
 #include "gpu_simulator.hpp"
 #include "pass_check.hpp"
-#include "static_solve.hpp"
+#include "analysis/static_solve.hpp"
 
 using namespace clothsim;
 

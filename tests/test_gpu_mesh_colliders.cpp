@@ -5,11 +5,11 @@
 #include <random>
 
 #include "backend.hpp"
-#include "cloth.hpp"
+#include "cloth/cloth.hpp"
 #include "gpu_pass_fixtures.hpp"
-#include "mesh_collider.hpp"
+#include "colliders/mesh_collider.hpp"
 #include "mesh_collider_cases.hpp"
-#include "reference_detail.hpp"
+#include "reference/reference_detail.hpp"
 #include "sdf_texels.hpp"
 
 TEST_CASE("mesh colliders on the GPU: every pass and a whole drop as the reference, and nothing inside",

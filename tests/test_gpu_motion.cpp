@@ -5,7 +5,7 @@
 #include <functional>
 
 #include "gpu_pass_fixtures.hpp"
-#include "motion.hpp"
+#include "scene/motion.hpp"
 
 namespace {
 

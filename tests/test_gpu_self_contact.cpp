@@ -1,6 +1,6 @@
 // xpbd's bounded self-contact on the GPU (docs/model.md, "Self-contact that holds"): the pass
 // on a folded cloth against the reference, and whole heaps that end with no intersecting
-// triangles (the exact counter of host/core/intersections.cpp, every tenth frame), bitwise the
+// triangles (the exact counter of host/core/analysis/intersections.cpp, every tenth frame), bitwise the
 // reference's on llvmpipe. The CPU side is test_self_contact.cpp.
 #include "gpu_self_collision_fixtures.hpp"
 

@@ -11,8 +11,8 @@
 #include <fmt/format.h>
 
 #include "backend.hpp"
-#include "diagnostics.hpp"
-#include "scene.hpp"
+#include "analysis/diagnostics.hpp"
+#include "scene/scene.hpp"
 
 namespace clothsim::test {
 

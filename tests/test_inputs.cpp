@@ -19,12 +19,12 @@
 
 #include <fmt/format.h>
 
-#include "cloth.hpp"
-#include "divergence.hpp"
-#include "input_file.hpp"
-#include "ply_check.hpp"
-#include "reference.hpp"
-#include "scene.hpp"
+#include "cloth/cloth.hpp"
+#include "analysis/divergence.hpp"
+#include "io/input_file.hpp"
+#include "io/ply_check.hpp"
+#include "reference/reference.hpp"
+#include "scene/scene.hpp"
 
 namespace fs = std::filesystem;
 using namespace clothsim;

@@ -17,9 +17,9 @@
 #include <glm/geometric.hpp>
 
 #include "backend.hpp"
-#include "cloth.hpp"
+#include "cloth/cloth.hpp"
 #include "intersection_fixtures.hpp"
-#include "intersections.hpp"
+#include "analysis/intersections.hpp"
 #include "test_helpers.hpp"
 
 using namespace clothsim;

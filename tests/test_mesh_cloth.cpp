@@ -10,10 +10,10 @@
 #include <fmt/format.h>
 
 #include "backend.hpp"
-#include "checkpoint.hpp"
-#include "diagnostics.hpp"
-#include "cloth.hpp"
-#include "scene.hpp"
+#include "export/checkpoint.hpp"
+#include "analysis/diagnostics.hpp"
+#include "cloth/cloth.hpp"
+#include "scene/scene.hpp"
 #include "test_helpers.hpp"
 
 namespace fs = std::filesystem;

@@ -7,10 +7,10 @@
 #include <random>
 
 #include "backend.hpp"
-#include "cloth.hpp"
-#include "mesh_collider.hpp"
+#include "cloth/cloth.hpp"
+#include "colliders/mesh_collider.hpp"
 #include "mesh_collider_cases.hpp"
-#include "reference_detail.hpp"
+#include "reference/reference_detail.hpp"
 
 using namespace clothsim;
 

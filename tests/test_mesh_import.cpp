@@ -19,11 +19,11 @@
 #include <fmt/format.h>
 #include <glm/geometric.hpp>
 
-#include "colouring.hpp"
+#include "cloth/colouring.hpp"
 #include "mesh_fixtures.hpp"
-#include "mesh_import.hpp"
-#include "mesh_springs.hpp"
-#include "scene.hpp"
+#include "cloth/mesh_import.hpp"
+#include "cloth/mesh_springs.hpp"
+#include "scene/scene.hpp"
 
 using namespace clothsim;
 namespace fs = std::filesystem;

@@ -15,10 +15,10 @@
 
 #include <catch2/catch.hpp>
 
-#include "colouring.hpp"
+#include "cloth/colouring.hpp"
 #include "mesh_fixtures.hpp"
-#include "mesh_import.hpp"
-#include "mesh_springs.hpp"
+#include "cloth/mesh_import.hpp"
+#include "cloth/mesh_springs.hpp"
 
 using namespace clothsim;
 using test::all_springs;

@@ -9,10 +9,10 @@
 #include <cmath>
 
 #include "backend.hpp"
-#include "diagnostics.hpp"
-#include "hierarchy.hpp"
-#include "intersections.hpp"
-#include "static_solve.hpp"
+#include "analysis/diagnostics.hpp"
+#include "cloth/hierarchy.hpp"
+#include "analysis/intersections.hpp"
+#include "analysis/static_solve.hpp"
 #include "test_helpers.hpp"
 
 using namespace clothsim;

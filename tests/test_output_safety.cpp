@@ -22,9 +22,9 @@
 #include <sstream>
 #include <thread>
 
-#include "output_file.hpp"
+#include "io/output_file.hpp"
 #include "mesh_collider_cases.hpp"
-#include "sdf.hpp"
+#include "colliders/sdf.hpp"
 #include "output_support.hpp"
 #include "test_helpers.hpp"
 

@@ -18,10 +18,10 @@
 #include <sstream>
 
 #include "backend.hpp"
-#include "checkpoint.hpp"
-#include "diagnostics.hpp"
-#include "output_file.hpp"
-#include "point_cache.hpp"
+#include "export/checkpoint.hpp"
+#include "analysis/diagnostics.hpp"
+#include "io/output_file.hpp"
+#include "export/point_cache.hpp"
 #include "output_support.hpp"
 #include "test_helpers.hpp"
 

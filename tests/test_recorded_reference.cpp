@@ -15,8 +15,8 @@
 #include <fmt/format.h>
 
 #include "backend.hpp"
-#include "cloth.hpp"
-#include "scene.hpp"
+#include "cloth/cloth.hpp"
+#include "scene/scene.hpp"
 
 namespace fs = std::filesystem;
 using namespace clothsim;

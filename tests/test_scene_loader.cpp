@@ -12,7 +12,7 @@
 #include <utility>
 #include <vector>
 
-#include "scene.hpp"
+#include "scene/scene.hpp"
 
 namespace fs = std::filesystem;
 using namespace clothsim;

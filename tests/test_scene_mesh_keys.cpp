@@ -10,8 +10,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "param_doc.hpp"
-#include "scene.hpp"
+#include "scene/param_doc.hpp"
+#include "scene/scene.hpp"
 
 namespace fs = std::filesystem;
 using namespace clothsim;

@@ -8,8 +8,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "param_doc.hpp"
-#include "scene_table.hpp"
+#include "scene/param_doc.hpp"
+#include "scene/scene_table.hpp"
 
 namespace clothsim {
 namespace {

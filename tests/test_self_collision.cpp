@@ -6,7 +6,7 @@
 #include <numeric>
 #include <random>
 
-#include "reference.hpp"
+#include "reference/reference.hpp"
 #include "test_helpers.hpp"
 
 using namespace clothsim;

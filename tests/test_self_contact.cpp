@@ -1,15 +1,15 @@
 // xpbd's bounded self-contact (docs/model.md, "Self-contact that holds") on the CPU reference:
 // the pair rule (contact distance, or the rest distance for the cloth's own neighbours), the
 // speed limit of predict, and whole heaps that end with no intersecting triangles, checked by
-// the exact counter of host/core/intersections.cpp every tenth frame. The GPU twin is
+// the exact counter of host/core/analysis/intersections.cpp every tenth frame. The GPU twin is
 // test_gpu_self_contact.cpp.
 #include <catch2/catch.hpp>
 
 #include <cmath>
 
 #include "backend.hpp"
-#include "intersections.hpp"
-#include "reference.hpp"
+#include "analysis/intersections.hpp"
+#include "reference/reference.hpp"
 #include "test_helpers.hpp"
 
 using namespace clothsim;

@@ -10,7 +10,7 @@
 #include <regex>
 #include <sstream>
 
-#include "motion.hpp"
+#include "scene/motion.hpp"
 #include "test_helpers.hpp"
 
 using namespace clothsim;

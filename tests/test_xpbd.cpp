@@ -11,7 +11,7 @@
 #include <glm/geometric.hpp>
 
 #include "backend.hpp"
-#include "diagnostics.hpp"
+#include "analysis/diagnostics.hpp"
 #include "test_helpers.hpp"
 #include "xpbd_scenes.hpp"
 

@@ -4,7 +4,7 @@
 
 #include <fmt/format.h>
 
-#include "scene.hpp"
+#include "scene/scene.hpp"
 #include "test_helpers.hpp"
 
 namespace clothsim::test {

@@ -1,7 +1,7 @@
 #include <fmt/format.h>
 
 #include "cli_common.hpp"
-#include "host_memory.hpp"
+#include "io/host_memory.hpp"
 #include "debug_output.hpp"
 #include "gpu_simulator.hpp"
 

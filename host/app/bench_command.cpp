@@ -13,8 +13,8 @@
 #include "bench_runner.hpp"
 #include "cli_common.hpp"
 #include "commands.hpp"
-#include "output_file.hpp"
-#include "output_plan.hpp"
+#include "io/output_file.hpp"
+#include "export/output_plan.hpp"
 #include "gpu_simulator.hpp"
 
 namespace clothsim {

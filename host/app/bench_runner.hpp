@@ -8,7 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "context.hpp"
-#include "scene.hpp"
+#include "scene/scene.hpp"
 
 namespace clothsim {
 

@@ -8,10 +8,10 @@
 
 #include <fmt/format.h>
 
-#include "checkpoint.hpp"
-#include "mesh_collider.hpp"
-#include "output_plan.hpp"
-#include "input_file.hpp"
+#include "export/checkpoint.hpp"
+#include "colliders/mesh_collider.hpp"
+#include "export/output_plan.hpp"
+#include "io/input_file.hpp"
 
 namespace clothsim {
 

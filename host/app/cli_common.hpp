@@ -12,8 +12,8 @@
 
 #include "backend.hpp"
 #include "context.hpp"
-#include "input_file.hpp"
-#include "scene.hpp"
+#include "io/input_file.hpp"
+#include "scene/scene.hpp"
 
 namespace clothsim {
 

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "output_file.hpp"
+#include "io/output_file.hpp"
 
 namespace clothsim {
 

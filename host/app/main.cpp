@@ -5,9 +5,9 @@
 #include "cli_common.hpp"
 #include "commands.hpp"
 #include "debug_output.hpp"
-#include "host_memory.hpp"
+#include "io/host_memory.hpp"
 #include "objects.hpp"
-#include "output_file.hpp"
+#include "io/output_file.hpp"
 
 int main(int argc, char** argv) {
   using namespace clothsim;

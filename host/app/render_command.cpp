@@ -10,7 +10,7 @@
 #include <glm/geometric.hpp>
 
 #include "cli_common.hpp"
-#include "output_plan.hpp"
+#include "export/output_plan.hpp"
 #include "commands.hpp"
 #include "gpu_simulator.hpp"
 #include "image_output.hpp"

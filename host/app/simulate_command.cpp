@@ -11,10 +11,10 @@
 
 #include "cli_common.hpp"
 #include "commands.hpp"
-#include "frame_export.hpp"
-#include "intersections.hpp"
-#include "mesh_collider.hpp"
-#include "output_plan.hpp"
+#include "export/frame_export.hpp"
+#include "analysis/intersections.hpp"
+#include "colliders/mesh_collider.hpp"
+#include "export/output_plan.hpp"
 
 namespace clothsim {
 namespace {

@@ -7,10 +7,10 @@
 
 #include "cli_common.hpp"
 #include "commands.hpp"
-#include "diagnostics.hpp"
-#include "divergence.hpp"
-#include "output_plan.hpp"
-#include "static_solve.hpp"
+#include "analysis/diagnostics.hpp"
+#include "analysis/divergence.hpp"
+#include "export/output_plan.hpp"
+#include "analysis/static_solve.hpp"
 
 namespace clothsim {
 namespace {

@@ -5,7 +5,7 @@
 #include "cli_common.hpp"
 #include "commands.hpp"
 #include "gpu_simulator.hpp"
-#include "output_plan.hpp"
+#include "export/output_plan.hpp"
 #include "viewer.hpp"
 
 namespace clothsim {

@@ -8,10 +8,10 @@
 #include <utility>
 #include <vector>
 
-#include "checkpoint.hpp"
-#include "diagnostics.hpp"
-#include "divergence.hpp"
-#include "reference.hpp"
+#include "export/checkpoint.hpp"
+#include "analysis/diagnostics.hpp"
+#include "analysis/divergence.hpp"
+#include "reference/reference.hpp"
 
 namespace clothsim {
 

@@ -7,7 +7,7 @@
 #include <fmt/format.h>
 #include <stb/stb_image.h>
 
-#include "input_file.hpp"  // clothsim_core
+#include "io/input_file.hpp"  // clothsim_core
 
 namespace clothsim::gl {
 

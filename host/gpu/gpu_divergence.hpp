@@ -11,7 +11,7 @@
 
 #include <glm/vec4.hpp>
 
-#include "divergence.hpp"
+#include "analysis/divergence.hpp"
 #include "objects.hpp"
 #include "prefix_scan.hpp"
 #include "program.hpp"

@@ -6,7 +6,7 @@
 
 #include "context.hpp"
 #include "objects.hpp"
-#include "spatial_hash.hpp"
+#include "reference/spatial_hash.hpp"
 #include "../../compute/layout.glsl"
 
 namespace clothsim {

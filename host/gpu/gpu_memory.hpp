@@ -8,8 +8,8 @@
 #include <optional>
 #include <string>
 
-#include "cloth.hpp"
-#include "scene.hpp"
+#include "cloth/cloth.hpp"
+#include "scene/scene.hpp"
 
 namespace clothsim {
 

@@ -37,7 +37,7 @@ class GpuSimulator {
   ~GpuSimulator();
 
   // The passes, one dispatch each (the length constraint: one per colour and iteration),
-  // each named like its .comp file and its CPU twin in host/core/reference.hpp. step() runs
+  // each named like its .comp file and its CPU twin in host/core/reference/reference.hpp. step() runs
   // advance, [collide_self], solve_length_constraints, with collide_objects fused into the
   // last per-particle pass before the constraints. accumulate_forces, integrate and
   // collide_objects on their own are kept only for the pass checks (pass_check.cpp).

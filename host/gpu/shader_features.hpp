@@ -11,7 +11,7 @@
 #include <string>
 
 #include "program.hpp"
-#include "reference.hpp"
+#include "reference/reference.hpp"
 #include "../../compute/layout.glsl"
 
 namespace clothsim {

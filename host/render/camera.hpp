@@ -7,8 +7,8 @@
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 
-#include "cloth.hpp"
-#include "scene.hpp"
+#include "cloth/cloth.hpp"
+#include "scene/scene.hpp"
 
 namespace clothsim {
 

@@ -8,8 +8,8 @@
 #include <glm/vec4.hpp>
 
 #include "../../compute/layout.glsl"
-#include "cloth.hpp"
-#include "sdf.hpp"
+#include "cloth/cloth.hpp"
+#include "colliders/sdf.hpp"
 
 namespace clothsim {
 

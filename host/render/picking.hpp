@@ -12,7 +12,7 @@
 #include <glm/vec4.hpp>
 
 #include "camera.hpp"
-#include "cloth.hpp"
+#include "cloth/cloth.hpp"
 
 namespace clothsim {
 

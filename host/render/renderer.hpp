@@ -15,7 +15,7 @@
 #include "objects.hpp"
 #include "program.hpp"
 #include "pass_clock.hpp"
-#include "reference.hpp"
+#include "reference/reference.hpp"
 #include "shadow_map.hpp"
 #include "texture.hpp"
 

@@ -3,12 +3,12 @@
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
-#include "spatial_hash.hpp"
+#include "reference/spatial_hash.hpp"
 
 namespace clothsim {
 
 int count_self_contacts(const std::vector<glm::vec4>& pos, const Constants<float>& c) {
-  // The reference's hash and neighbour visit (host/core/spatial_hash.hpp), so the panel counts
+  // The reference's hash and neighbour visit (host/core/reference/spatial_hash.hpp), so the panel counts
   // exactly the pairs collide_self pushes apart.
   SpatialHash h = make_spatial_hash(uint32_t(pos.size()));
   const float inv = c.inv_cell, contact = c.contact_distance;

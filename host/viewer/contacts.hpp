@@ -6,7 +6,7 @@
 
 #include <glm/vec4.hpp>
 
-#include "reference.hpp"
+#include "reference/reference.hpp"
 
 namespace clothsim {
 

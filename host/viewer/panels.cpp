@@ -1,5 +1,5 @@
 // The viewer's Dear ImGui panels. Labels are the scene JSON key names (one name end to end);
-// the Simulation panel is made from the parameter table (host/core/scene_table.cpp).
+// the Simulation panel is made from the parameter table (host/core/scene/scene_table.cpp).
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
@@ -11,8 +11,8 @@
 #include <fmt/format.h>
 #include <imgui.h>
 
-#include "output_file.hpp"
-#include "scene_table.hpp"
+#include "io/output_file.hpp"
+#include "scene/scene_table.hpp"
 #include "viewer_state.hpp"
 
 namespace clothsim {

@@ -16,7 +16,7 @@
 
 #include "contacts.hpp"
 #include "context.hpp"
-#include "output_file.hpp"
+#include "io/output_file.hpp"
 #include "glfw_window.hpp"
 #include "gpu_simulator.hpp"
 #include "png.hpp"

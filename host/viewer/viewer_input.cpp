@@ -7,7 +7,7 @@
 
 #include <fmt/format.h>
 
-#include "mesh_collider.hpp"
+#include "colliders/mesh_collider.hpp"
 #include "viewer_app.hpp"
 
 namespace clothsim {

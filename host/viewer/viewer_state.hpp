@@ -8,7 +8,7 @@
 #include "camera.hpp"
 #include "picking.hpp"
 #include "renderer.hpp"
-#include "scene.hpp"
+#include "scene/scene.hpp"
 
 namespace clothsim {
 

@@ -6,7 +6,7 @@
 // clothsim::parse_scene(json, "<fuzz>", overrides).
 //
 // Property: parse_scene either returns a Scene that is fully valid (every value inside the
-// range of its row in the parameter table, host/core/scene_table.cpp; unit plane normals and
+// range of its row in the parameter table, host/core/scene/scene_table.cpp; unit plane normals and
 // rotation axes, pins inside the grid, pinned boxes with min <= max, a grid cloth without mesh
 // values, at most kMaxParticles grid particles in all) and that scene_to_json writes out and
 // loads back bit for bit, value by value, or throws clothsim::SceneError naming
@@ -31,7 +31,7 @@
 
 #include <fmt/format.h>
 
-#include "scene_table.hpp"
+#include "scene/scene_table.hpp"
 
 namespace clothsim::fuzz {
 namespace {

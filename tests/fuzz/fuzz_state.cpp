@@ -1,6 +1,6 @@
 // libFuzzer target for the state-file reader (`simulate --load-state`): read_checkpoint.
 //
-// Input bytes: a state file, as --save-state writes it (format: host/core/checkpoint.cpp).
+// Input bytes: a state file, as --save-state writes it (format: host/core/export/checkpoint.cpp).
 // Each input is read twice from memory, read_checkpoint(stream, size, "<fuzz>"): as it is, and
 // with its last 8 bytes replaced by the FNV-1a checksum of the rest. Nearly every mutation
 // breaks the checksum, so without the second read the checks after it (finite numbers, time,
@@ -33,7 +33,7 @@
 #include <fmt/format.h>
 
 #include "allocation_meter.hpp"
-#include "checkpoint.hpp"
+#include "export/checkpoint.hpp"
 #include "fuzz_targets.hpp"
 
 namespace clothsim::fuzz {

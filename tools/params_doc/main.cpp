@@ -7,8 +7,8 @@
 #include <stdexcept>
 #include <string>
 
-#include "output_file.hpp"
-#include "param_doc.hpp"
+#include "io/output_file.hpp"
+#include "scene/param_doc.hpp"
 
 namespace {
 
@@ -22,7 +22,7 @@ int check(const char* path, const std::string& want) {
     return 0;
   }
   std::fprintf(stderr, "docs/parameters.md is out of date (%s differs from the parameter table in "
-               "host/core/scene_table.cpp); regenerate with: %s\n", path, kRegenerate);
+               "host/core/scene/scene_table.cpp); regenerate with: %s\n", path, kRegenerate);
   // The first line that differs, so the cause is visible in the test log.
   std::istringstream a(got), b(want);
   std::string la, lb;

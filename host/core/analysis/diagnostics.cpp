@@ -1,0 +1,134 @@
+#include "analysis/diagnostics.hpp"
+
+#include "colliders/mesh_collider.hpp"
+#include "reference/reference_detail.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <limits>
+#include <stdexcept>
+#include <utility>
+
+#include <fmt/format.h>
+#include <fmt/os.h>
+
+#include "scene/motion.hpp"
+#include "io/output_file.hpp"
+
+
+namespace clothsim {
+namespace {
+
+glm::dvec3 xyz(const glm::dvec4& v) { return {v.x, v.y, v.z}; }
+
+glm::dvec3 initial_centre(const ClothModel& m) {
+  glm::dvec3 c(0);
+  for (auto& p : m.initial) c += p;
+  return c / double(m.count());
+}
+
+}  // namespace
+
+ClothStats measure(const Scene& scene, const ClothModel& m, const ClothSnapshot& s, double time) {
+  ClothStats st;
+  const double dt = scene.dt();
+  const auto cloths = scene.cloths();
+  const std::vector<double> mass = particle_masses(scene, m);
+  for (int i = 0; i < m.count(); ++i) {
+    const glm::dvec3 x = xyz(s.pos[i]);
+    for (int c = 0; c < 4; ++c) st.finite = st.finite && std::isfinite(s.pos[i][c]) && std::isfinite(s.disp[i][c]);
+    const glm::dvec3 v = xyz(s.disp[i]) / dt;
+    if (!m.pinned[i]) st.kinetic += 0.5 * mass[i] * glm::dot(v, v);
+    st.max_speed = std::max(st.max_speed, glm::length(v));
+    st.gravitational -= mass[i] * glm::dot(scene.simulation.gravity, x);
+  }
+  std::vector<double> ratios;
+  ratios.reserve(m.springs.size());
+  for (const Spring& sp : m.springs) {
+    const double len = glm::length(xyz(s.pos[sp.j]) - xyz(s.pos[sp.i]));
+    st.max_stretch_ratio = std::max(st.max_stretch_ratio, len / sp.rest);
+    ratios.push_back(len / sp.rest);
+    const ClothParams& p = *cloths.at(sp.material);
+    const bool enabled[3] = {p.enable_structural, p.enable_shearing, p.enable_bending};
+    if (enabled[int(sp.type)]) {
+      const double k = sp.type == SpringType::Bending ? 0.2 * p.ks : p.ks;
+      st.spring += 0.5 * k * (len - sp.rest) * (len - sp.rest);
+    }
+  }
+  if (!ratios.empty()) {
+    // The nearest-rank percentile: the smallest ratio that at least 99 % of the springs reach.
+    const size_t rank = std::min(ratios.size() - 1, size_t(std::ceil(0.99 * double(ratios.size()))) - 1);
+    std::nth_element(ratios.begin(), ratios.begin() + std::ptrdiff_t(rank), ratios.end());
+    st.p99_stretch_ratio = ratios[rank];
+  }
+  const glm::dvec3 centre = initial_centre(m);
+  // A keyframed collider is where its keys put it at `time`, as the collision passes of the
+  // snapshot's last substep saw it (docs/model.md, "Moving scenes").
+  for (auto& sp : scene.spheres) {
+    const glm::dvec3 origin = sp.motion ? interpolate(sp.motion->keyframes, time) : sp.origin;
+    double best = std::numeric_limits<double>::infinity();
+    for (auto& p : s.pos) best = std::min(best, glm::length(xyz(p) - origin) - sp.radius);
+    st.sphere_clearance.push_back(best);
+  }
+  for (auto& pl : scene.planes) {
+    // The plane's front (the side the cloth started on, where the plane is at t = 0) counts as
+    // outside; a plane through the start centre uses +normal.
+    const glm::dvec3 start = pl.motion ? interpolate(pl.motion->keyframes, 0.0) : pl.point;
+    const glm::dvec3 point = pl.motion ? interpolate(pl.motion->keyframes, time) : pl.point;
+    double side = glm::dot(centre - start, pl.normal) < 0 ? -1.0 : 1.0;
+    double best = std::numeric_limits<double>::infinity();
+    for (auto& p : s.pos) best = std::min(best, side * glm::dot(xyz(p) - point, pl.normal));
+    st.plane_clearance.push_back(best);
+  }
+  for (size_t k = 0; k < scene.meshes.size(); ++k) {
+    // The field's distance (to the surface, not to its offset by thickness), in the mesh's
+    // frame; a mass outside the grid is further than the band.
+    const MeshColliderParams& mp = scene.meshes[k];
+    const std::shared_ptr<const ColliderMesh> mesh = load_collider_mesh(scene, k);
+    MeshC<double> mc = make_mesh_collider<double>(mp, mesh->sdf, 0);  // its own field: offset 0
+    if (mp.motion) mc.origin = interpolate(mp.motion->keyframes, time);
+    double best = mesh->sdf.band;
+    for (auto& p : s.pos) {
+      double phi;
+      glm::dvec3 grad;
+      if (sample_mesh_at(mc, mesh->sdf.values.data(), xyz(p), phi, grad)) best = std::min(best, phi);
+    }
+    st.mesh_clearance.push_back(best);
+  }
+  return st;
+}
+
+void write_obj(const std::string& path, const ClothModel& m, const ClothSnapshot& s) {
+  // Written under a temporary name beside `path` and renamed once complete (output_file.hpp),
+  // so `path` holds the old file or the whole new one, never a part.
+  PendingFile out(path);
+  std::FILE* f = std::fopen(out.temp().c_str(), "w");
+  if (!f) throw std::runtime_error(fmt::format("{}: cannot open for writing ({})", path, std::strerror(errno)));
+  // Closed on every path: fmt::print throws when a write fails (a full disk).
+  struct Closer {
+    std::FILE*& f;
+    ~Closer() { if (f) std::fclose(f); }
+  } closer{f};
+  if (m.is_grid())
+    fmt::print(f, "# clothsim cloth, {}x{} particles, row-major\n", m.nw, m.nh);
+  else
+    fmt::print(f, "# clothsim cloth, {} particles in {} cloth(s), each mesh in its file's vertex order\n", m.count(),
+               m.parts.size());
+  for (auto& p : s.pos) fmt::print(f, "v {:.9g} {:.9g} {:.9g}\n", p.x, p.y, p.z);
+  for (auto& t : m.uv) fmt::print(f, "vt {:.9g} {:.9g}\n", t.x, t.y);
+  for (int i = 0; i < m.count(); ++i) {
+    glm::dvec4 n = i < int(s.normal.size()) ? s.normal[i] : glm::dvec4(0, 1, 0, 0);
+    fmt::print(f, "vn {:.9g} {:.9g} {:.9g}\n", n.x, n.y, n.z);
+  }
+  for (auto& t : m.triangles)
+    fmt::print(f, "f {0}/{0}/{0} {1}/{1}/{1} {2}/{2}/{2}\n", t[0] + 1, t[1] + 1, t[2] + 1);
+  const bool ok = !std::ferror(f);
+  const bool closed = std::fclose(std::exchange(f, nullptr)) == 0;
+  if (!ok || !closed) throw std::runtime_error(fmt::format("{}: write failed", path));
+  out.commit();
+}
+
+}  // namespace clothsim

@@ -1,0 +1,177 @@
+#include "cloth/hierarchy.hpp"
+
+#include <algorithm>
+
+#include <glm/geometric.hpp>
+
+namespace clothsim {
+
+namespace {
+
+using Graph = std::vector<std::vector<uint32_t>>;  // ascending neighbour lists, no duplicates
+
+void sort_unique(Graph& g) {
+  for (auto& n : g) {
+    std::sort(n.begin(), n.end());
+    n.erase(std::unique(n.begin(), n.end()), n.end());
+  }
+}
+
+// The particles joined by springs of the given types (any cloth, enabled or not: the graph is
+// the rest shape's, not the run's).
+Graph spring_graph(const ClothModel& m, bool with_bending) {
+  Graph g(m.count());
+  for (const Spring& s : m.springs) {
+    if (s.type == SpringType::Bending && !with_bending) continue;
+    g[s.i].push_back(s.j);
+    g[s.j].push_back(s.i);
+  }
+  sort_unique(g);
+  return g;
+}
+
+// Greedy colouring in index order: each vertex takes the smallest colour none of its coloured
+// neighbours has. Returns the vertices grouped by colour (ascending within one) and the starts.
+// `start` gets order.size() before and after each colour.
+void colour_vertices(const Graph& g, uint32_t base, std::vector<uint32_t>& order, std::vector<uint32_t>& start) {
+  const size_t n = g.size();
+  std::vector<int> colour(n, -1);
+  int colours = 0;
+  std::vector<char> used;
+  for (size_t v = 0; v < n; ++v) {
+    used.assign(size_t(colours) + 1, 0);
+    for (uint32_t u : g[v])
+      if (colour[u] >= 0) used[size_t(colour[u])] = 1;
+    int c = 0;
+    while (used[size_t(c)]) ++c;
+    colour[v] = c;
+    colours = std::max(colours, c + 1);
+  }
+  start.assign(1, uint32_t(order.size()));
+  for (int c = 0; c < colours; ++c) {
+    for (size_t v = 0; v < n; ++v)
+      if (colour[v] == c) order.push_back(base + uint32_t(v));
+    start.push_back(uint32_t(order.size()));
+  }
+}
+
+}  // namespace
+
+Hierarchy build_hierarchy(const ClothModel& m, const std::vector<double>& ks) {
+  Hierarchy h;
+  h.ks = ks;
+  colour_vertices(spring_graph(m, true), 0, h.fine_order, h.fine_colour_start);
+  // The current level: its vertices' particles and their graph (structural and shearing springs
+  // on the cloth itself, the coarse springs further down).
+  Graph graph = spring_graph(m, false);
+  std::vector<uint32_t> particles(size_t(m.count()));
+  for (uint32_t i = 0; i < particles.size(); ++i) particles[i] = i;
+  uint32_t finer_base = 0;  // global index of the current level's vertex 0 (unused for the cloth)
+  bool cloth_level = true;
+  h.fine_parent_start.push_back(0);
+  h.parent_start.push_back(0);
+
+  while (particles.size() > kCoarsestVertices && h.levels.size() < 16) {
+    const size_t n = particles.size();
+    // A maximal independent set, pinned particles first so a pin is a coarse vertex (a coarse
+    // correction then holds still where the cloth is held), then in index order.
+    std::vector<char> taken(n, 0);
+    std::vector<int64_t> coarse_of(n, -1);
+    std::vector<uint32_t> coarse;
+    auto take = [&](uint32_t v) {
+      if (taken[v]) return;
+      coarse_of[v] = int64_t(coarse.size());
+      coarse.push_back(v);
+      taken[v] = 1;
+      for (uint32_t u : graph[v]) taken[u] = 1;
+    };
+    for (uint32_t v = 0; v < n; ++v)
+      if (m.pinned[particles[v]]) take(v);
+    for (uint32_t v = 0; v < n; ++v) take(v);
+    // Not worth a level: the graph hardly coarsens (a cloud of loose particles).
+    if (coarse.size() * 5 > n * 4) break;
+    // With the MIS in index order the coarse vertices are not ascending when pins came first:
+    // number them in index order so levels are laid out like the cloth.
+    std::sort(coarse.begin(), coarse.end());
+    for (size_t k = 0; k < coarse.size(); ++k) coarse_of[coarse[k]] = int64_t(k);
+
+    const uint32_t base = h.coarse_count();
+    HierarchyLevel level;
+    level.first = base;
+    level.count = uint32_t(coarse.size());
+    // Parents of every vertex of the current level: itself if coarse, else its coarse neighbours.
+    std::vector<std::vector<uint32_t>> parents(n);
+    for (uint32_t v = 0; v < n; ++v) {
+      if (coarse_of[v] >= 0) parents[v].push_back(uint32_t(coarse_of[v]));
+      else
+        for (uint32_t u : graph[v])
+          if (coarse_of[u] >= 0) parents[v].push_back(uint32_t(coarse_of[u]));
+    }
+    // The coarse graph: two coarse vertices are joined when they share a child.
+    Graph coarse_graph(coarse.size());
+    for (uint32_t v = 0; v < n; ++v)
+      for (uint32_t a : parents[v])
+        for (uint32_t b : parents[v])
+          if (a != b) coarse_graph[a].push_back(b);
+    sort_unique(coarse_graph);
+
+    // Prolongation of the current level (the cloth's particles, or the previous coarse level).
+    for (uint32_t v = 0; v < n; ++v) {
+      const double w = 1.0 / double(parents[v].size());
+      for (uint32_t a : parents[v]) {
+        if (cloth_level) {
+          h.fine_parent.push_back(base + a);
+          h.fine_parent_weight.push_back(w);
+        } else {
+          h.parent.push_back(base + a);
+          h.parent_weight.push_back(w);
+        }
+      }
+      if (cloth_level) h.fine_parent_start.push_back(uint32_t(h.fine_parent.size()));
+      else h.parent_start.push_back(uint32_t(h.parent.size()));
+    }
+    // The coarse vertices: their particles, children (the transpose) and springs.
+    std::vector<std::vector<std::pair<uint32_t, double>>> children(coarse.size());
+    for (uint32_t v = 0; v < n; ++v)
+      for (uint32_t a : parents[v])
+        children[a].push_back({(cloth_level ? 0 : uint32_t(m.count()) + finer_base) + v, 1.0 / double(parents[v].size())});
+    for (size_t a = 0; a < coarse.size(); ++a) {
+      const uint32_t p = particles[coarse[a]];
+      h.particle.push_back(p);
+      if (h.child_start.empty()) h.child_start.push_back(0);
+      for (auto& [c, w] : children[a]) {
+        h.child.push_back(c);
+        h.child_weight.push_back(w);
+      }
+      h.child_start.push_back(uint32_t(h.child.size()));
+      if (h.spring_start.empty()) h.spring_start.push_back(0);
+      const double k = kCoarseStiffness * ks[m.material[p]];
+      for (uint32_t b : coarse_graph[a]) {
+        h.spring_other.push_back(base + b);
+        h.spring_rest.push_back(glm::distance(m.initial[p], m.initial[particles[coarse[b]]]));
+        h.spring_k.push_back(k);
+      }
+      h.spring_start.push_back(uint32_t(h.spring_other.size()));
+    }
+    colour_vertices(coarse_graph, base, h.order, level.colour_start);
+    h.levels.push_back(level);
+
+    std::vector<uint32_t> next(coarse.size());
+    for (size_t a = 0; a < coarse.size(); ++a) next[a] = particles[coarse[a]];
+    particles = std::move(next);
+    graph = std::move(coarse_graph);
+    finer_base = base;
+    cloth_level = false;
+  }
+  // The coarsest level has no parents; every coarse vertex has a (possibly empty) parent list.
+  while (h.parent_start.size() < size_t(h.coarse_count()) + 1) h.parent_start.push_back(uint32_t(h.parent.size()));
+  if (h.levels.empty()) {
+    // No coarse level (a small cloth): every particle without parents; the sweep alone solves.
+    h.fine_parent_start.assign(size_t(m.count()) + 1, 0);
+    h.child_start = {0};
+    h.spring_start = {0};
+  }
+  return h;
+}
+
+}  // namespace clothsim

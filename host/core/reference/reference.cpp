@@ -1,0 +1,222 @@
+#include "reference/reference.hpp"
+
+#include <algorithm>
+#include <numeric>
+
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+
+#include "colliders/mesh_collider.hpp"
+#include "scene/motion.hpp"
+#include "reference/reference_detail.hpp"
+
+namespace clothsim {
+
+bool Timeline::moves() const {
+  for (auto& k : spheres) if (k) return true;
+  for (auto& k : planes) if (k) return true;
+  for (auto& k : meshes) if (k) return true;
+  return pins.has_value() || gust_period > 0;
+}
+
+namespace {
+
+template <class R> void make_wind(const Scene& scene, Constants<R>& c) {
+  if (!scene.wind) return;
+  const WindParams& w = *scene.wind;
+  WindC<R>& wc = c.wind;
+  wc.enabled = true;
+  wc.velocity = Vec3<R>(w.velocity);
+  wc.drag = R(-w.air_density * w.drag_coefficient / 12.0);
+  wc.lift = R(-w.air_density * w.lift_coefficient / 12.0);
+  wc.inv_3dt = R(1.0 / (3.0 * scene.dt()));
+  const double speed = std::sqrt(w.velocity.x * w.velocity.x + w.velocity.y * w.velocity.y + w.velocity.z * w.velocity.z);
+  // Gusts need a direction to travel along: none in still air.
+  if (w.gust && w.gust->strength > 0 && speed > 0) {
+    wc.gusts = true;
+    wc.gust_velocity = Vec3<R>(w.velocity * w.gust->strength);
+    wc.direction = Vec3<R>(w.velocity / speed);
+    wc.gust_inv_length3 = R(1.0 / (3.0 * w.gust->length));
+    c.timeline.gust_period = w.gust->period;
+  }
+}
+
+template <class R> void make_timeline(const Scene& scene, const ClothModel& model, Constants<R>& c) {
+  Timeline& tl = c.timeline;
+  tl.dt = scene.dt();
+  for (auto& s : scene.spheres) tl.spheres.push_back(s.motion ? std::optional(s.motion->keyframes) : std::nullopt);
+  for (auto& p : scene.planes) tl.planes.push_back(p.motion ? std::optional(p.motion->keyframes) : std::nullopt);
+  for (auto& m : scene.meshes) tl.meshes.push_back(m.motion ? std::optional(m.motion->keyframes) : std::nullopt);
+  // pinned_motion of the first cloth moves the pins of every cloth (one offset for all).
+  if (scene.cloth.pinned_motion) {
+    tl.pins = scene.cloth.pinned_motion->keyframes;
+    for (int i = 0; i < model.count(); ++i)
+      c.anchors.push_back(Vec4<R>(Vec3<R>(model.initial[i]), model.pinned[i] ? R(1) : R(0)));
+  }
+  // Where the colliders are at t = 0, at rest: set_substep_time takes over from the first substep.
+  for (size_t k = 0; k < tl.spheres.size(); ++k)
+    if (tl.spheres[k]) c.spheres[k].origin = Vec3<R>(interpolate(*tl.spheres[k], 0.0));
+  for (size_t k = 0; k < tl.planes.size(); ++k)
+    if (tl.planes[k]) c.planes[k].point = Vec3<R>(interpolate(*tl.planes[k], 0.0));
+  for (size_t k = 0; k < tl.meshes.size(); ++k)
+    if (tl.meshes[k]) c.meshes[k].origin = Vec3<R>(interpolate(*tl.meshes[k], 0.0));
+}
+
+// Each mesh collider's field, appended to one array the backends share (GPU: one buffer).
+template <class R> void make_meshes(const Scene& scene, Constants<R>& c) {
+  if (scene.meshes.empty()) return;
+  std::vector<std::shared_ptr<const ColliderMesh>> loaded;
+  uint32_t offset = 0;
+  for (size_t k = 0; k < scene.meshes.size(); ++k) {
+    const std::shared_ptr<const ColliderMesh> mesh = load_collider_mesh(scene, k);
+    loaded.push_back(mesh);
+    c.meshes.push_back(make_mesh_collider<R>(scene.meshes[k], mesh->sdf, offset));
+    offset += uint32_t(mesh->sdf.values.size());
+  }
+  c.sdf = concatenated_fields(loaded);
+}
+
+}  // namespace
+
+template <class R> void set_substep_time(Constants<R>& c, double t) {
+  const Timeline& tl = c.timeline;
+  const double t1 = t + tl.dt;
+  for (size_t k = 0; k < tl.spheres.size(); ++k)
+    if (tl.spheres[k]) {
+      const glm::dvec3 at = interpolate(*tl.spheres[k], t1);
+      c.spheres[k].origin = Vec3<R>(at);
+      c.spheres[k].motion = Vec3<R>(at - interpolate(*tl.spheres[k], t));  // rounded once, from double
+    }
+  for (size_t k = 0; k < tl.planes.size(); ++k)
+    if (tl.planes[k]) {
+      const glm::dvec3 at = interpolate(*tl.planes[k], t1);
+      c.planes[k].point = Vec3<R>(at);
+      c.planes[k].motion = Vec3<R>(at - interpolate(*tl.planes[k], t));
+    }
+  for (size_t k = 0; k < tl.meshes.size(); ++k)
+    if (tl.meshes[k]) {
+      const glm::dvec3 at = interpolate(*tl.meshes[k], t1);
+      c.meshes[k].origin = Vec3<R>(at);
+      c.meshes[k].motion = Vec3<R>(at - interpolate(*tl.meshes[k], t));
+    }
+  if (tl.pins) c.pin_offset = Vec3<R>(interpolate(*tl.pins, t1));
+  if (tl.gust_period > 0) c.wind.gust_phase = R(gust_phase(t, tl.gust_period));
+}
+
+int stretch_passes_for(const Scene& scene, const ClothModel& model) {
+  const SimulationParams& sp = scene.simulation;
+  if (sp.stretch_passes >= 0) return sp.stretch_passes;
+  if (sp.solver != Solver::Multigrid) return 0;
+  const std::vector<const ClothParams*> cloths = scene.cloths();
+  for (size_t k = 0; k < cloths.size() && k < model.parts.size(); ++k) {
+    const ClothPart& part = model.parts[k];
+    if (part.count == 0) continue;
+    glm::dvec3 lo = model.initial[part.first], hi = lo;
+    for (uint32_t i = part.first; i < part.first + part.count; ++i) {
+      lo = glm::min(lo, model.initial[i]);
+      hi = glm::max(hi, model.initial[i]);
+    }
+    const glm::dvec3 size = hi - lo;
+    const double extent = std::max({size.x, size.y, size.z});
+    // The stretch of a strip hanging from its top under its own weight, its springs alone
+    // holding it (an upper bound: the shearing and bending springs carry some of it).
+    const double sag_stretch = cloths[k]->density * glm::length(sp.gravity) * extent / cloths[k]->ks;
+    if (!(sag_stretch <= 0.5 * sp.max_stretch)) return kAutoStretchPasses;  // ks 0 too
+  }
+  return 0;
+}
+
+template <class R>
+Constants<R> make_constants(const Scene& scene, const ClothModel& model, std::shared_ptr<const Hierarchy> reuse) {
+  const ClothParams& cp = scene.cloth;
+  const SimulationParams& sp = scene.simulation;
+  Constants<R> c{};
+  const double dt = scene.dt();
+  // Derived values are formed in double and rounded once, identically for the GPU upload.
+  c.gravity = Vec3<R>(sp.gravity);
+  c.dt2 = R(dt * dt);
+  c.stretch_limit = R(1.0 + sp.max_stretch);
+  // Cloths of different thickness keep the thickest one's distance from each other and themselves.
+  double thickness = cp.thickness;
+  for (const ClothParams* k : scene.cloths()) thickness = std::max(thickness, k->thickness);
+  c.contact_distance = R(2.0 * thickness);
+  c.inv_cell = R(1.0 / (2.0 * thickness));
+  check_self_collision_cost(scene, model);  // a thickness many times the spacing: refused
+  c.steps = R(sp.simulation_steps);
+  for (const ClothParams* k : scene.cloths()) {
+    MaterialC<R> mat{};
+    mat.ks = R(k->ks);
+    mat.ks_bending = R(0.2 * k->ks);
+    mat.keep_velocity = R(1.0 - k->damping / 100.0);
+    // 1 / (ks dt^2): ks = 0 gives +inf, a constraint that never pulls.
+    mat.alpha = R(1.0 / (k->ks * dt * dt));
+    mat.alpha_bending = R(1.0 / (0.2 * k->ks * dt * dt));
+    mat.enabled[0] = k->enable_structural;
+    mat.enabled[1] = k->enable_shearing;
+    mat.enabled[2] = k->enable_bending;
+    c.materials.push_back(mat);
+  }
+  // From the scene, so a live density edit takes effect.
+  for (double m : particle_masses(scene, model)) c.mass.push_back(R(m));
+  c.xpbd = sp.solver == Solver::Xpbd || sp.solver == Solver::Multigrid;
+  c.multigrid = sp.solver == Solver::Multigrid;
+  c.inv_dt2 = R(1.0 / (dt * dt));
+  if (c.multigrid) {
+    std::vector<double> ks;
+    for (const ClothParams* k : scene.cloths()) ks.push_back(k->ks);
+    c.hierarchy = reuse && reuse->ks == ks ? std::move(reuse) : std::make_shared<const Hierarchy>(build_hierarchy(model, ks));
+  }
+  c.tether_limit = R(1.0 + sp.tether_stretch);
+  c.iterations = sp.constraint_iterations;
+  c.stretch_passes = c.xpbd ? stretch_passes_for(scene, model) : 0;  // xpbd's sweep and multigrid's alike
+  c.stretch_passes_max = c.xpbd ? std::max(sp.stretch_passes_max, c.stretch_passes) : 0;
+  c.self_collision = sp.self_collision;
+  c.bounded_contact = c.xpbd && c.self_collision;
+  if (c.bounded_contact) {
+    // A mass moves at most a quarter of the contact distance per substep: two masses closing
+    // on each other cover at most half of it, so a mass of one layer is seen by the other's
+    // masses before it can reach the gap between them (docs/model.md).
+    c.max_step = R(kMaxStepFraction * 2.0 * thickness);
+    for (const glm::dvec3& p : model.initial) c.rest.push_back(Vec3<R>(p));
+  }
+  for (auto& s : scene.spheres)
+    c.spheres.push_back({Vec3<R>(s.origin), R(s.radius), R(1.0 - s.friction), Vec3<R>(0), R(s.friction)});
+  for (auto& p : scene.planes)
+    c.planes.push_back({Vec3<R>(p.point), Vec3<R>(p.normal), R(1.0 - p.friction), Vec3<R>(0), R(1), R(p.friction)});
+  make_meshes(scene, c);
+  make_wind(scene, c);
+  make_timeline(scene, model, c);
+  // Each plane's front: the side the cloth's rest centre is on, where the plane is at t = 0.
+  glm::dvec3 centre(0.0);
+  for (auto& p : model.initial) centre += p;
+  centre /= double(std::max(1, model.count()));
+  for (size_t k = 0; k < c.planes.size(); ++k) {
+    const glm::dvec3 at = c.timeline.planes[k] ? interpolate(*c.timeline.planes[k], 0.0) : scene.planes[k].point;
+    c.planes[k].front = glm::dot(centre - at, scene.planes[k].normal) < 0 ? R(-1) : R(1);
+  }
+  return c;
+}
+
+template <class R> State<R> initial_state(const ClothModel& m) {
+  State<R> s;
+  const int n = m.count();
+  s.pos.resize(n);
+  for (int i = 0; i < n; ++i)
+    s.pos[i] = Vec4<R>(Vec3<R>(m.initial[i]), m.pinned[i] ? R(0) : R(1.0 / m.mass[i]));
+  s.disp.assign(n, Vec4<R>(0));  // at rest
+  s.force.assign(n, Vec4<R>(0));
+  s.normal.assign(n, Vec4<R>(0));
+  s.pos_out = s.pos;
+  s.lambda.assign(m.springs.size(), Vec4<R>(0));
+  s.hash = make_spatial_hash(uint32_t(n));
+  return s;
+}
+
+#define CLOTHSIM_INSTANTIATE(R) \
+  template Constants<R> make_constants<R>(const Scene&, const ClothModel&, std::shared_ptr<const Hierarchy>); \
+  template State<R> initial_state<R>(const ClothModel&); \
+  template void set_substep_time<R>(Constants<R>&, double);
+CLOTHSIM_INSTANTIATE(float)
+CLOTHSIM_INSTANTIATE(double)
+
+}  // namespace clothsim

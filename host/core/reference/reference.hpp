@@ -1,0 +1,314 @@
+// The CPU reference: docs/design.md §1, one function per pass, named like the compute shader
+// that mirrors it. Templated on the scalar so the same code runs in float (compared with
+// the GPU bit for bit on llvmpipe) and in double (the noise floor of a float32 run).
+// Every expression is written in the same operation order as its GLSL twin.
+#pragma once
+
+#include <cmath>
+#include <memory>
+#include <optional>
+#include <utility>
+#include <vector>
+
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+
+#include "cloth/cloth.hpp"
+#include "cloth/hierarchy.hpp"
+#include "scene/scene.hpp"
+#include "reference/spatial_hash.hpp"
+
+namespace clothsim {
+
+template <class R> using Vec3 = glm::vec<3, R>;
+template <class R> using Vec4 = glm::vec<4, R>;
+
+// |v| summed as (x*x + y*y) + z*z, the order the shaders use (compute/common.glsl).
+template <class R> R length3(const Vec3<R>& v) { return std::sqrt(v.x * v.x + v.y * v.y + v.z * v.z); }
+template <class R> R dot3(const Vec3<R>& a, const Vec3<R>& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+
+// keep = 1 - friction; motion = the collider's displacement over this substep (0: static, and
+// then exactly the classic formulas run).
+// mu: the friction coefficient itself, for xpbd's Coulomb friction (docs/model.md, "Coulomb friction (xpbd)").
+template <class R> struct SphereC { Vec3<R> origin; R radius; R keep; Vec3<R> motion{0}; R mu = R(0); };
+// front: +1 or -1, the side of the plane the cloth starts on (its rest centre's side, +1 when on
+// it); a mass is in contact whenever it is not in front, however it got behind (with xpbd's
+// Coulomb friction also when within the surface offset in front: docs/model.md).
+template <class R> struct PlaneC { Vec3<R> point; Vec3<R> normal; R keep; Vec3<R> motion{0}; R front = R(1); R mu = R(0); };
+// A mesh collider through its signed distance field (sdf.hpp): a mass at x is at
+// local = rows (x - origin) in the field's frame (rows: the rotation's transpose), the field's
+// node (0, 0, 0) at grid_min; its nodes are Constants::sdf[offset ...], x fastest. A mass
+// closer than `thickness` to the surface (or inside) is pushed out along the field's gradient.
+template <class R> struct MeshC {
+  Vec3<R> rows[3];
+  Vec3<R> origin, motion{0};
+  R keep = R(1), mu = R(0), thickness = R(0);
+  // closed: the field is signed (a closed mesh); else unsigned, the collider a shell. crossing:
+  // half the thickness, how near two path samples straddling a shell pass (passed_through_mesh).
+  bool closed = true;
+  R crossing = R(0);
+  Vec3<R> grid_min;
+  R inv_voxel;
+  glm::ivec3 dims{0};
+  uint32_t offset = 0;
+};
+
+// The wind as the passes use it (docs/model.md, "Wind"). The factors fold the constants of
+// the formulas: drag = -rho C_d / 12 is -1/2 rho C_d, times 1/2 (the cross product of two
+// edges is twice the area), times 1/3 (each corner gathers a third); lift likewise.
+template <class R> struct WindC {
+  bool enabled = false;
+  bool gusts = false;
+  Vec3<R> velocity{0}, gust_velocity{0}, direction{0};  // gust_velocity = strength * velocity
+  R drag = 0, lift = 0;
+  R inv_3dt = 0;            // 1 / (3 dt): the mean of three displacements as a velocity
+  R gust_phase = 0;         // fract(t / period) at the substep's start
+  R gust_inv_length3 = 0;   // 1 / (3 length): the centroid's phase is dot(sum of corners, direction) times this
+};
+
+// What moves with time, in double: evaluated once per substep by set_substep_time.
+struct Timeline {
+  std::vector<std::optional<Keyframes>> spheres, planes, meshes;  // by collider, in file order
+  std::optional<Keyframes> pins;                          // offsets of the pinned masses
+  double gust_period = 0;                                 // 0: no gusts
+  double dt = 0;
+  bool moves() const;  // anything above is set
+};
+
+// One cloth's material, converted once to R (a scene with several cloths has one each).
+template <class R> struct MaterialC {
+  R ks, ks_bending;        // N/m: structural and shearing, bending (0.2 ks)
+  R keep_velocity;         // 1 - damping / 100
+  // xpbd: the time-scaled compliance alpha~ = 1 / (ks' dt^2) of a spring's distance constraint.
+  R alpha, alpha_bending;
+  bool enabled[3];         // by SpringType
+  R stiffness(SpringType t) const { return t == SpringType::Bending ? ks_bending : ks; }
+  R compliance(SpringType t) const { return t == SpringType::Bending ? alpha_bending : alpha; }
+};
+
+// The bounded contact's speed limit: a mass moves at most this fraction of the contact
+// distance per substep (Constants::max_step).
+inline constexpr double kMaxStepFraction = 0.25;
+
+// Scene parameters converted once to R: the GPU uploads exactly Constants<float>.
+template <class R> struct Constants {
+  Vec3<R> gravity;
+  R dt2;
+  R stretch_limit;      // 1 + max_stretch
+  R contact_distance;   // 2 * thickness (the thickest cloth's)
+  R inv_cell;           // 1 / cell edge (cell edge = contact_distance)
+  R steps;              // simulation_steps
+  R tether_limit;       // xpbd: 1 + tether_stretch
+  // xpbd with self-collision, the bounded contact (docs/model.md, "Self-contact that holds"):
+  // predict clamps each substep's displacement to max_step (0: no clamp), and
+  // resolve_self_contacts keeps two masses min(contact_distance, their rest distance) apart,
+  // the rest distance from `rest` (the model's rest positions, rounded to R once).
+  bool bounded_contact = false;
+  R max_step = 0;
+  std::vector<Vec3<R>> rest;
+  std::vector<MaterialC<R>> materials;  // by cloth, Scene::cloths() order
+  std::vector<R> mass;  // kg, per particle (particle_masses: follows a live density edit)
+  int iterations;
+  int stretch_passes = 0;  // xpbd, multigrid: enforce_stretch_limit's passes after the sweep
+  // xpbd, multigrid: enforce_stretch_limit's passes in all, the settling ones included (not above
+  // stretch_passes: none settle)
+  int stretch_passes_max = 0;
+  bool self_collision;
+  // simulation.solver: xpbd for both position-based solvers (they share predict, the bounded
+  // self-contact and Coulomb friction); multigrid for the multigrid one, whose solve replaces
+  // xpbd's sweep (docs/model.md) and whose hierarchy (hierarchy.hpp) is built once here.
+  bool xpbd;
+  bool multigrid = false;
+  R inv_dt2 = 0;        // 1 / dt^2, the inertia of a mass per kg in the multigrid solve
+  std::shared_ptr<const Hierarchy> hierarchy;
+  std::vector<SphereC<R>> spheres;
+  std::vector<PlaneC<R>> planes;
+  std::vector<MeshC<R>> meshes;
+  std::shared_ptr<const std::vector<float>> sdf;  // every mesh's field, concatenated (shared, never edited)
+  WindC<R> wind;
+  // Moving pins: every pinned mass is at anchor + pin_offset at the end of each substep.
+  // anchors: per particle, xyz the start position, w 1 for a pinned mass; empty without pinned_motion.
+  std::vector<Vec4<R>> anchors;
+  Vec3<R> pin_offset{0};
+  Timeline timeline;
+  bool has_colliders() const { return !spheres.empty() || !planes.empty() || !meshes.empty(); }
+  bool moving_pins() const { return !anchors.empty(); }
+  bool enabled(const Spring& s) const { return materials[s.material].enabled[int(s.type)]; }
+  // Colour c of `m` runs at all: its type is enabled in some cloth (a colour is of one type).
+  bool colour_enabled(const ClothModel& m, int c) const {
+    for (auto& mat : materials)
+      if (mat.enabled[int(m.colour_type(c))]) return true;
+    return false;
+  }
+};
+
+// `reuse`: a hierarchy built for `model` before (a live edit's previous constants). The
+// multigrid solver keeps it while the cloths' ks are those it was built with, rather than
+// rebuild it (0.4 s at 513²) and re-upload it on every edit of, say, the damping.
+template <class R>
+Constants<R> make_constants(const Scene& scene, const ClothModel& model,
+                            std::shared_ptr<const Hierarchy> reuse = nullptr);
+
+// The time-dependent constants of the substep from t to t + dt: the colliders where they are
+// at t + dt (when the collision passes run) with their motion over the substep, the pins'
+// offset at t + dt (advance moves them there), the gusts' phase at t (when the forces are
+// computed). A no-op for a scene in which nothing moves (!c.timeline.moves()).
+template <class R> void set_substep_time(Constants<R>& c, double t);
+
+// What changes during a run: positions (w = inverse mass, 0 = pinned), the displacement of
+// the last substep (d = x - x_prev, w unused), forces and normals, all vec4 like the GPU
+// buffers. The displacement is kept as its own vector rather than recomputed from two
+// positions: x - x_prev of two floats near 1 m would round the ~1e-5 m velocity term by ~1 %
+// every substep (docs/model.md, "State"). Every change of a position is added to both.
+template <class R> struct State {
+  std::vector<Vec4<R>> pos, disp, force, normal;
+  std::vector<Vec4<R>> wind;        // aerodynamic force per particle (compute_wind_forces); empty without wind
+  SpatialHash hash;                 // self-collision scratch, sized once
+  std::vector<Vec4<R>> pos_out;     // self-collision Jacobi output
+  // xpbd: per spring (the model's sorted order), the unit direction i -> j of its last visit
+  // (xyz) and its Lagrange multiplier (w), carried from substep to substep: predict applies
+  // them as the springs' forces of the last substep, the sweep starts from them (docs/model.md,
+  // "Warm-started multipliers"). Zero at the start and for the classic solver.
+  std::vector<Vec4<R>> lambda;
+  // The multigrid solve's scratch (reference_multigrid.cpp), sized on first use. residual: per
+  // particle the residual force (w: its mass), then per coarse vertex (at particle count + its
+  // global index) the coarse residual (w: the mass it stands for); offset: per particle x - y,
+  // its move since the prediction; per coarse vertex the restricted force (w: the mass) and
+  // the correction.
+  std::vector<Vec4<R>> residual, offset, coarse_rhs, coarse_corr;
+  // enforce_stretch_limit's settling passes run so far (a statistic, not part of the state the
+  // step reads; StretchControl::state.y on the GPU).
+  uint64_t stretch_settling_passes = 0;
+};
+
+template <class R> State<R> initial_state(const ClothModel& model);
+
+// After a change of the substep length (frames_per_sec or simulation_steps), the displacement
+// per substep scales with it, so the cloth keeps its velocity: d *= dt_new / dt_old; and xpbd's
+// carried multipliers, forces times dt^2, with its square, so the springs keep their forces.
+template <class R> void rescale_displacement(State<R>& s, double dt_ratio) {
+  for (auto& d : s.disp) d = Vec4<R>(Vec3<R>(d) * R(dt_ratio), R(0));
+  const R squared = R(dt_ratio * dt_ratio);
+  for (auto& l : s.lambda) l = Vec4<R>(Vec3<R>(l), l.w * squared);
+}
+
+// The passes, in step order.
+// With wind: the aerodynamic force of every particle's triangles, gathered (wind.glsl).
+template <class R> void compute_wind_forces(const ClothModel& m, const Constants<R>& c, State<R>& s);
+template <class R> void accumulate_forces(const ClothModel& m, const Constants<R>& c, State<R>& s);
+template <class R> void integrate(const ClothModel& m, const Constants<R>& c, State<R>& s);
+// Builds the hash (count_cells, scan_cells, fill_cells, sort_cells in spatial_hash.hpp), then
+// resolve_self_contacts: the stages the GPU runs as five passes of the same names.
+template <class R> void collide_self(const Constants<R>& c, State<R>& s);
+template <class R> void resolve_self_contacts(const Constants<R>& c, State<R>& s);  // on s.hash as built
+template <class R> void collide_objects(const Constants<R>& c, State<R>& s);
+template <class R> void solve_length_constraints(const ClothModel& m, const Constants<R>& c, State<R>& s);
+template <class R> void compute_normals(const ClothModel& m, State<R>& s);
+
+// Forces then integrate: the CPU twin of the GPU's fused advance pass (which keeps the
+// forces in registers; with collision objects fused in it is advance then collide_objects).
+// accumulate_forces and integrate on their own are twins of passes the GPU keeps only for
+// the pass checks (host/gpu/pass_check.cpp); its step runs advance.
+template <class R> void advance(const ClothModel& m, const Constants<R>& c, State<R>& s) {
+  accumulate_forces(m, c, s);
+  integrate(m, c, s);
+}
+
+// One constraint colour (used by the per-pass check that dispatches colours one by one): the
+// springs model.colour_start[colour] .. model.colour_start[colour + 1].
+template <class R> void solve_length_constraint_colour(const ClothModel& m, const Constants<R>& c, int colour, State<R>& s);
+
+// The xpbd solver (docs/model.md): predict moves every free particle by its damped
+// displacement and gravity alone (the springs are constraints now), then pulls it back onto
+// its tether to the nearest pin if it got further than (1 + tether_stretch) times the rest
+// distance (long-range attachments, tethers.cpp); solve_distance_constraints
+// then solves each spring's XPBD distance constraint once, colour by colour, each followed by
+// the max_stretch limit in the same spring's visit.
+template <class R> void predict(const ClothModel& m, const Constants<R>& c, State<R>& s);
+template <class R> void solve_distance_constraint_colour(const ClothModel& m, const Constants<R>& c, int colour, State<R>& s);
+template <class R> void solve_distance_constraints(const ClothModel& m, const Constants<R>& c, State<R>& s);
+// simulation.stretch_passes as the solvers run it: the scene's count, or for -1 (auto, the
+// default) none under xpbd and, under multigrid, kAutoStretchPasses where a cloth is so heavy
+// for its ks that its own weight would stretch its springs past half its limit (density · |g| ·
+// its largest rest extent / ks > max_stretch / 2: the classic app's cloths, whose limit carries
+// them; the sweep's own limit does not hold those, docs/model.md step 7), else none.
+inline constexpr int kAutoStretchPasses = 2;
+int stretch_passes_for(const Scene& scene, const ClothModel& model);
+
+// xpbd and multigrid, after the sweep: stretch_passes passes of Provot's limit alone over every
+// colour (the classic length constraint, solve_length_constraint_colour). In either sweep each
+// spring is limited when its colour (or its end's) is solved, and the colours after it can pull
+// it out again; a pass of the limit alone moves only the springs still over it (docs/model.md).
+// With stretch_passes_max above stretch_passes, settling passes follow, up to that many passes
+// in all: the last fixed pass (or one, with none fixed) is watched, and each settling pass runs
+// only while the pass before it found a spring longer than kStretchSettled times its limit
+// (arm_stretch_pass), so the limit holds where one event needs many passes and a quiet
+// substep runs none.
+template <class R> void enforce_stretch_limit(const ClothModel& m, const Constants<R>& c, State<R>& s);
+// A settling pass runs while the pass before it found a spring longer than its limit times
+// kStretchSettled = 1 + 2^-kStretchSettledBits: exact in float and double, and handed to the
+// watched pass as STRETCH_SETTLED, so both sides compare against the same number.
+inline constexpr int kStretchSettledBits = 16;
+inline constexpr double kStretchSettled = 1.0 + 1.0 / double(1 << kStretchSettledBits);
+// Whether the next watched pass runs: what the pass before it found (`over`), which it clears
+// for the next. The CPU twin of compute/arm_stretch_pass.comp.
+inline bool arm_stretch_pass(bool& over) { return std::exchange(over, false); }
+
+// The multigrid solver (docs/model.md, "One substep (multigrid solver)"), after predict and the
+// contacts: compute_residuals (the springs' force on every mass), then a V-cycle over the
+// hierarchy's levels (cycle_levels: restrict_residuals level by level down, solve_coarsest,
+// then prolong_corrections and smooth_corrections colour by colour up), prolong_to_cloth, and
+// relax_vertices colour by colour. solve_multigrid runs them in order. The small levels' part of
+// the cycle is cycle_small_levels: one dispatch on the GPU.
+inline constexpr int kLevelSweeps = 1;     // Gauss-Seidel sweeps per level on the way up
+// A mass this close to a collider's surface (m) is held by it: left out of the coarse problem.
+inline constexpr double kContactReach = 1e-3;
+// A coarse spring shorter than this times its rest length marks a fold: the cloth between its
+// ends may have buckled, so the coarse vertex is fixed. 0.95 let the 513² hang's buckling top
+// edge fold the cloth up; 1 (any slack chord) also fixes the slightly compressed lower cloth
+// and slows its hanging (docs/solvers.md).
+inline constexpr double kFoldedChord = 0.99;
+inline constexpr int kCoarsestSweeps = 4;  // on the coarsest level (solve_coarsest)
+// A level of at most this many vertices, and every level below it, is small: the GPU runs
+// their part of the cycle in one workgroup (cycle_small_levels), where a dispatch and a
+// barrier per colour would cost more than the levels' work (on a 256² cloth 19 of the 43
+// dispatches of a substep went to its four levels of 1,027 vertices and fewer).
+inline constexpr uint32_t kSmallLevelVertices = 2048;
+// The first small level of `h` (its coarsest level is always one); 0 for none.
+int first_small_level(const Hierarchy& h);
+template <class R> void compute_residuals(const ClothModel& m, const Constants<R>& c, State<R>& s);
+template <class R> void restrict_residuals(const Constants<R>& c, int level, State<R>& s);
+template <class R> void smooth_corrections(const Constants<R>& c, int level, int colour, State<R>& s);
+// `sweeps` Gauss-Seidel sweeps of one level, colour by colour (smooth_corrections).
+template <class R> void smooth_level(const Constants<R>& c, int level, int sweeps, State<R>& s);
+template <class R> void solve_coarsest(const Constants<R>& c, State<R>& s);
+// The small levels' part of the cycle, in cycle_levels' order: restrict_residuals down from the
+// first small level, solve_coarsest, then prolong_corrections and smooth_level up to it.
+template <class R> void cycle_small_levels(const Constants<R>& c, State<R>& s);
+template <class R> void prolong_corrections(const Constants<R>& c, int level, State<R>& s);
+template <class R> void prolong_to_cloth(const ClothModel& m, const Constants<R>& c, State<R>& s);
+template <class R> void relax_vertices(const ClothModel& m, const Constants<R>& c, int colour, State<R>& s);
+template <class R> void cycle_levels(const Constants<R>& c, State<R>& s);
+template <class R> void solve_multigrid(const ClothModel& m, const Constants<R>& c, State<R>& s);
+
+// One substep: the pass list of docs/design.md §1, or of docs/model.md for xpbd.
+template <class R> void step(const ClothModel& m, const Constants<R>& c, State<R>& s) {
+  if (c.wind.enabled) compute_wind_forces(m, c, s);  // advance or predict add them
+  if (c.xpbd) {
+    predict(m, c, s);
+    if (c.self_collision) collide_self(c, s);
+    collide_objects(c, s);
+    if (c.multigrid)
+      solve_multigrid(m, c, s);
+    else
+      solve_distance_constraints(m, c, s);
+    enforce_stretch_limit(m, c, s);  // stretch_passes: the limit holds after either sweep
+    return;
+  }
+  advance(m, c, s);
+  if (c.self_collision) collide_self(c, s);
+  collide_objects(c, s);
+  solve_length_constraints(m, c, s);
+}
+
+}  // namespace clothsim

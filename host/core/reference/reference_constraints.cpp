@@ -1,0 +1,164 @@
+// The reference's constraint passes: Provot's length limit (classic, docs/design.md §1 step 5) and
+// xpbd's distance constraints (docs/model.md), colour by colour in the GPU's order.
+#include <algorithm>
+
+#include "reference/reference.hpp"
+#include "reference/reference_detail.hpp"
+
+namespace clothsim {
+
+namespace {
+
+// Calls visit(spring) for every spring of `colour` whose type is enabled in its cloth, in list
+// order: the springs of a colour share no particle, so the order does not change the result
+// (the GPU dispatches them at once, constraint_colour.glsl).
+template <class R, class Visit>
+void for_each_spring_of_colour(const ClothModel& m, const Constants<R>& c, int colour, Visit&& visit) {
+  for (uint32_t k = m.colour_start[colour]; k < m.colour_start[colour + 1]; ++k)
+    if (c.enabled(m.springs[k])) visit(m.springs[k]);
+}
+
+// Provot's projection: a spring from xi to xj longer than `limit` is shortened to it, both ends
+// moving by their share of the inverse mass (wsum = wi + wj > 0), the displacements with them
+// (the ends' x_prev stay; a pinned end, w = 0, gets a zero correction). False, and nothing
+// moves, if it is not longer. The GLSL twin is limit_stretch in constraint_colour.glsl.
+template <class R>
+bool limit_stretch(Vec3<R>& xi, Vec3<R>& xj, Vec3<R>& di, Vec3<R>& dj, R wi, R wj, R wsum, R limit) {
+  const Vec3<R> e = xj - xi;
+  const R len = length3(e);
+  if (!(len > limit)) return false;
+  const Vec3<R> corr = e * ((len - limit) * (R(1) / len));
+  const R inv_wsum = R(1) / wsum;
+  const Vec3<R> ci = corr * (wi * inv_wsum), cj = corr * (wj * inv_wsum);
+  xi = xi + ci;
+  xj = xj - cj;
+  di = di + ci;
+  dj = dj - cj;
+  return true;
+}
+
+// One colour of the length constraint; with `over`, a watched pass's (enforce_stretch_limit):
+// set when a spring is longer than kStretchSettled times its limit as its colour is solved.
+template <class R>
+void limit_colour(const ClothModel& m, const Constants<R>& c, int colour, State<R>& s, bool* over) {
+  for_each_spring_of_colour(m, c, colour, [&](const Spring& sp) {
+    const uint32_t i = sp.i, j = sp.j;
+    const R wi = s.pos[i].w, wj = s.pos[j].w, wsum = wi + wj;
+    if (wsum == R(0)) return;
+    Vec3<R> xi(s.pos[i]), xj(s.pos[j]), di(s.disp[i]), dj(s.disp[j]);
+    const R limit = c.stretch_limit * R(sp.rest);
+    if (over && length3(xj - xi) > limit * R(kStretchSettled)) *over = true;
+    if (!limit_stretch(xi, xj, di, dj, wi, wj, wsum, limit)) return;
+    // Provot's pull may not leave a mass deeper than 0.1 mm inside a collider or behind a
+    // plane (docs/model.md, "Colliders: contact that holds"); shallower, nothing changes.
+    if (c.has_colliders()) {
+      if (wi != R(0)) keep_out_of_colliders(c, xi, di);
+      if (wj != R(0)) keep_out_of_colliders(c, xj, dj);
+    }
+    s.pos[i] = Vec4<R>(xi, wi);
+    s.pos[j] = Vec4<R>(xj, wj);
+    s.disp[i] = Vec4<R>(di, R(0));
+    s.disp[j] = Vec4<R>(dj, R(0));
+  });
+}
+}  // namespace
+
+template <class R>
+void solve_length_constraint_colour(const ClothModel& m, const Constants<R>& c, int colour, State<R>& s) {
+  limit_colour(m, c, colour, s, nullptr);
+}
+
+// `passes` sweeps of the length constraint over every colour: the classic solver's
+// (constraint_iterations) and xpbd's enforce_stretch_limit (stretch_passes), as
+// GpuSimulator::length_constraint_passes.
+namespace {
+template <class R>
+void length_constraint_passes(const ClothModel& m, const Constants<R>& c, int passes, State<R>& s, bool* over = nullptr) {
+  for (int pass = 0; pass < passes; ++pass)
+    for (int colour = 0; colour < m.colours(); ++colour) limit_colour(m, c, colour, s, over);
+}
+}  // namespace
+
+template <class R> void solve_length_constraints(const ClothModel& m, const Constants<R>& c, State<R>& s) {
+  length_constraint_passes(m, c, c.iterations, s);
+}
+
+template <class R> void enforce_stretch_limit(const ClothModel& m, const Constants<R>& c, State<R>& s) {
+  if (c.stretch_passes_max <= c.stretch_passes) {
+    length_constraint_passes(m, c, c.stretch_passes, s);
+    return;
+  }
+  // The fixed passes but the last, then the watched ones: the last fixed pass (one, with none
+  // fixed) always runs, each settling pass only while the pass before it found a spring over.
+  const int fixed = std::max(c.stretch_passes, 1);
+  length_constraint_passes(m, c, fixed - 1, s);
+  bool over = true;
+  for (int pass = fixed - 1; pass < c.stretch_passes_max && arm_stretch_pass(over); ++pass) {
+    if (pass >= fixed) ++s.stretch_settling_passes;
+    length_constraint_passes(m, c, 1, s, &over);
+  }
+}
+
+template <class R>
+void solve_distance_constraint_colour(const ClothModel& m, const Constants<R>& c, int colour, State<R>& s) {
+  for_each_spring_of_colour(m, c, colour, [&](const Spring& sp) {
+    const uint32_t i = sp.i, j = sp.j;
+    const R alpha = c.materials[sp.material].compliance(sp.type);
+    const R wi = s.pos[i].w, wj = s.pos[j].w, wsum = wi + wj;
+    if (wsum == R(0)) return;
+    const R rest = R(sp.rest);
+    Vec3<R> xi(s.pos[i]), xj(s.pos[j]), di(s.disp[i]), dj(s.disp[j]);
+    const Vec3<R> e = xj - xi;
+    const R len = length3(e);
+    if (len > R(0)) {
+      // XPBD from the multiplier the spring ended the last substep with (predict applied it):
+      // dlambda = (-C - alpha~ lambda) / (wi + wj + alpha~), C = len - rest, moving i by
+      // -wi n dlambda and j by +wj n dlambda along n = e / len.
+      const size_t k = size_t(&sp - m.springs.data());
+      const R lambda = s.lambda[k].w;
+      const Vec3<R> n = e * (R(1) / len);
+      // (A spring of ks 0, alpha~ = +inf, never pulls: its lambda stays 0, and inf * 0 is not taken.)
+      const R held = lambda != R(0) ? alpha * lambda : R(0);
+      const R dlambda = (-(len - rest) - held) * (R(1) / (wsum + alpha));
+      const Vec3<R> corr = n * dlambda;
+      const Vec3<R> ci = corr * wi, cj = corr * wj;
+      xi = xi - ci;
+      xj = xj + cj;
+      di = di - ci;
+      dj = dj + cj;
+      // Carried into the next substep scaled by beta = 1 / (1 + (wi + wj) / (4 alpha~)): whole
+      // for a spring soft against its masses' substep inertia, where the carried force makes
+      // the rest state exact, fading for a stiff one, where applying it ahead would be
+      // explicit and unstable (docs/model.md, "Warm-started multipliers").
+      const R beta = R(1) / (R(1) + wsum * (R(0.25) / alpha));
+      s.lambda[k] = Vec4<R>(n, (lambda + dlambda) * beta);
+    }
+    // max_stretch stays a hard limit, in the same visit.
+    limit_stretch(xi, xj, di, dj, wi, wj, wsum, c.stretch_limit * rest);
+    // A correction must not push a mass into a collider or through a plane, where the
+    // collision test of the next substep could no longer see it (docs/model.md).
+    if (c.has_colliders()) {
+      if (wi != R(0)) collide_particle(c, xi, di, false);
+      if (wj != R(0)) collide_particle(c, xj, dj, false);
+    }
+    s.pos[i] = Vec4<R>(xi, wi);
+    s.pos[j] = Vec4<R>(xj, wj);
+    s.disp[i] = Vec4<R>(di, R(0));
+    s.disp[j] = Vec4<R>(dj, R(0));
+  });
+}
+
+template <class R> void solve_distance_constraints(const ClothModel& m, const Constants<R>& c, State<R>& s) {
+  for (int colour = 0; colour < m.colours(); ++colour) solve_distance_constraint_colour(m, c, colour, s);
+}
+
+#define CLOTHSIM_INSTANTIATE(R) \
+  template void solve_length_constraint_colour<R>(const ClothModel&, const Constants<R>&, int, State<R>&); \
+  template void solve_length_constraints<R>(const ClothModel&, const Constants<R>&, State<R>&); \
+  template void enforce_stretch_limit<R>(const ClothModel&, const Constants<R>&, State<R>&); \
+  template void solve_distance_constraint_colour<R>(const ClothModel&, const Constants<R>&, int, State<R>&); \
+  template void solve_distance_constraints<R>(const ClothModel&, const Constants<R>&, State<R>&);
+CLOTHSIM_INSTANTIATE(float)
+CLOTHSIM_INSTANTIATE(double)
+
+}  // namespace clothsim

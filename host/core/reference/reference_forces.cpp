@@ -1,0 +1,203 @@
+// The reference's force, integration and normal passes (docs/design.md §1 steps 1-2, the wind, xpbd's
+// predict): one function per pass, each the twin of the compute shader of the same name.
+#include "reference/reference.hpp"
+
+namespace clothsim {
+
+// The parabolic stand-in for sin(2 pi phase) of the gusts: + - * and floor only, which both
+// backends round alike (a shader's sin does not match std::sin); within 0.056 of the sine.
+template <class R> R gust_wave(R phase) {
+  const R w = phase - std::floor(phase);
+  const R h = w < R(0.5) ? w : w - R(0.5);
+  const R bump = R(16) * h * (R(0.5) - h);
+  return w < R(0.5) ? bump : -bump;
+}
+
+// The share of one corner in the aerodynamic force on triangle (a, b, c), from its corners'
+// positions and displacements (docs/model.md, "Wind"; wind.glsl is the twin).
+template <class R>
+Vec3<R> triangle_wind_share(const WindC<R>& w, const Vec3<R>& pa, const Vec3<R>& pb, const Vec3<R>& pc,
+                            const Vec3<R>& da, const Vec3<R>& db, const Vec3<R>& dc) {
+  const Vec3<R> u = pb - pa, v = pc - pa;
+  const Vec3<R> twice_area_n(u.y * v.z - u.z * v.y, u.z * v.x - u.x * v.z, u.x * v.y - u.y * v.x);
+  const R len = length3(twice_area_n);
+  if (!(len > R(0))) return Vec3<R>(0);  // a degenerate triangle catches no air
+  const Vec3<R> n = twice_area_n * (R(1) / len);
+  Vec3<R> air = w.velocity;
+  if (w.gusts) {
+    const R phase = w.gust_phase - dot3((pa + pb) + pc, w.direction) * w.gust_inv_length3;
+    air = w.velocity + w.gust_velocity * gust_wave(phase);
+  }
+  const Vec3<R> rel = ((da + db) + dc) * w.inv_3dt - air;  // the triangle's velocity relative to the air
+  const R speed = length3(rel);
+  if (!(speed > R(0))) return Vec3<R>(0);
+  const R normal_speed = dot3(rel, n);
+  // Drag -1/2 rho C_d A |v| (v.n) n; lift -1/2 rho C_l A (v.n) (|v| n - (v.n)/|v| v), where
+  // |v| n - (v.n)/|v| v is |v| times the part of n across v.
+  const Vec3<R> drag = n * (w.drag * len * speed * normal_speed);
+  const Vec3<R> across = n * speed - rel * (normal_speed * (R(1) / speed));
+  return drag + across * (w.lift * len * normal_speed);
+}
+
+// Calls visit(t) for each triangle that has particle i as a corner, in ascending order (on a
+// grid: the cells (x-1..x, y-1..y), each split into (A, C, B) and (B, C, D)). compute_normals
+// and compute_wind_forces gather over them, as their shaders do.
+template <class Visit> void for_each_triangle_around(const ClothModel& m, uint32_t i, Visit&& visit) {
+  for (uint32_t k = m.corner_start[i]; k < m.corner_start[i + 1]; ++k) {
+    const auto& t = m.triangles[m.corner_triangles[k]];
+    const int tri[3] = {int(t[0]), int(t[1]), int(t[2])};
+    visit(tri);
+  }
+}
+
+template <class R> void compute_wind_forces(const ClothModel& m, const Constants<R>& c, State<R>& s) {
+  s.wind.resize(s.pos.size());
+  for (uint32_t self = 0; self < uint32_t(m.count()); ++self) {
+    Vec3<R> f(0);
+    for_each_triangle_around(m, self, [&](const int (&t)[3]) {
+      f += triangle_wind_share(c.wind, Vec3<R>(s.pos[t[0]]), Vec3<R>(s.pos[t[1]]), Vec3<R>(s.pos[t[2]]),
+                               Vec3<R>(s.disp[t[0]]), Vec3<R>(s.disp[t[1]]), Vec3<R>(s.disp[t[2]]));
+    });
+    s.wind[self] = Vec4<R>(f, R(0));
+  }
+}
+
+template <class R> void accumulate_forces(const ClothModel& m, const Constants<R>& c, State<R>& s) {
+  for (uint32_t i = 0; i < uint32_t(m.count()); ++i) {
+    const Vec3<R> xi(s.pos[i]);
+    Vec3<R> f = c.gravity * c.mass[i];
+    // The particle's springs in the model's gather order (the grid's: kGatherOrder).
+    for (uint32_t g = m.gather_start[i]; g < m.gather_start[i + 1]; ++g) {
+      const Spring& sp = m.springs[m.gather[g]];
+      if (!c.enabled(sp)) continue;
+      const uint32_t j = sp.i == i ? sp.j : sp.i;
+      const R rest = R(sp.rest);
+      const R k = c.materials[sp.material].stiffness(sp.type);
+      const Vec3<R> e = Vec3<R>(s.pos[j]) - xi;
+      const R len = length3(e);
+      if (len > R(0)) {
+        // Divisions are written as x * (1 / y): the GLSL compiler lowers a / b that way.
+        const R inv = R(1) / len;
+        f += e * (k * (len - rest) * inv);
+      }
+    }
+    if (c.wind.enabled) f += Vec3<R>(s.wind[i]);  // after the springs, as advance.comp adds it
+    s.force[i] = Vec4<R>(f, R(0));
+  }
+}
+
+// A pinned mass keeps its position, or with pinned_motion goes to its anchor + the offset at
+// the substep's end, and its displacement is that move (its velocity, for the springs'
+// constraints, friction and the wind). The GLSL twin is move_pinned in pinned_motion.glsl.
+// Where pinned mass k is at the end of this substep, if it follows pinned_motion (the GLSL
+// twin is moving_pin_position in pinned_motion.glsl).
+template <class R> bool moving_pin_position(const Constants<R>& c, size_t k, Vec3<R>& x) {
+  if (!c.moving_pins() || c.anchors[k].w == R(0)) return false;
+  x = Vec3<R>(c.anchors[k]) + c.pin_offset;
+  return true;
+}
+
+template <class R> void move_pinned(const Constants<R>& c, size_t i, State<R>& s) {
+  Vec3<R> next;
+  if (!moving_pin_position(c, i, next)) return;
+  s.disp[i] = Vec4<R>(next - Vec3<R>(s.pos[i]), R(0));
+  s.pos[i] = Vec4<R>(next, s.pos[i].w);
+}
+
+template <class R> void integrate(const ClothModel& m, const Constants<R>& c, State<R>& s) {
+  for (size_t i = 0; i < s.pos.size(); ++i) {
+    const R keep = c.materials[m.material[i]].keep_velocity;
+    const R w = s.pos[i].w;
+    if (w == R(0)) {
+      move_pinned(c, i, s);
+      continue;
+    }
+    const Vec3<R> a = Vec3<R>(s.force[i]) * w;
+    // x' = x + (1 - damping) (x - x_prev) + a dt^2, with d = x - x_prev kept as its own vector.
+    const Vec3<R> d = Vec3<R>(s.disp[i]) * keep + a * c.dt2;
+    s.disp[i] = Vec4<R>(d, R(0));
+    s.pos[i] = Vec4<R>(Vec3<R>(s.pos[i]) + d, w);
+  }
+}
+
+template <class R> void predict(const ClothModel& m, const Constants<R>& c, State<R>& s) {
+  if (c.multigrid && s.offset.size() != s.pos.size()) s.offset.assign(s.pos.size(), Vec4<R>(0));
+  // Where pin k is at the end of this substep; a moving one from its anchor (as on the GPU,
+  // where predict writes the pins while it reads them for the tethers).
+  auto pin_position = [&](int k) {
+    Vec3<R> x;
+    return moving_pin_position(c, size_t(k), x) ? x : Vec3<R>(s.pos[k]);
+  };
+  for (size_t i = 0; i < s.pos.size(); ++i) {
+    const R w = s.pos[i].w;
+    if (w == R(0)) {
+      move_pinned(c, i, s);
+      if (c.multigrid) s.offset[i] = Vec4<R>(0);
+      continue;
+    }
+    Vec3<R> acc = c.gravity;
+    if (c.wind.enabled) acc = acc + Vec3<R>(s.wind[i]) * w;  // compute_wind_forces ran before
+    // The springs' multipliers of the last substep, as their forces over this one (times dt^2):
+    // -n lambda on the spring's i end, +n lambda on its j end, in the gather order.
+    // (The multigrid solver carries none: its springs act in its own solve.)
+    Vec3<R> warm(0);
+    const uint32_t last = c.multigrid ? m.gather_start[i] : m.gather_start[i + 1];
+    for (uint32_t k = m.gather_start[i]; k < last; ++k) {
+      const uint32_t sk = m.gather[k];
+      const Vec4<R>& l = s.lambda[sk];
+      const Vec3<R> f = Vec3<R>(l) * l.w;
+      warm = m.springs[sk].i == uint32_t(i) ? warm - f : warm + f;
+    }
+    Vec3<R> d = Vec3<R>(s.disp[i]) * c.materials[m.material[i]].keep_velocity + acc * c.dt2 + warm * w;
+    if (c.max_step > R(0)) {
+      // The bounded contact's speed limit (docs/model.md, "Self-contact that holds").
+      const R len = length3(d);
+      if (len > c.max_step) d = d * (c.max_step * (R(1) / len));
+    }
+    Vec3<R> x = Vec3<R>(s.pos[i]) + d;
+    // The multigrid solve starts from the inertial position without the external forces' share
+    // and applies it with the springs, so a cloth at rest starts where it rests and stays
+    // exactly there (docs/model.md). The contacts still see the full prediction (Coulomb
+    // friction takes its depth from it); prolong_to_cloth moves the masses by the offset.
+    if (c.multigrid) s.offset[i] = Vec4<R>(-(acc * c.dt2), R(0));
+    // The tether to the nearest pin: xpbd's, whose sweep alone cannot carry the pins' pull
+    // across a fine cloth; the multigrid solve does (docs/solvers.md), and takes none.
+    if (const int pin = c.multigrid ? -1 : m.tether_pin[i]; pin >= 0) {
+      const Vec3<R> e = x - pin_position(pin);
+      const R len = length3(e);
+      const R limit = c.tether_limit * R(m.tether_rest[i]);
+      if (len > limit) {
+        const Vec3<R> corr = e * ((limit - len) * (R(1) / len));
+        x = x + corr;
+        d = d + corr;
+      }
+    }
+    s.disp[i] = Vec4<R>(d, R(0));
+    s.pos[i] = Vec4<R>(x, w);
+  }
+}
+
+template <class R> void compute_normals(const ClothModel& m, State<R>& s) {
+  for (uint32_t i = 0; i < uint32_t(m.count()); ++i) {
+    Vec3<R> sum(0);
+    for_each_triangle_around(m, i, [&](const int (&t)[3]) {
+      const Vec3<R> p0(s.pos[t[0]]), p1(s.pos[t[1]]), p2(s.pos[t[2]]);
+      const Vec3<R> u = p1 - p0, v = p2 - p0;
+      // Unnormalised cross product: its length is twice the area, so this is area-weighted.
+      sum += Vec3<R>(u.y * v.z - u.z * v.y, u.z * v.x - u.x * v.z, u.x * v.y - u.y * v.x);
+    });
+    const R len = length3(sum);
+    s.normal[i] = len > R(0) ? Vec4<R>(sum * (R(1) / len), R(0)) : Vec4<R>(0, 1, 0, 0);
+  }
+}
+
+#define CLOTHSIM_INSTANTIATE(R) \
+  template void compute_wind_forces<R>(const ClothModel&, const Constants<R>&, State<R>&); \
+  template void accumulate_forces<R>(const ClothModel&, const Constants<R>&, State<R>&); \
+  template void integrate<R>(const ClothModel&, const Constants<R>&, State<R>&); \
+  template void predict<R>(const ClothModel&, const Constants<R>&, State<R>&); \
+  template void compute_normals<R>(const ClothModel&, State<R>&);
+CLOTHSIM_INSTANTIATE(float)
+CLOTHSIM_INSTANTIATE(double)
+
+}  // namespace clothsim

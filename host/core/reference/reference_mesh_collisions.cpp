@@ -1,0 +1,170 @@
+// The reference's mesh colliders (docs/model.md, "Mesh colliders"): a mass against a mesh's
+// signed distance field, sampled by trilinear interpolation written out so that
+// compute/collide_meshes.glsl computes the same bits.
+#include <algorithm>
+#include <cmath>
+
+#include "colliders/mesh_collider.hpp"
+#include "reference/reference.hpp"
+#include "reference/reference_detail.hpp"
+
+namespace clothsim {
+namespace {
+
+template <class R> Vec3<R> to_local(const MeshC<R>& m, const Vec3<R>& v) {
+  return Vec3<R>(dot3(m.rows[0], v), dot3(m.rows[1], v), dot3(m.rows[2], v));
+}
+template <class R> Vec3<R> to_world(const MeshC<R>& m, const Vec3<R>& v) {
+  return (m.rows[0] * v.x + m.rows[1] * v.y) + m.rows[2] * v.z;
+}
+
+}  // namespace
+
+template <class R> bool sample_mesh_field(const MeshC<R>& m, const float* sdf, const Vec3<R>& p, R& phi, Vec3<R>& grad) {
+  const Vec3<R> g = (p - m.grid_min) * m.inv_voxel;
+  // Outside the grid the mesh is further than its band: no contact (and no read out of it).
+  if (!(g.x >= R(0) && g.y >= R(0) && g.z >= R(0) && g.x < R(m.dims.x - 1) && g.y < R(m.dims.y - 1) &&
+        g.z < R(m.dims.z - 1)))
+    return false;
+  const Vec3<R> cell(std::floor(g.x), std::floor(g.y), std::floor(g.z));
+  const Vec3<R> f = g - cell;
+  const int nx = m.dims.x, nxy = m.dims.x * m.dims.y;
+  const int base = int(m.offset) + int(cell.x) + nx * int(cell.y) + nxy * int(cell.z);
+  const R c000 = R(sdf[base]), c100 = R(sdf[base + 1]), c010 = R(sdf[base + nx]), c110 = R(sdf[base + nx + 1]);
+  const R c001 = R(sdf[base + nxy]), c101 = R(sdf[base + nxy + 1]), c011 = R(sdf[base + nxy + nx]),
+          c111 = R(sdf[base + nxy + nx + 1]);
+  // Along x, then y, then z; the gradient is the trilinear's own (per cell, up to 1 / voxel,
+  // which the normalisation drops).
+  const R x00 = c100 - c000, x10 = c110 - c010, x01 = c101 - c001, x11 = c111 - c011;
+  const R c00 = c000 + x00 * f.x, c10 = c010 + x10 * f.x, c01 = c001 + x01 * f.x, c11 = c011 + x11 * f.x;
+  const R y0 = c10 - c00, y1 = c11 - c01;
+  const R c0 = c00 + y0 * f.y, c1 = c01 + y1 * f.y;
+  const R z = c1 - c0;
+  phi = c0 + z * f.z;
+  const R gx0 = x00 + (x10 - x00) * f.y, gx1 = x01 + (x11 - x01) * f.y;
+  grad = Vec3<R>(gx0 + (gx1 - gx0) * f.z, y0 + (y1 - y0) * f.z, z);
+  return true;
+}
+
+template <class R> bool sample_mesh_at(const MeshC<R>& m, const float* sdf, const Vec3<R>& x, R& phi, Vec3<R>& grad) {
+  return sample_mesh_field(m, sdf, to_local(m, x - m.origin), phi, grad);
+}
+
+template <class R> MeshC<R> make_mesh_collider(const MeshColliderParams& p, const SdfGrid& g, uint32_t offset) {
+  const glm::dmat3 rot = collider_rotation(p);
+  MeshC<R> m;
+  for (int r = 0; r < 3; ++r) m.rows[r] = Vec3<R>(rot[r]);  // column r of R is row r of its transpose
+  m.origin = Vec3<R>(p.origin);
+  m.keep = R(1.0 - p.friction);
+  m.mu = R(p.friction);
+  m.thickness = R(p.thickness);
+  m.closed = g.closed;
+  m.crossing = R(0.5 * p.thickness);
+  m.grid_min = Vec3<R>(g.min);
+  m.inv_voxel = R(1.0 / g.voxel);
+  m.dims = g.dims;
+  m.offset = offset;
+  return m;
+}
+
+namespace {
+
+// The outward unit normal in the world for a field gradient; false where the field is flat
+// (beyond the band on both sides of a cell: no direction to push along).
+template <class R> bool world_normal(const MeshC<R>& m, const Vec3<R>& grad, Vec3<R>& n) {
+  const R len = length3(grad);
+  if (!(len > R(0))) return false;
+  n = to_world(m, grad * (R(1) / len));
+  return true;
+}
+
+// A mass outside the offset surface at the end of the substep that moved by rel (relative to
+// the mesh) further than its clearance: its path is sampled every half node spacing (at most 8
+// samples). A closed mesh: a sample inside it means the mass went through a wall within the
+// substep. An open mesh (its field unsigned): two neighbouring samples, the first approaching
+// the surface and the second leaving it (the field's slope along the path from < 0 to > 0),
+// whose distances add up to less than their spacing plus twice `crossing`, straddle the shell.
+// Either way t - x is the way back to the sample before, on the side it came from.
+template <class R>
+bool passed_through_mesh(const MeshC<R>& m, const float* sdf, const Vec3<R>& p, R phi, const Vec3<R>& rel,
+                         Vec3<R>& t_minus_x) {
+  const R moved = length3(rel);
+  const R clearance = phi - m.thickness;
+  if (!(moved > clearance)) return false;
+  const Vec3<R> step_all = to_local(m, rel);
+  const R halves = std::ceil(moved * m.inv_voxel * R(2));
+  const int samples = int(std::min(R(8), halves));
+  const R spacing = moved * (R(1) / R(samples));
+  const Vec3<R> start = p - step_all;
+  R prev_phi = R(0), prev_slope = R(0);
+  bool prev_in_grid = false;
+  // A closed mesh's path starts and ends outside it: its ends are not sampled.
+  const int first = m.closed ? 1 : 0, last = m.closed ? samples - 1 : samples;
+  for (int k = first; k <= last; ++k) {
+    const Vec3<R> q = start + step_all * (R(k) / R(samples));
+    R phi_q;
+    Vec3<R> grad;
+    const bool in_grid = sample_mesh_field(m, sdf, q, phi_q, grad);
+    bool crossed = false;
+    if (m.closed) {
+      crossed = in_grid && phi_q < R(0);
+    } else if (in_grid) {
+      const R slope = dot3(grad, step_all);
+      crossed = prev_in_grid && prev_slope < R(0) && slope > R(0) && prev_phi + phi_q < spacing + R(2) * m.crossing;
+      prev_phi = phi_q;
+      prev_slope = slope;
+    }
+    prev_in_grid = in_grid;
+    if (!crossed) continue;
+    const Vec3<R> back = start + step_all * (R(k - 1) / R(samples));
+    t_minus_x = to_world(m, back - p);
+    return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+template <class R> void keep_out_of_mesh(const Constants<R>& c, const MeshC<R>& m, Vec3<R>& x, Vec3<R>& d) {
+  R phi;
+  Vec3<R> grad, n;
+  if (!sample_mesh_at(m, c.sdf->data(), x, phi, grad)) return;
+  const R depth = m.thickness - phi;
+  if (!(depth > R(1e-4)) || !world_normal(m, grad, n)) return;
+  const Vec3<R> out = n * depth;
+  x = x + out;
+  d = d + out;
+}
+
+template <class R> void collide_with_mesh(const Constants<R>& c, const MeshC<R>& m, bool friction, Vec3<R>& x, Vec3<R>& d) {
+  const float* sdf = c.sdf->data();
+  const Vec3<R> p = to_local(m, x - m.origin);
+  R phi;
+  Vec3<R> grad, n, t_minus_x;
+  if (!sample_mesh_field(m, sdf, p, phi, grad)) return;
+  if (phi < m.thickness) {
+    // In contact: out along the field's gradient to the offset surface.
+    if (!world_normal(m, grad, n)) return;
+    t_minus_x = n * (m.thickness - phi);
+  } else {
+    if (!passed_through_mesh(m, sdf, p, phi, d - m.motion, t_minus_x)) return;
+    // The normal of the contact is the field's where the mass is put back.
+    R phi_back;
+    Vec3<R> grad_back;
+    if (!sample_mesh_field(m, sdf, p + to_local(m, t_minus_x), phi_back, grad_back) || !world_normal(m, grad_back, n))
+      n = t_minus_x * (R(1) / length3(t_minus_x));
+  }
+  respond_to_contact(friction && c.xpbd, t_minus_x, n, friction ? m.keep : R(1), m.mu, m.motion, x, d);
+  keep_out_of_mesh(c, m, x, d);
+}
+
+#define CLOTHSIM_INSTANTIATE(R)                                                                          \
+  template bool sample_mesh_field<R>(const MeshC<R>&, const float*, const Vec3<R>&, R&, Vec3<R>&);        \
+  template bool sample_mesh_at<R>(const MeshC<R>&, const float*, const Vec3<R>&, R&, Vec3<R>&);           \
+  template MeshC<R> make_mesh_collider<R>(const MeshColliderParams&, const SdfGrid&, uint32_t);           \
+  template void keep_out_of_mesh<R>(const Constants<R>&, const MeshC<R>&, Vec3<R>&, Vec3<R>&);           \
+  template void collide_with_mesh<R>(const Constants<R>&, const MeshC<R>&, bool, Vec3<R>&, Vec3<R>&);
+CLOTHSIM_INSTANTIATE(float)
+CLOTHSIM_INSTANTIATE(double)
+
+}  // namespace clothsim
