@@ -8,6 +8,8 @@
    is over MAX_FUNCTION_LINES lines.
 
 Usage: check_layout.py REPOSITORY_ROOT. Prints each breach and exits 1 if there is one.
+check_layout.py --self-test builds a small tree with one breach of each rule and exits 0 only
+if exactly those are found (so the check itself can be seen to fail).
 """
 import pathlib
 import re
@@ -123,7 +125,36 @@ def check_functions(root: pathlib.Path, problems: list):
                                     f"over {MAX_FUNCTION_LINES} (the step's path)")
 
 
+def self_test() -> int:
+    import tempfile
+    with tempfile.TemporaryDirectory() as d:
+        root = pathlib.Path(d)
+        (root / "host/core/io").mkdir(parents=True)
+        (root / "host/core/scene").mkdir(parents=True)
+        (root / "compute").mkdir()
+        (root / "host/core/scene/scene.hpp").write_text("#pragma once\n")
+        # io/ is below scene/: an include of it runs back up.
+        (root / "host/core/io/input_file.cpp").write_text('#include "scene/scene.hpp"\n')
+        (root / "host/core/io/long.cpp").write_text("// x\n" * (MAX_LINES + 1))
+        body = "  x = x + 1.0;\n" * MAX_FUNCTION_LINES
+        (root / "compute/pass.comp").write_text("void main() {\n" + body + "}\n")
+        problems = []
+        check_layers(root, problems)
+        check_sizes(root, problems)
+        check_functions(root, problems)
+    expected = ["runs back up", f"over {MAX_LINES}", f"over {MAX_FUNCTION_LINES}"]
+    found = [any(e in p for p in problems) for e in expected]
+    print("\n".join(problems))
+    if len(problems) != 3 or not all(found):
+        print(f"check_layout --self-test: expected one breach of each rule, found {len(problems)}")
+        return 1
+    print("check_layout --self-test: each rule's breach was found")
+    return 0
+
+
 def main() -> int:
+    if sys.argv[1:] == ["--self-test"]:
+        return self_test()
     root = pathlib.Path(sys.argv[1] if len(sys.argv) > 1 else ".")
     problems = []
     check_layers(root, problems)
