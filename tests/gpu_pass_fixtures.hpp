@@ -189,7 +189,7 @@ inline State<float> run_gpu(const CpuCloth& cpu, int substeps) {
   GpuSimulator gpu(cpu.scene, cpu.model, compute_dir());
   if (cpu.frames > 0) gpu.upload(cpu.s);
   for (int k = 0; k < substeps; ++k) gpu.step();
-  gpu.compute_normals();
+  gpu.run(PassId::compute_normals);
   State<float> g;
   gpu.download(g);
   return g;

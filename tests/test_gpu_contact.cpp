@@ -18,7 +18,7 @@ TEST_CASE("collide_objects on the GPU lifts and catches exactly as the reference
   auto st = initial_state<float>(m);
   test::set_contact_state(st);
   gpu.upload(st);
-  gpu.collide_objects();
+  gpu.run(PassId::collide_objects);
   collide_objects(c, st);
   State<float> out;
   gpu.download(out);
@@ -79,8 +79,7 @@ void check_contact_list(const Scene& s, int warmup_frames, const std::string& so
   gpu.download(start);
   auto first_pass = [&](bool then_collide) {
     gpu.upload(start);
-    if (solver == "classic") gpu.advance(then_collide);
-    else gpu.predict(then_collide);
+    gpu.run(solver == "classic" ? PassId::advance : PassId::predict, {.collide_objects = then_collide});
   };
   first_pass(false);
   gpu.download(without);
@@ -156,7 +155,7 @@ TEST_CASE("the contact list holds every mass a mesh collider moves, and only mas
       gpu.download(start);
       auto sweep = [&](bool bound, State<float>& out) {
         gpu.upload(start);
-        gpu.predict(true);
+        gpu.run(PassId::predict, {.collide_objects = true});
         if (!bound) {
           State<float> predicted;
           gpu.download(predicted);
@@ -165,7 +164,7 @@ TEST_CASE("the contact list holds every mass a mesh collider moves, and only mas
           if (multigrid) gpu.upload_multigrid(predicted);
         }
         if (multigrid) gpu.solve_multigrid();
-        else gpu.solve_distance_constraints();
+        else gpu.run(PassId::solve_distance_constraints);
         gpu.download(out);
         return gpu.contact_list().size();  // by the sweep's last colour
       };

@@ -38,9 +38,8 @@ TEST_CASE("the GPU hash holds every particle once, in its own bucket, ascending,
   for (auto& p : t.s.pos) p = Vec4<float>(p.x + jitter(rng), p.y + jitter(rng), p.z + jitter(rng), p.w);
   GpuSimulator gpu(t.scene, t.model, compute_dir());
   gpu.upload(t.s);
-  for (auto stage : {&GpuSimulator::count_cells, &GpuSimulator::scan_cells, &GpuSimulator::fill_cells,
-                     &GpuSimulator::sort_cells})
-    (gpu.*stage)();
+  for (PassId stage : {PassId::count_cells, PassId::scan_cells, PassId::fill_cells, PassId::sort_cells})
+    gpu.run(stage);
   SpatialHash g;
   gpu.download_hash(g);
   SpatialHash& h = t.s.hash;

@@ -131,7 +131,7 @@ glm::dvec3 total_wind_force(const WindCase& w, bool gpu) {
   glm::dvec3 total(0.0);
   if (gpu) {
     GpuSimulator sim(scene, model, compute_dir());
-    sim.compute_wind_forces();
+    sim.run(PassId::compute_wind_forces);
     State<float> s;
     sim.download(s);
     for (auto& f : s.wind) total += glm::dvec3(f);

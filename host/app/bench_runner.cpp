@@ -110,33 +110,21 @@ BenchResult BenchRunner::run_gpu(const Scene& scene) {
   r.dispatches_per_frame = double(after.dispatches - before.dispatches) / frames_;
   r.barriers_per_frame = double(after.barriers - before.barriers) / frames_;
   r.gpu_memory_bytes = sim.memory_bytes();
-  // The passes of GpuSimulator::step, collide_self as its five stages; collide_objects is
-  // fused into advance or resolve_self_contacts.
-  const bool sc = scene.simulation.self_collision, xpbd = sim.constants().xpbd;
-  const bool colliders = sim.constants().has_colliders();
-  std::vector<Pass> solve;  // the solver's passes, each timed on its own
-  if (sim.constants().multigrid)
-    solve = {{"compute_residuals", [&] { sim.compute_residuals(); }},
-             {"cycle_levels", [&] { sim.cycle_levels(); }},
-             {"prolong_to_cloth", [&] { sim.prolong_to_cloth(); }},
-             {"relax_vertices", [&] {
-                for (int k = 0; k < sim.constants().hierarchy->fine_colours(); ++k) sim.relax_vertices(k);
-              }}};
-  else if (xpbd) solve = {{"solve_distance_constraints", [&] { sim.solve_distance_constraints(); }}};
-  else solve = {{"solve_length_constraints", [&] { sim.solve_length_constraints(); }}};
-  // The limit's passes after either xpbd sweep (stretch_passes_max is at least stretch_passes).
-  if (sim.constants().stretch_passes_max > 0) solve.push_back({"enforce_stretch_limit", [&] { sim.enforce_stretch_limit(); }});
-  PassList passes{{{xpbd ? "predict" : "advance",
-                    [&] { xpbd ? sim.predict(colliders && !sc) : sim.advance(colliders && !sc); }},
-                   {"count_cells", [&] { if (sc) sim.count_cells(); }},
-                   {"scan_cells", [&] { if (sc) sim.scan_cells(); }},
-                   {"fill_cells", [&] { if (sc) sim.fill_cells(); }},
-                   {"sort_cells", [&] { if (sc) sim.sort_cells(); }},
-                   {"resolve_self_contacts", [&] { if (sc) sim.resolve_self_contacts(colliders); }}},
-                  {{"compute_normals", [&] { sim.compute_normals(); }},
-                   // The divergence guard: its reduction and the copy of a passing frame.
-                   {"check_divergence", [&] { sim.divergence().check(sim.positions()); }}}};
-  passes.step.insert(passes.step.end(), solve.begin(), solve.end());
+  // The pass table's stage rows (pass_table.hpp): the entries of GpuSimulator::step, collide_self
+  // as its five stages (timed as nothing without self-collision), collide_objects fused into
+  // the first pass or resolve_self_contacts, the V-cycle as cycle_levels, the limit as
+  // enforce_stretch_limit; then the frame's (compute_normals) and the divergence guard.
+  PassList passes;
+  const uint16_t f = sim.shape().features;
+  for (const PassRow& row : kPasses) {
+    if (!row.stage) continue;
+    const char* name = stage_name(row);
+    const PassId id = row.id;
+    if (runs(row, f | kSelf)) passes.step.push_back({name, [&sim, id] { sim.run_stage(id); }});
+    else if (runs(row, f | kPerFrame) && (row.need & kPerFrame)) passes.frame.push_back({name, [&sim, id] { sim.run(id); }});
+  }
+  // The divergence guard: its reduction and the copy of a passing frame.
+  passes.frame.push_back({"check_divergence", [&] { sim.divergence().check(sim.positions()); }});
   // Per-pass times come from a separate frame (stalls or queries would distort the run above):
   // GPU timer queries where the driver has them, else (llvmpipe) glFinish around each pass.
   const int substeps = scene.simulation.simulation_steps;

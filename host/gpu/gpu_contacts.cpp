@@ -2,13 +2,13 @@
 // advance and predict list the masses a collider may move, and xpbd's and multigrid's sweeps
 // those a colour's correction may have pushed into one; collide_objects runs on those alone, one
 // indirect dispatch sized by the list on the GPU, with no read-back.
-#include "gpu_simulator.hpp"
+#include "gpu_passes.hpp"
 
 namespace clothsim {
 
-bool GpuSimulator::uses_contact_list() const { return constants_.has_colliders(); }
+bool GpuPasses::uses_contact_list() const { return constants_.has_colliders(); }
 
-void GpuSimulator::start_contact_list() {
+void GpuPasses::start_contact_list() {
   const size_t bytes = sizeof(layout::ContactListHeader) + size_t(model_.count()) * sizeof(uint32_t);
   if (contacts_.size() != bytes) contacts_.allocate(bytes);
   // No workgroups and no masses yet (y and z stay 1 for glDispatchComputeIndirect). The last
@@ -19,19 +19,7 @@ void GpuSimulator::start_contact_list() {
   contacts_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_CONTACT_LIST);
 }
 
-void GpuSimulator::collide_listed(bool friction) {
-  bind_for_pass();
-  contacts_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_CONTACT_LIST);
-  contacts_.bind(GL_DISPATCH_INDIRECT_BUFFER);
-  gl::Program& pass = friction ? collide_listed_ : collide_listed_frictionless_;
-  pass.dispatch_indirect(0);
-  dispatched(pass);
-  // The hash passes or the constraints read the positions next; the next substep's
-  // start_contact_list rewrites the header this pass read (a buffer update).
-  barrier(kComputeReads | GL_BUFFER_UPDATE_BARRIER_BIT);
-}
-
-std::vector<uint32_t> GpuSimulator::contact_list() const {
+std::vector<uint32_t> GpuPasses::contact_list() const {
   if (contacts_.size() == 0) return {};
   const uint32_t count = gl::download_vector<layout::ContactListHeader>(contacts_, 0, 1)[0].dispatch_count.w;
   return gl::download_vector<uint32_t>(contacts_, sizeof(layout::ContactListHeader) / sizeof(uint32_t), count);

@@ -169,7 +169,7 @@ void GpuSimulator::reset() {
   const std::vector<float> inverse = inverse_masses();
   for (size_t i = 0; i < s.pos.size(); ++i) if (s.pos[i].w != 0.f) s.pos[i].w = inverse[i];
   upload(s);
-  compute_normals();
+  run(PassId::compute_normals);
   guard_.restart(s.pos, 0);
 }
 

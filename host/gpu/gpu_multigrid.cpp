@@ -2,6 +2,7 @@
 // each named like its .comp file and its CPU twin in host/core/reference/reference_multigrid.cpp, and the
 // hierarchy's buffers. Made on first use, so a run of another solver compiles none of it.
 #include "gpu_multigrid.hpp"
+#include "gpu_passes.hpp"
 
 #include <bit>
 
@@ -15,11 +16,14 @@ uint32_t bits(double v) { return std::bit_cast<uint32_t>(float(v)); }
 
 }  // namespace
 
-void GpuSimulator::ensure_multigrid() {
+void GpuPasses::ensure_multigrid() {
   if (!constants_.multigrid) return;
   const Hierarchy& h = *constants_.hierarchy;
   if (multigrid_ && multigrid_->hierarchy == constants_.hierarchy) return;
-  if (!multigrid_) multigrid_ = std::make_unique<GpuMultigrid>(dir_, features_);
+  if (!multigrid_) {
+    multigrid_ = std::make_unique<GpuMultigrid>();
+    load_rows(Build::multigrid);
+  }
   GpuMultigrid& g = *multigrid_;
   const uint32_t n = uint32_t(model_.count()), coarse = h.coarse_count();
   // The lists: every coarse vertex's children, then parents, then springs, then the particles' parents.
@@ -79,153 +83,55 @@ void GpuSimulator::ensure_multigrid() {
   g.offset_view.attach(g.offset, GL_RGBA32F);
   g.residuals_view.attach(g.residuals, GL_RGBA32F);
   g.rhs_view.attach(g.rhs, GL_RGBA32F);
-  g.cycle_small_levels.set("u_first", table_at);  // where its table starts, fixed with the hierarchy
+  programs_[size_t(PassId::cycle_small_levels)].set("u_first", table_at);  // where its table starts, fixed with the hierarchy
   g.hierarchy = constants_.hierarchy;
   bind_multigrid();
 }
 
-void GpuSimulator::bind_multigrid() const {
-  if (!multigrid_) {
-    // predict declares the offsets (it writes them only for the multigrid solver): a binding
-    // of one element stands in for them.
-    no_offsets_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_MG_OFFSET);
+// restrict_residuals and prolong_corrections over a level's vertices, smooth_corrections over
+// one of its colours (or `sweeps` sweeps of every colour), relax_vertices over a fine colour
+// (or every one), each followed by the contact list's push-out where the step collides through it.
+void GpuPasses::level_pass(PassId pass, const PassArgs& a) {
+  const Hierarchy& h = *constants_.hierarchy;
+  if (pass == PassId::relax_vertices || pass == PassId::smooth_corrections) {
+    const bool fine = pass == PassId::relax_vertices;
+    const std::vector<uint32_t>& starts = fine ? h.fine_colour_start : h.levels[size_t(a.level)].colour_start;
+    if (a.colour < 0) {
+      for (int it = 0; it < (fine ? 1 : a.sweeps); ++it)
+        for (int k = 0; k + 1 < int(starts.size()); ++k) level_pass(pass, {a.level, k});
+      return;
+    }
+    const uint32_t first = starts[size_t(a.colour)], last = starts[size_t(a.colour) + 1];
+    const bool listed = fine && uses_contact_list() && last > first;
+    if (listed) start_contact_list();
+    // The coarse vertices follow the particles in the multigrid's buffers.
+    dispatch_row(pass, {(fine ? 0u : uint32_t(model_.count())) + first, last - first}, listed);
+    if (listed) dispatch_row(PassId::collide_listed_frictionless);
     return;
   }
-  const GpuMultigrid& g = *multigrid_;
-  g.residuals.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_MG_RESIDUALS);
-  g.offset.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_MG_OFFSET);
-  g.rhs.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_MG_RHS);
-  g.corr.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_MG_CORR);
-  g.vertices_view.bind(TEXTURE_MG_VERTICES);
-  g.lists_view.bind(TEXTURE_MG_LISTS);
-  g.fine_view.bind(TEXTURE_MG_FINE);
-  g.order_view.bind(TEXTURE_MG_ORDER);
-  g.corr_view.bind(TEXTURE_MG_CORR);
-  g.offset_view.bind(TEXTURE_MG_OFFSET);
-  g.residuals_view.bind(TEXTURE_MG_RESIDUALS);
-  g.rhs_view.bind(TEXTURE_MG_RHS);
+  const HierarchyLevel& l = h.levels[size_t(a.level)];
+  dispatch_row(pass, {l.first, l.count});
 }
 
-// One dispatch of a multigrid pass over items [first, first + count) (u_first, u_count, their
-// locations looked up once in GpuMultigrid).
-void GpuSimulator::dispatch_range(GpuMultigridPass& pass, uint32_t first, uint32_t count) {
-  if (count == 0) return;
-  pass.program.set(pass.first, first);
-  pass.program.set(pass.count, count);
-  pass.program.dispatch(gl::workgroups_for(count, WORKGROUP_SIZE));
-  dispatched(pass.program);
-}
-
-void GpuSimulator::compute_residuals() {
-  ensure_multigrid();
-  bind_for_pass();
-  dispatch(multigrid_->compute_residuals);
-  // restrict_residuals reads them (through their view) next.
-  barrier(kComputeReads);
-}
-
-void GpuSimulator::restrict_residuals(int level) {
-  ensure_multigrid();
-  bind_for_pass();
-  const HierarchyLevel& l = constants_.hierarchy->levels[size_t(level)];
-  dispatch_range(multigrid_->restrict_residuals_range, l.first, l.count);
-  // smooth_corrections reads the right-hand sides and the zeroed corrections next.
-  barrier(kComputeReads);
-}
-
-void GpuSimulator::smooth_corrections(int level, int colour) {
-  ensure_multigrid();
-  bind_for_pass();
-  const HierarchyLevel& l = constants_.hierarchy->levels[size_t(level)];
-  const uint32_t first = l.colour_start[size_t(colour)], last = l.colour_start[size_t(colour) + 1];
-  dispatch_range(multigrid_->smooth_corrections_range, uint32_t(model_.count()) + first, last - first);
-  // The next colour reads these corrections through their view.
-  barrier(kComputeReads);
-}
-
-void GpuSimulator::cycle_small_levels() {
-  ensure_multigrid();
-  if (constants_.hierarchy->levels.empty()) return;
-  bind_for_pass();
-  // Its table (levels, vertices, colours) is set with the hierarchy (ensure_multigrid).
-  gl::Program& p = multigrid_->cycle_small_levels;
-  p.dispatch(1);  // one workgroup: its barriers order the steps
-  dispatched(p);
-  // prolong_corrections (or prolong_to_cloth) reads the corrections through their view next.
-  barrier(kComputeReads);
-}
-
-void GpuSimulator::prolong_corrections(int level) {
-  ensure_multigrid();
-  bind_for_pass();
-  const HierarchyLevel& l = constants_.hierarchy->levels[size_t(level)];
-  dispatch_range(multigrid_->prolong_corrections_range, l.first, l.count);
-  // smooth_corrections reads the corrections through their view next.
-  barrier(kComputeReads);
-}
-
-void GpuSimulator::prolong_to_cloth() {
-  ensure_multigrid();
-  bind_for_pass();
-  dispatch(multigrid_->prolong_to_cloth);
-  // relax_vertices reads the positions (views), displacements and offsets next.
-  barrier(kComputeReads);
-}
-
-void GpuSimulator::relax_vertices(int colour) {
-  ensure_multigrid();
-  bind_for_pass();
-  const Hierarchy& h = *constants_.hierarchy;
-  const uint32_t first = h.fine_colour_start[size_t(colour)], last = h.fine_colour_start[size_t(colour) + 1];
-  const bool listed = uses_contact_list() && last > first;
-  if (listed) start_contact_list();
-  dispatch_range(multigrid_->relax_vertices_range, first, last - first);
-  // The next colour (or the next substep's first pass) reads these positions and displacements,
-  // or first collide_objects the listed ones, its workgroups from the list's header (COMMAND).
-  barrier(kComputeReads | (listed ? GL_COMMAND_BARRIER_BIT : 0));
-  if (listed) collide_listed(false);
-}
-
-void GpuSimulator::smooth_level(int level, int sweeps) {
-  const int colours = int(constants_.hierarchy->levels[size_t(level)].colour_start.size()) - 1;
-  for (int it = 0; it < sweeps; ++it)
-    for (int k = 0; k < colours; ++k) smooth_corrections(level, k);
-}
-
-void GpuSimulator::cycle_levels() {
+void GpuPasses::cycle_levels() {
   const int levels = int(constants_.hierarchy->levels.size()), small = first_small_level(*constants_.hierarchy);
   if (levels == 0) return;
-  for (int l = 0; l < small; ++l) restrict_residuals(l);
-  cycle_small_levels();
+  for (int l = 0; l < small; ++l) run(PassId::restrict_residuals, {.level = l});
+  run(PassId::cycle_small_levels);
   for (int l = small - 1; l >= 0; --l) {
-    prolong_corrections(l);
-    smooth_level(l, kLevelSweeps);
+    run(PassId::prolong_corrections, {.level = l});
+    run(PassId::smooth_corrections, {.level = l, .sweeps = kLevelSweeps});
   }
 }
 
-void GpuSimulator::solve_multigrid() {
-  compute_residuals();
+void GpuPasses::solve_multigrid() {
+  run(PassId::compute_residuals);
   cycle_levels();
-  prolong_to_cloth();
-  for (int k = 0; k < constants_.hierarchy->fine_colours(); ++k) relax_vertices(k);
+  run(PassId::prolong_to_cloth);
+  run(PassId::relax_vertices);
 }
 
-int GpuSimulator::multigrid_dispatches() const {
-  const Hierarchy& h = *constants_.hierarchy;
-  const int levels = int(h.levels.size());
-  int count = 2 + h.fine_colours();  // compute_residuals, prolong_to_cloth, the sweep's colours
-  // and after each colour its push-out over the contact list (gpu_contacts.cpp), where used.
-  if (uses_contact_list())
-    for (int k = 0; k < h.fine_colours(); ++k) count += h.fine_colour_start[size_t(k) + 1] > h.fine_colour_start[size_t(k)];
-  if (levels == 0) return count;
-  const int small = first_small_level(h);
-  count += small + 1;  // restrict_residuals per large level, cycle_small_levels
-  for (int l = 0; l < small; ++l)
-    count += 1 + (int(h.levels[size_t(l)].colour_start.size()) - 1) * kLevelSweeps;  // prolong, smooth
-  return count;
-}
-
-void GpuSimulator::download_multigrid(State<float>& s) {
+void GpuPasses::download_multigrid(State<float>& s) {
   ensure_multigrid();
   glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
   const GpuMultigrid& g = *multigrid_;
@@ -236,7 +142,7 @@ void GpuSimulator::download_multigrid(State<float>& s) {
   s.coarse_corr = gl::download_vector<Vec4<float>>(g.corr, 0, coarse);
 }
 
-void GpuSimulator::upload_multigrid(const State<float>& s) {
+void GpuPasses::upload_multigrid(const State<float>& s) {
   ensure_multigrid();
   GpuMultigrid& g = *multigrid_;
   const size_t coarse = constants_.hierarchy->coarse_count();
@@ -245,15 +151,5 @@ void GpuSimulator::upload_multigrid(const State<float>& s) {
   if (s.coarse_rhs.size() == coarse && coarse > 0) g.rhs.upload(0, coarse * sizeof(glm::vec4), s.coarse_rhs.data());
   if (s.coarse_corr.size() == coarse && coarse > 0) g.corr.upload(0, coarse * sizeof(glm::vec4), s.coarse_corr.data());
 }
-
-size_t GpuSimulator::multigrid_memory_bytes() const {
-  if (!multigrid_) return 0;
-  const GpuMultigrid& g = *multigrid_;
-  size_t total = 0;
-  for (const gl::Buffer* b : {&g.vertices, &g.lists, &g.fine, &g.order, &g.residuals, &g.offset, &g.rhs, &g.corr})
-    total += b->size();
-  return total;
-}
-
 
 }  // namespace clothsim

@@ -1,52 +1,16 @@
-// The simulator's buffers and bindings: construction, the GPU's limits, memory and counters.
+// The simulator: construction, the step (its entries are the pass table's stage rows), memory.
 #include "gpu_simulator.hpp"
 
 #include <algorithm>
 #include <bit>
 #include <cstdlib>
-#include <unistd.h>
 
 #include <fmt/format.h>
 
-#include "gpu_memory.hpp"
-#include "gpu_multigrid.hpp"
-#include "gpu_stretch_limit.hpp"
+#include "debug_output.hpp"
+
 
 namespace clothsim {
-namespace {
-
-// Too large a cloth is bad input, reported before any allocation rather than as a driver
-// failure: every per-particle buffer must fit one storage block, every dispatch the group count.
-void check_gpu_limits(const Scene& scene, const ClothModel& m) {
-  GLint64 max_block = 0;
-  GLint max_groups = 0, max_texels = 0;
-  glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
-  glGetIntegeri_v(GL_MAX_COMPUTE_WORK_GROUP_COUNT, 0, &max_groups);
-  glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &max_texels);
-  // The largest view and buffer: the gather list (an entry per spring end) or the springs.
-  const uint64_t texels = std::max<uint64_t>(m.gather.size(), m.count());
-  const uint64_t largest = std::max<uint64_t>(m.springs.size() * sizeof(layout::SpringTexel), m.count() * sizeof(glm::vec4));
-  const uint64_t groups = std::max<uint64_t>((uint64_t(hash_table_size(uint32_t(m.count()))) + WORKGROUP_SIZE - 1) / WORKGROUP_SIZE,
-                                             (m.springs.size() + WORKGROUP_SIZE - 1) / WORKGROUP_SIZE);
-  const std::string grid = m.is_grid() ? fmt::format("a {}x{} grid", m.nw, m.nh)
-                                       : fmt::format("a cloth of {} particles and {} springs", m.count(), m.springs.size());
-  if (max_block > 0 && largest > uint64_t(max_block))
-    throw SceneError(fmt::format("{}: cloth.num_width_points: {} needs {} bytes in one storage buffer, more than "
-                                 "this GPU's GL_MAX_SHADER_STORAGE_BLOCK_SIZE ({} bytes)",
-                                 scene.source, grid, largest, max_block));
-  if (max_groups > 0 && groups > uint64_t(max_groups))
-    throw SceneError(fmt::format("{}: cloth.num_width_points: {} needs {} workgroups in one dispatch, more than "
-                                 "this GPU's GL_MAX_COMPUTE_WORK_GROUP_COUNT ({})",
-                                 scene.source, grid, groups, max_groups));
-  if (max_texels > 0 && texels > uint64_t(max_texels))
-    throw SceneError(fmt::format("{}: cloth.num_width_points: {} needs a texel view of {} texels, more than "
-                                 "this GPU's GL_MAX_TEXTURE_BUFFER_SIZE ({})",
-                                 scene.source, grid, texels, max_texels));
-  check_gpu_memory(scene, m);  // where the driver reports free memory (gpu_memory.hpp)
-}
-
-}  // namespace
-
 layout::StepParams make_step_params(const Constants<float>& c, const ClothModel& m) {
   layout::StepParams p{};
   p.gravity = glm::vec3(c.gravity.x, c.gravity.y, c.gravity.z);
@@ -83,18 +47,13 @@ layout::StepParams make_step_params(const Constants<float>& c, const ClothModel&
 }
 
 GpuSimulator::GpuSimulator(const Scene& scene, const ClothModel& model, const std::filesystem::path& dir)
-    : model_((check_gpu_limits(scene, model), model)),
-      dir_(dir),
-      constants_(make_constants<float>(scene, model)),
+    : GpuPasses(scene, model, dir),
       params_(make_step_params(constants_, model)),
       masses_(particle_masses(scene, model)),
-      dt_(scene.dt()),
-      groups_(gl::workgroups_for(model.count(), WORKGROUP_SIZE)),
-      scan_(dir, hash_table_size(uint32_t(model.count()))),
-      guard_(scene, model, dir) {
-  load_passes(ShaderFeatures::of(constants_));
+      dt_(scene.dt()) {
   const size_t n = model.count();
   upload_model();
+  upload_rest_positions();
 
   upload_colliders();
   upload_anchors();
@@ -115,66 +74,10 @@ GpuSimulator::GpuSimulator(const Scene& scene, const ClothModel& model, const st
   no_offsets_.allocate(sizeof(glm::vec4));
   upload(initial_state<float>(model));  // attaches the views
   ensure_multigrid();
-  compute_normals();
+  run(PassId::compute_normals);
 }
 
-GpuSimulator::~GpuSimulator() = default;  // here, where GpuMultigrid and GpuSettlingPasses are whole
-
-void GpuSimulator::load_passes(const ShaderFeatures& features) {
-  features_ = features;
-  const std::pair<gl::Program*, const char*> passes[] = {
-      {&compute_wind_forces_, "compute_wind_forces"}, {&accumulate_forces_, "accumulate_forces"},
-      {&integrate_, "integrate"}, {&advance_, "advance"}, {&collide_objects_, "collide_objects"},
-      {&solve_length_constraints_, "solve_length_constraints"}, {&compute_normals_, "compute_normals"},
-      {&count_cells_, "count_cells"}, {&fill_cells_, "fill_cells"}, {&sort_cells_, "sort_cells"},
-      {&resolve_self_contacts_, "resolve_self_contacts"}, {&predict_, "predict"},
-      {&solve_distance_constraints_, "solve_distance_constraints"}};
-  for (const auto& [program, name] : passes) *program = load_pass(dir_, name, features);
-  collide_listed_ = load_pass(dir_, "collide_objects", features, {{"LISTED", "1"}});
-  collide_listed_frictionless_ = load_pass(dir_, "collide_objects", features, {{"LISTED", "1"}, {"FRICTIONLESS", "1"}});
-  advance_collide_objects_ = advance_.location("u_collide_objects");
-  resolve_collide_objects_ = resolve_self_contacts_.location("u_collide_objects");
-  predict_collide_objects_ = predict_.location("u_collide_objects");
-  length_colour_ = {solve_length_constraints_.location("u_first"), solve_length_constraints_.location("u_count")};
-  distance_colour_ = {solve_distance_constraints_.location("u_first"), solve_distance_constraints_.location("u_count")};
-  multigrid_.reset();  // its passes too, on first use (ensure_multigrid)
-  settling_.reset();   // and enforce_stretch_limit's watched pass (settling_passes)
-}
-
-void GpuSimulator::upload_model() {
-  const ClothModel& m = model_;
-  // Rest lengths are rounded to float once here, exactly as the float reference rounds them.
-  std::vector<layout::SpringTexel> springs;
-  for (const Spring& s : m.springs)
-    springs.push_back({{s.i, s.j, std::bit_cast<uint32_t>(float(s.rest)), uint32_t(s.type) | (s.material << 2)}});
-  std::vector<glm::uvec4> gather;
-  for (uint32_t g : m.gather) {
-    // The other end and the side are filled in per particle below; every particle index fits
-    // in 30 bits.
-    gather.push_back({0u, std::bit_cast<uint32_t>(float(m.springs[g].rest)), g, 0u});
-  }
-  for (uint32_t i = 0; i < uint32_t(m.count()); ++i)
-    for (uint32_t g = m.gather_start[i]; g < m.gather_start[i + 1]; ++g) {
-      const Spring& s = m.springs[m.gather[g]];
-      gather[g].x = (s.i == i ? s.j : s.i) | (uint32_t(s.type) << 30);
-      gather[g].w = s.i == i ? 1u : 0u;
-    }
-  std::vector<glm::uvec4> triangles;
-  for (auto& t : m.triangles) triangles.push_back({t[0], t[1], t[2], 0u});
-  std::vector<glm::vec4> tethers(m.count());
-  for (size_t i = 0; i < tethers.size(); ++i)  // a pin index is exact in a float: at most 2^24 particles
-    tethers[i] = glm::vec4(float(m.tether_pin[i]), float(m.tether_rest[i]), 0.f, 0.f);
-  // A storage buffer or view may not be empty: one dummy element for a cloth without springs.
-  auto nonempty = [](auto v) { if (v.empty()) v.resize(1); return v; };
-  gl::upload_vector(springs_, nonempty(springs), GL_STATIC_DRAW);
-  gl::upload_vector(gather_, nonempty(gather), GL_STATIC_DRAW);
-  gl::upload_vector(gather_start_, m.gather_start, GL_STATIC_DRAW);
-  gl::upload_vector(triangles_, nonempty(triangles), GL_STATIC_DRAW);
-  gl::upload_vector(corner_start_, m.corner_start, GL_STATIC_DRAW);
-  gl::upload_vector(corner_triangles_, nonempty(m.corner_triangles), GL_STATIC_DRAW);
-  gl::upload_vector(tethers_, tethers, GL_STATIC_DRAW);
-  upload_rest_positions();
-}
+GpuSimulator::~GpuSimulator() = default;
 
 void GpuSimulator::upload_rest_positions() {
   // Only the bounded contact reads them (one dummy texel otherwise: a view may not be empty).
@@ -183,15 +86,6 @@ void GpuSimulator::upload_rest_positions() {
   if (rest.empty()) rest.resize(1);
   gl::upload_vector(rest_positions_, rest, GL_STATIC_DRAW);
   rest_positions_view_.attach(rest_positions_, GL_RGBA32F);
-}
-
-void GpuSimulator::upload_multipliers(std::vector<Vec4<float>> multipliers) {
-  multipliers.resize(std::max<size_t>(1, model_.springs.size()), Vec4<float>(0));
-  gl::upload_vector(multipliers_, multipliers);
-  multipliers_view_.attach(multipliers_, GL_RGBA32F);
-  meshes_view_.attach(meshes_, GL_RGBA32F);
-  meshes_int_view_.attach(meshes_, GL_RGBA32I);
-  sdf_view_.attach(sdf_, GL_RGBA32F);
 }
 
 void GpuSimulator::upload_materials() {
@@ -207,90 +101,75 @@ void GpuSimulator::upload_materials() {
   particles_view_.attach(particles_, GL_RGBA32F);
 }
 
-void GpuSimulator::barrier(GLbitfield bits) {
-  glMemoryBarrier(bits);
-  ++counters_.barriers;
-}
-
-GpuCounters GpuSimulator::counters() const {
-  return {counters_.dispatches + scan_.counters().dispatches + guard_.counters().dispatches,
-          counters_.barriers + scan_.counters().barriers + guard_.counters().barriers};
-}
-
 size_t GpuSimulator::memory_bytes() const {
-  size_t total = 0;
-  for (const gl::Buffer* b : {&positions_, &displacement_, &forces_, &normals_, &springs_, &spheres_, &planes_,
-                              &step_params_, &positions_out_, &cell_count_, &cell_start_, &cell_entries_,
-                              &sorted_positions_, &tethers_, &wind_forces_, &anchors_, &gather_start_, &gather_,
-                              &particles_, &materials_, &corner_start_, &corner_triangles_, &triangles_, &rest_positions_,
-                              &multipliers_, &meshes_, &sdf_, &stretch_control_, &contacts_})
-    total += b->size();
-  return total + scan_.memory_bytes() + guard_.memory_bytes() + multigrid_memory_bytes();
+  return buffer_bytes() + scan_.memory_bytes() + guard_.memory_bytes();
 }
 
-void GpuSimulator::bind_all() const {
-  positions_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_POSITIONS);
-  displacement_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_DISPLACEMENT);
-  forces_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_FORCES);
-  normals_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_NORMALS);
-  spheres_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_SPHERES);
-  planes_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_PLANES);
-  step_params_.bind_base(GL_UNIFORM_BUFFER, BINDING_STEP_PARAMS);
-  positions_out_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_POSITIONS_OUT);
-  cell_count_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_CELL_COUNT);
-  cell_start_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_CELL_START);
-  cell_entries_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_CELL_ENTRIES);
-  sorted_positions_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_SORTED_POSITIONS);
-  wind_forces_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_WIND_FORCES);
-  anchors_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_ANCHORS);
-  positions_view_.bind(TEXTURE_POSITIONS);
-  displacement_view_.bind(TEXTURE_DISPLACEMENT);
-  springs_view_.bind(TEXTURE_SPRINGS);
-  gather_start_view_.bind(TEXTURE_GATHER_START);
-  gather_view_.bind(TEXTURE_GATHER);
-  particles_view_.bind(TEXTURE_PARTICLES);
-  materials_view_.bind(TEXTURE_MATERIALS);
-  corner_start_view_.bind(TEXTURE_CORNER_START);
-  corner_triangles_view_.bind(TEXTURE_CORNER_TRIANGLES);
-  triangles_view_.bind(TEXTURE_TRIANGLES);
-  spheres_view_.bind(TEXTURE_SPHERES);
-  planes_view_.bind(TEXTURE_PLANES);
-  cell_start_view_.bind(TEXTURE_CELL_START);
-  sorted_positions_view_.bind(TEXTURE_SORTED_POSITIONS);
-  tethers_view_.bind(TEXTURE_TETHERS);
-  rest_positions_view_.bind(TEXTURE_REST_POSITIONS);
-  multipliers_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_MULTIPLIERS);
-  multipliers_view_.bind(TEXTURE_MULTIPLIERS);
-  meshes_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_MESHES);
-  meshes_view_.bind(TEXTURE_MESHES);
-  meshes_int_view_.bind(TEXTURE_MESHES_INT);
-  sdf_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_SDF);
-  sdf_view_.bind(TEXTURE_SDF);
-  bind_multigrid();
+namespace {
+
+// Sets a flag for a scope, cleared however the scope ends (a GL error throws out of a frame).
+struct ScopedFlag {
+  explicit ScopedFlag(bool& flag) : flag_(flag) { flag_ = true; }
+  ~ScopedFlag() { flag_ = false; }
+  ScopedFlag(const ScopedFlag&) = delete;
+  ScopedFlag& operator=(const ScopedFlag&) = delete;
+  bool& flag_;
+};
+
+}  // namespace
+
+void GpuSimulator::step() {
+  // Moving colliders, pins and gusts: the small parameter upload of this substep's time.
+  if (constants_.timeline.moves()) apply_substep_time();
+  ensure_multigrid();  // (after a live edit rebuilt the hierarchy) before the bindings
+  bind_all();  // once: nothing in the step binds over these (swap_positions rebinds its two)
+  {
+    const ScopedFlag in_step(in_step_);
+    const uint16_t features = shape().features;
+    for (const PassRow& r : kPasses)
+      if (r.stage && runs(r, features)) run_stage(r.id);
+  }
+  time_ += dt_;  // per substep, exactly as CpuBackend counts it
 }
 
-void GpuSimulator::attach_views() {
-  positions_view_.attach(positions_, GL_RGBA32F);
-  positions_out_view_.attach(positions_out_, GL_RGBA32F);
-  displacement_view_.attach(displacement_, GL_RGBA32F);
-  springs_view_.attach(springs_, GL_RGBA32UI);
-  gather_start_view_.attach(gather_start_, GL_R32UI);
-  gather_view_.attach(gather_, GL_RGBA32UI);
-  particles_view_.attach(particles_, GL_RGBA32F);
-  materials_view_.attach(materials_, GL_RGBA32F);
-  corner_start_view_.attach(corner_start_, GL_R32UI);
-  corner_triangles_view_.attach(corner_triangles_, GL_R32UI);
-  triangles_view_.attach(triangles_, GL_RGBA32UI);
-  spheres_view_.attach(spheres_, GL_RGBA32F);
-  planes_view_.attach(planes_, GL_RGBA32F);
-  cell_start_view_.attach(cell_start_, GL_R32UI);
-  sorted_positions_view_.attach(sorted_positions_, GL_RGBA32F);
-  tethers_view_.attach(tethers_, GL_RGBA32F);
-  rest_positions_view_.attach(rest_positions_, GL_RGBA32F);
-  multipliers_view_.attach(multipliers_, GL_RGBA32F);
-  meshes_view_.attach(meshes_, GL_RGBA32F);
-  meshes_int_view_.attach(meshes_, GL_RGBA32I);
-  sdf_view_.attach(sdf_, GL_RGBA32F);
+void GpuSimulator::run_stage(PassId stage) {
+  if (!runs(row(stage), shape().features)) return;
+  // collide_objects reads only a particle's own position and displacement, so it rides along
+  // with the last per-particle pass before the constraints: the first pass without
+  // self-collision, the response with it.
+  const bool colliders = constants_.has_colliders(), self = constants_.self_collision;
+  switch (stage) {
+    case PassId::advance:
+    case PassId::predict: return run(stage, {.collide_objects = colliders && !self});
+    case PassId::resolve_self_contacts: return run(stage, {.collide_objects = colliders});
+    case PassId::restrict_residuals: return cycle_levels();  // the V-cycle down and up
+    default: return run(stage);  // stretch_fixed_passes: the whole enforce_stretch_limit
+  }
+}
+
+void GpuSimulator::step_frame() {
+  const int frame = guard_.frame() + 1;
+  // GL errors, in release builds too: glGetError reads the context's error flags, with no wait
+  // for the GPU (unlike glFinish) and no read-back. First what was raised since the previous
+  // frame's check by someone else (the renderer, a read-back, an edit), so it is not blamed on
+  // the passes; then, after the passes, theirs.
+  gl::check_gl_errors_lazily([&] {
+    return fmt::format("before frame {} on the GPU: raised by a GL call outside the simulation since the previous "
+                       "frame's check (rendering, a read-back or an edit), not by its passes",
+                       frame);
+  });
+  {
+    const ScopedFlag in_frame(in_frame_);
+    for (substep_ = 0; substep_ < int(constants_.steps); ++substep_) step();
+    run(PassId::compute_normals);
+  }
+  guard_.check(positions_);
+  gl::check_gl_errors_lazily([&] {
+    return fmt::format("in frame {} on the GPU: raised by one of the frame's passes ({} substeps of {}; then "
+                       "compute_normals, check_divergence, keep_last_good). A debug build (-DCMAKE_BUILD_TYPE=Debug) "
+                       "names the pass and the GL call",
+                       frame, int(constants_.steps), pass_list());
+  });
 }
 
 GpuBackend::GpuBackend(std::unique_ptr<gl::GlContext> context, const Scene& scene, const ClothModel& model,

@@ -4,26 +4,6 @@
 
 namespace clothsim {
 
-void GpuSimulator::download_hash(SpatialHash& h) {
-  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);  // a read-back, not part of a step
-  h.table_size = table_size_;
-  h.count = gl::download_vector<uint32_t>(cell_count_);
-  h.start = gl::download_vector<uint32_t>(cell_start_);
-  h.entries = gl::download_vector<uint32_t>(cell_entries_);
-}
-
-void GpuSimulator::upload_hash(const SpatialHash& h) {
-  gl::upload_vector(cell_count_, h.count);
-  gl::upload_vector(cell_start_, h.start);
-  gl::upload_vector(cell_entries_, h.entries);
-  attach_views();  // cell_start_view_ follows the reallocated buffer
-}
-
-std::vector<glm::vec4> GpuSimulator::download_sorted_positions() {
-  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-  return gl::download_vector<glm::vec4>(sorted_positions_);
-}
-
 void GpuSimulator::upload(const State<float>& s) {
   gl::upload_vector(positions_, s.pos);
   gl::upload_vector(displacement_, s.disp);
@@ -33,14 +13,6 @@ void GpuSimulator::upload(const State<float>& s) {
   // The Jacobi/ping-pong output matches the buffer it stands in for.
   positions_out_.allocate(positions_.size());
   attach_views();
-}
-
-// The displacements as the state holds them: w, which the reference keeps 0, is the GPU's own
-// scratch within a substep (predict's clearance bound for the contact list, compute/predict.comp).
-std::vector<Vec4<float>> GpuSimulator::download_displacement() const {
-  std::vector<Vec4<float>> disp = gl::download_vector<Vec4<float>>(displacement_);
-  for (Vec4<float>& d : disp) d.w = 0.f;
-  return disp;
 }
 
 void GpuSimulator::download(State<float>& s) {
@@ -69,7 +41,7 @@ void GpuBackend::load_state(const SavedState& saved) {
   // backends round alike.
   load_streams(saved, s, sim_->constants().timeline.dt);
   sim_->upload(s);
-  sim_->compute_normals();
+  sim_->run(PassId::compute_normals);
   sim_->divergence().restart(s.pos, int(saved.frame));
   sim_->set_time(saved.time);
 }

@@ -1,31 +1,31 @@
 // xpbd's and multigrid's enforce_stretch_limit on the GPU (docs/model.md, xpbd step 6): the
 // fixed passes of the length constraint, then the settling ones, each armed on the GPU from
 // what the pass before it found, so that a settled substep skips them with no read-back.
-#include "gpu_stretch_limit.hpp"
+#include "gpu_passes.hpp"
 
 #include <algorithm>
 
 namespace clothsim {
 
-bool GpuSimulator::enabled_colour(int colour) const {
+bool GpuPasses::enabled_colour(int colour) const {
   return model_.colour_start[colour + 1] > model_.colour_start[colour] && constants_.colour_enabled(model_, colour);
 }
 
-void GpuSimulator::enforce_stretch_limit() {
+void GpuPasses::enforce_stretch_limit() {
   if (constants_.stretch_passes_max <= constants_.stretch_passes) {
-    length_constraint_passes(constants_.stretch_passes);
+    length_constraint_passes(constants_.stretch_passes, PassId::stretch_fixed_passes);
     return;
   }
   // As the CPU twin: the fixed passes but the last, then the watched ones from that last one
   // (one, with none fixed) on.
   const int fixed = std::max(constants_.stretch_passes, 1);
-  length_constraint_passes(fixed - 1);
+  length_constraint_passes(fixed - 1, PassId::stretch_fixed_passes);
   settling_passes(fixed);
 }
 
-void GpuSimulator::settling_passes(int fixed) {
-  if (!settling_) settling_ = std::make_unique<GpuSettlingPasses>(dir_, features_);
-  GpuSettlingPasses& p = *settling_;
+void GpuPasses::settling_passes(int fixed) {
+  if (!settling_loaded_) load_rows(Build::settling);
+  settling_loaded_ = true;
   const int colours = model_.colours();
   const size_t bytes = sizeof(layout::StretchControl) + size_t(colours) * sizeof(layout::StretchDispatch);
   if (stretch_control_.size() != bytes) {
@@ -43,29 +43,20 @@ void GpuSimulator::settling_passes(int fixed) {
   stretch_control_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_STRETCH_CONTROL);
   stretch_control_.bind(GL_DISPATCH_INDIRECT_BUFFER);
   for (int pass = fixed - 1; pass < constants_.stretch_passes_max; ++pass) {
-    p.arm.set(p.first_watched, int(pass == fixed - 1));
-    p.arm.dispatch(1);
-    dispatched(p.arm);
-    // The watched pass's dispatches read their workgroups from what the arm wrote (COMMAND: the
-    // indirect-dispatch read), and its invocations store the settling flag the arm cleared
-    // through the same storage buffer (SHADER_STORAGE: their store must land after the arm's,
-    // which COMMAND alone does not order).
-    barrier(GL_COMMAND_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+    const size_t arm = size_t(PassId::arm_stretch_pass);
+    programs_[arm].set(flag_[arm], int(pass == fixed - 1));
+    dispatch_row(PassId::arm_stretch_pass);
     for (int colour = 0; colour < colours; ++colour) {
       if (!enabled_colour(colour)) continue;
       const uint32_t first = model_.colour_start[colour];
-      p.watched.set(p.first, first);
-      p.watched.set(p.count, model_.colour_start[colour + 1] - first);
-      p.watched.dispatch_indirect(GLintptr((1 + colour) * sizeof(layout::StretchDispatch)));
-      dispatched(p.watched);
-      // The next colour reads these positions and displacements (the first pass after the
-      // limit, those of the next substep); the next arm reads the flag.
-      barrier(kComputeReads);
+      // Its workgroups from the colour's entry, which the arm set (0 where the last pass settled).
+      dispatch_row(PassId::stretch_watched_passes, {first, model_.colour_start[colour + 1] - first}, false,
+                   GLintptr((1 + colour) * sizeof(layout::StretchDispatch)));
     }
   }
 }
 
-uint64_t GpuSimulator::stretch_settling_passes() const {
+uint64_t GpuPasses::stretch_settling_passes() const {
   if (stretch_control_.size() == 0) return 0;
   // The GPU's count is a uint: the host's 64 bits are for the CPU's statistic.
   return gl::download_vector<glm::uvec4>(stretch_control_, 0, 1)[0].y;

@@ -50,24 +50,24 @@ void check_self_collision_stages(const Constants<float>& c, State<float>& s, Gpu
   SpatialHash g;
   gpu.upload(s);
   count_cells(buckets, h);
-  gpu.count_cells();
+  gpu.run(PassId::count_cells);
   gpu.download_hash(g);
   out.push_back(integer_result("count_cells", differing(g.count, h.count)));
   gpu.upload_hash(h);
   scan_cells(h);
-  gpu.scan_cells();
+  gpu.run(PassId::scan_cells);
   gpu.download_hash(g);
   out.push_back(integer_result("scan_cells", differing(g.start, h.start)));
   gpu.upload_hash(h);
   fill_cells(buckets, order, h);
-  gpu.fill_cells();
+  gpu.run(PassId::fill_cells);
   gpu.download_hash(g);
   out.push_back(integer_result("fill_cells (as a set per bucket)",
                                differing(g.count, h.count) +
                                    differing(entries_as_sets(h, g.entries), entries_as_sets(h, h.entries))));
   gpu.upload_hash(h);
   sort_cells(h);
-  gpu.sort_cells();
+  gpu.run(PassId::sort_cells);
   gpu.download_hash(g);
   std::vector<glm::vec4> want_sorted(n);
   for (size_t e = 0; e < n; ++e) want_sorted[e] = s.pos[h.entries[e]];
@@ -75,7 +75,7 @@ void check_self_collision_stages(const Constants<float>& c, State<float>& s, Gpu
                                differing(g.entries, h.entries) + differing(gpu.download_sorted_positions(), want_sorted)));
   // The GPU's hash and sorted positions are now the CPU's: the response reads them.
   resolve_self_contacts(c, s);
-  gpu.resolve_self_contacts();
+  gpu.run(PassId::resolve_self_contacts);
   State<float> r;
   gpu.download(r);
   const auto both = positions_and_displacements;
@@ -110,23 +110,23 @@ void check_multigrid_passes(const ClothModel& model, const Constants<float>& c, 
     const Deviation d = deviation(stream(g), stream(s));
     out.push_back({name, d.max, d.bitwise});
   };
-  check("compute_residuals", [&] { compute_residuals(model, c, s); }, [&] { gpu.compute_residuals(); });
+  check("compute_residuals", [&] { compute_residuals(model, c, s); }, [&] { gpu.run(PassId::compute_residuals); });
   const int levels = int(h.levels.size());
   auto sweep = [&](int l, int sweeps) {
     const int colours = int(h.levels[size_t(l)].colour_start.size()) - 1;
     check(fmt::format("smooth_corrections (level {}, {} x {} colours)", l + 1, sweeps, colours),
-          [&] { smooth_level(c, l, sweeps, s); }, [&] { gpu.smooth_level(l, sweeps); });
+          [&] { smooth_level(c, l, sweeps, s); }, [&] { gpu.run(PassId::smooth_corrections, {.level = l, .sweeps = sweeps}); });
   };
   auto prolong = [&](int l) {
     check(fmt::format("prolong_corrections (level {})", l + 1), [&] { prolong_corrections(c, l, s); },
-          [&] { gpu.prolong_corrections(l); });
+          [&] { gpu.run(PassId::prolong_corrections, {.level = l}); });
   };
   const int small = levels > 0 ? first_small_level(h) : 0;
   State<float> before_small;
   for (int l = 0; l < levels; ++l) {
     if (l == small) before_small = s;
     check(fmt::format("restrict_residuals (level {})", l + 1), [&] { restrict_residuals(c, l, s); },
-          [&] { gpu.restrict_residuals(l); });
+          [&] { gpu.run(PassId::restrict_residuals, {.level = l}); });
   }
   if (levels > 0) {
     // The cycle restricts the small levels itself: from before their restrictions above, their
@@ -136,7 +136,7 @@ void check_multigrid_passes(const ClothModel& model, const Constants<float>& c, 
       s.coarse_rhs[g] = s.coarse_corr[g] = s.residual[s.pos.size() + g] = Vec4<float>(0);
     }
     check(fmt::format("cycle_small_levels (levels {} to {}, {} coarsest sweeps)", small + 1, levels, kCoarsestSweeps),
-          [&] { cycle_small_levels(c, s); }, [&] { gpu.cycle_small_levels(); });
+          [&] { cycle_small_levels(c, s); }, [&] { gpu.run(PassId::cycle_small_levels); });
     // The small levels' prolongation and sweep as passes of their own too, from where the
     // cycle left them (each backend does the same to the same state), then back there.
     const State<float> cycled = s;
@@ -150,14 +150,12 @@ void check_multigrid_passes(const ClothModel& model, const Constants<float>& c, 
     prolong(l);
     sweep(l, kLevelSweeps);
   }
-  check("prolong_to_cloth", [&] { prolong_to_cloth(model, c, s); }, [&] { gpu.prolong_to_cloth(); });
+  check("prolong_to_cloth", [&] { prolong_to_cloth(model, c, s); }, [&] { gpu.run(PassId::prolong_to_cloth); });
   check(fmt::format("relax_vertices ({} colours)", h.fine_colours()),
         [&] {
           for (int k = 0; k < h.fine_colours(); ++k) relax_vertices(model, c, k, s);
         },
-        [&] {
-          for (int k = 0; k < h.fine_colours(); ++k) gpu.relax_vertices(k);
-        });
+        [&] { gpu.run(PassId::relax_vertices); });
 }
 
 // enforce_stretch_limit with settling passes, from the state with every free mass moved away
@@ -192,6 +190,103 @@ void check_settling_passes(const ClothModel& model, const Constants<float>& c, S
 
 }  // namespace
 
+namespace {
+
+// One pass on both sides from the CPU's current state; leaves the CPU after the pass.
+struct PassCheck {
+  const ClothModel& model;
+  const Constants<float>& c;
+  State<float>& s;
+  GpuSimulator& gpu;
+  std::vector<PassError>& out;
+  using Stream = std::function<std::vector<Vec4<float>>(const State<float>&)>;
+  void check(const std::string& name, const std::function<void()>& on_cpu, const std::function<void()>& on_gpu,
+             const Stream& stream) {
+    State<float> g;
+    gpu.upload(s);
+    on_cpu();
+    on_gpu();
+    gpu.download(g);
+    const Deviation d = deviation(stream(g), stream(s));
+    out.push_back({name, d.max, d.bitwise});
+  }
+  // A pass of the table alone (its row's name), its CPU twin `on_cpu`.
+  void check(PassId pass, const std::function<void()>& on_cpu, const Stream& stream, PassArgs args = {}) {
+    check(row(pass).name, on_cpu, [&] { gpu.run(pass, args); }, stream);
+  }
+  // The same fused with collide_objects after it, as the step runs it.
+  void check_fused(PassId pass, const std::function<void()>& on_cpu, const Stream& stream) {
+    check(fmt::format("{} (+ collide_objects)", row(pass).name), [&] { on_cpu(), collide_objects(c, s); },
+          [&] { gpu.run(pass, {.collide_objects = true}); }, stream);
+  }
+  // A force error matters by the displacement it causes in one substep: F * w * dt^2.
+  Stream displacement_of(std::vector<Vec4<float>> State<float>::*forces) const {
+    return [this, forces](const State<float>& st) {
+      std::vector<Vec4<float>> v((st.*forces).size());
+      for (size_t i = 0; i < v.size(); ++i) v[i] = (st.*forces)[i] * (s.pos[i].w * c.dt2);
+      return v;
+    };
+  }
+};
+
+const PassCheck::Stream kBoth = positions_and_displacements;
+
+// The unfused passes, then (from the same state) the fused ones GpuSimulator::step runs:
+// collide_objects rides along with advance, or with collide_self when that is on.
+void check_classic_passes(PassCheck& k) {
+  const ClothModel& model = k.model;
+  const Constants<float>& c = k.c;
+  State<float>& s = k.s;
+  if (c.wind.enabled) k.check(PassId::compute_wind_forces, [&] { compute_wind_forces(model, c, s); }, k.displacement_of(&State<float>::wind));
+  const State<float> start = s;
+  k.check(PassId::accumulate_forces, [&] { accumulate_forces(model, c, s); }, k.displacement_of(&State<float>::force));
+  k.check(PassId::integrate, [&] { integrate(model, c, s); }, kBoth);
+  s = start;
+  const bool colliders = c.has_colliders();
+  if (colliders && !c.self_collision) k.check_fused(PassId::advance, [&] { advance(model, c, s); }, kBoth);
+  else k.check(PassId::advance, [&] { advance(model, c, s); }, kBoth);
+  if (c.self_collision) {
+    const State<float> before = s;
+    check_self_collision_stages(c, s, k.gpu, k.out);
+    s = before;
+    k.check("collide_self", [&] { collide_self(c, s); }, [&] { k.gpu.collide_self(); }, kBoth);
+    if (colliders) {
+      s = before;
+      k.check("collide_self (+ collide_objects)", [&] { collide_self(c, s), collide_objects(c, s); },
+              [&] { k.gpu.collide_self(true); }, kBoth);
+    }
+  }
+  k.check(PassId::collide_objects, [&] { collide_objects(c, s); }, kBoth);
+  k.check(PassId::solve_length_constraints, [&] { solve_length_constraints(model, c, s); }, kBoth);
+}
+
+// The xpbd solver's passes, whichever solver the scene uses (validate checks every pass).
+void check_xpbd_passes(PassCheck& k) {
+  const ClothModel& model = k.model;
+  const Constants<float>& c = k.c;
+  State<float>& s = k.s;
+  const State<float> classic_done = s;
+  k.check(PassId::predict, [&] { predict(model, c, s); }, kBoth);
+  if (c.has_colliders()) {
+    s = classic_done;
+    k.check_fused(PassId::predict, [&] { predict(model, c, s); }, kBoth);
+  }
+  // The sweep also writes the springs' carried multipliers (direction, lambda).
+  k.check(PassId::solve_distance_constraints, [&] { solve_distance_constraints(model, c, s); },
+          [](const State<float>& st) {
+            auto v = positions_and_displacements(st);
+            v.insert(v.end(), st.lambda.begin(), st.lambda.end());
+            return v;
+          });
+  if (c.stretch_passes_max > c.stretch_passes) check_settling_passes(model, c, s, k.gpu, k.out);
+  // Predict again, now from the multipliers that sweep carried (a classic scene has none
+  // before it): their forces in the gather order.
+  k.check("predict (the sweep's multipliers carried)", [&] { predict(model, c, s); },
+          [&] { k.gpu.run(PassId::predict); }, kBoth);
+}
+
+}  // namespace
+
 std::vector<PassError> check_passes(const Scene& scene, const ClothModel& model, GpuSimulator& gpu, int warmup) {
   CpuBackend<float> cpu(scene, model);
   for (int f = 0; f < warmup; ++f) cpu.step_frame();
@@ -200,94 +295,12 @@ std::vector<PassError> check_passes(const Scene& scene, const ClothModel& model,
   gpu.set_time(cpu.time());
   const Constants<float>& c = cpu.constants();
   State<float>& s = cpu.state();
-  State<float> g;
   std::vector<PassError> out;
-
-  // Runs one pass on both sides from the CPU's current state; leaves the CPU after the pass.
-  auto check = [&](const char* name, const std::function<void()>& on_cpu, const std::function<void()>& on_gpu,
-                   auto stream) {
-    gpu.upload(s);
-    on_cpu();
-    on_gpu();
-    gpu.download(g);
-    Deviation d = deviation(stream(g), stream(s));
-    out.push_back({name, d.max, d.bitwise});
-  };
-  const auto both = positions_and_displacements;
-  // xpbd's sweep also writes the springs' carried multipliers (direction, lambda).
-  auto with_multipliers = [&](const State<float>& st) {
-    auto v = both(st);
-    v.insert(v.end(), st.lambda.begin(), st.lambda.end());
-    return v;
-  };
-  // A force error matters by the displacement it causes in one substep: F * w * dt^2.
-  auto displacement = [&](const State<float>& st) {
-    std::vector<Vec4<float>> v(st.force.size());
-    for (size_t i = 0; i < v.size(); ++i) v[i] = st.force[i] * (s.pos[i].w * c.dt2);
-    return v;
-  };
-  // The unfused passes, then (from the same state) the fused ones GpuSimulator::step runs:
-  // collide_objects rides along with advance, or with collide_self when that is on.
-  if (c.wind.enabled) {
-    // Judged like the spring forces, by the displacement it causes in one substep.
-    auto wind = [&](const State<float>& st) {
-      std::vector<Vec4<float>> v(st.wind.size());
-      for (size_t i = 0; i < v.size(); ++i) v[i] = st.wind[i] * (s.pos[i].w * c.dt2);
-      return v;
-    };
-    check("compute_wind_forces", [&] { compute_wind_forces(model, c, s); }, [&] { gpu.compute_wind_forces(); }, wind);
-  }
-  const State<float> start = s;
-  check("accumulate_forces", [&] { accumulate_forces(model, c, s); }, [&] { gpu.accumulate_forces(); }, displacement);
-  check("integrate", [&] { integrate(model, c, s); }, [&] { gpu.integrate(); }, both);
-  s = start;
-  const bool colliders = c.has_colliders();
-  const bool objects_in_advance = colliders && !c.self_collision;
-  check(objects_in_advance ? "advance (+ collide_objects)" : "advance",
-        [&] {
-          advance(model, c, s);
-          if (objects_in_advance) collide_objects(c, s);
-        },
-        [&] { gpu.advance(objects_in_advance); }, both);
-  if (c.self_collision) {
-    const State<float> before = s;
-    check_self_collision_stages(c, s, gpu, out);
-    s = before;
-    check("collide_self", [&] { collide_self(c, s); }, [&] { gpu.collide_self(); }, both);
-    if (colliders) {
-      s = before;
-      check("collide_self (+ collide_objects)",
-            [&] {
-              collide_self(c, s);
-              collide_objects(c, s);
-            },
-            [&] { gpu.collide_self(true); }, both);
-    }
-  }
-  check("collide_objects", [&] { collide_objects(c, s); }, [&] { gpu.collide_objects(); }, both);
-  check("solve_length_constraints", [&] { solve_length_constraints(model, c, s); },
-        [&] { gpu.solve_length_constraints(); }, both);
-  // The xpbd solver's passes, whichever solver the scene uses (validate checks every pass).
-  const State<float> classic_done = s;
-  check("predict", [&] { predict(model, c, s); }, [&] { gpu.predict(); }, both);
-  if (colliders) {
-    s = classic_done;
-    check("predict (+ collide_objects)",
-          [&] {
-            predict(model, c, s);
-            collide_objects(c, s);
-          },
-          [&] { gpu.predict(true); }, both);
-  }
-  check("solve_distance_constraints", [&] { solve_distance_constraints(model, c, s); },
-        [&] { gpu.solve_distance_constraints(); }, with_multipliers);
-  if (c.stretch_passes_max > c.stretch_passes) check_settling_passes(model, c, s, gpu, out);
-  // Predict again, now from the multipliers that sweep carried (a classic scene has none
-  // before it): their forces in the gather order.
-  check("predict (the sweep's multipliers carried)", [&] { predict(model, c, s); }, [&] { gpu.predict(); }, both);
+  PassCheck k{model, c, s, gpu, out};
+  check_classic_passes(k);
+  check_xpbd_passes(k);
   if (c.multigrid) check_multigrid_passes(model, c, s, gpu, out);
-  check("compute_normals", [&] { compute_normals(model, s); }, [&] { gpu.compute_normals(); },
-        [](const State<float>& st) { return st.normal; });
+  k.check(PassId::compute_normals, [&] { compute_normals(model, s); }, [](const State<float>& st) { return st.normal; });
   return out;
 }
 

@@ -20,7 +20,7 @@ bool Viewer::poll_divergence() {
     // A particle held at that frame was kept with inverse mass 0: give it its own back.
     if (grab_.active()) session_.sim->release_particle(grab_.particle);
     grab_ = {};
-    session_.sim->compute_normals();
+    session_.sim->run(PassId::compute_normals);
     guard.restart(good, frame);
     st_.paused = true;
     st_.step_once = false;
