@@ -187,7 +187,6 @@ class GpuSimulator {
   const ClothModel& model_;
   const std::filesystem::path dir_;
   Constants<float> constants_;
-  layout::StepParams params_{};
   std::vector<double> masses_;  // kg, for the current densities (particle_masses)
   double dt_;  // the substep length the displacements are per
   double time_ = 0;  // simulated seconds at the start of the next substep
@@ -244,9 +243,6 @@ class GpuSimulator {
   gl::Buffer contacts_{"contact list"};  // ContactListHeader, then a uint per listed mass
   gl::Buffer no_offsets_{"no multigrid offsets"};  // one element, bound in their place without multigrid
 };
-
-// The parameter block of a substep, from the same Constants<float> the reference uses.
-layout::StepParams make_step_params(const Constants<float>& c, const ClothModel& m);
 
 // The GPU simulator as a Backend: owns the headless context it runs in.
 class GpuBackend final : public Backend {

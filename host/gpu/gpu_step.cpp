@@ -204,7 +204,7 @@ void GpuSimulator::step() {
   {
   const ScopedFlag in_step(in_step_);
   const bool objects_first = colliders && !constants_.self_collision;
-  if (constants_.wind.enabled) compute_wind_forces();  // advance or predict add them
+  if (constants_.wind_enabled) compute_wind_forces();  // advance or predict add them
   if (constants_.xpbd) {
     predict(objects_first);
     if (constants_.self_collision) collide_self(colliders);
@@ -223,7 +223,7 @@ void GpuSimulator::step() {
 }
 
 std::string GpuSimulator::pass_list() const {
-  std::string passes = constants_.wind.enabled ? "compute_wind_forces, " : "";
+  std::string passes = constants_.wind_enabled ? "compute_wind_forces, " : "";
   passes += constants_.xpbd ? "predict" : "advance";
   if (!constants_.self_collision && uses_contact_list()) passes += ", collide_objects (the listed masses)";
   if (constants_.self_collision) passes += ", collide_self (count_cells, scan_cells, fill_cells, sort_cells, resolve_self_contacts)";
@@ -276,10 +276,10 @@ int GpuSimulator::dispatches_per_substep() const {
   const int limit = most > fixed ? most * enabled_colours + most - std::max(fixed, 1) + 1 : fixed * enabled_colours;
   // The first pass's collide_objects over the contact list, where the step collides through it.
   const int listed = !constants_.self_collision && uses_contact_list() ? 1 : 0;
-  if (constants_.multigrid) return 1 + listed + int(constants_.wind.enabled) + self + multigrid_dispatches() + limit;
+  if (constants_.multigrid) return 1 + listed + int(constants_.wind_enabled) + self + multigrid_dispatches() + limit;
   // xpbd's sweep pushes each colour's listed masses out after it.
   const int sweep = constants_.xpbd ? (uses_contact_list() ? 2 : 1) * enabled_colours : constants_.iterations * enabled_colours;
-  return 1 + listed + int(constants_.wind.enabled) + self + sweep + limit;
+  return 1 + listed + int(constants_.wind_enabled) + self + sweep + limit;
 }
 
 }  // namespace clothsim

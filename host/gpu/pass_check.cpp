@@ -228,7 +228,7 @@ std::vector<PassError> check_passes(const Scene& scene, const ClothModel& model,
   };
   // The unfused passes, then (from the same state) the fused ones GpuSimulator::step runs:
   // collide_objects rides along with advance, or with collide_self when that is on.
-  if (c.wind.enabled) {
+  if (c.wind_enabled) {
     // Judged like the spring forces, by the displacement it causes in one substep.
     auto wind = [&](const State<float>& st) {
       std::vector<Vec4<float>> v(st.wind.size());
