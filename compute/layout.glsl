@@ -25,6 +25,22 @@ using uint = uint32_t;
 #else
 #define STRUCT_ALIGN16 struct
 #endif
+// The structs the CPU reference reads too (the colliders, StepParams) are declared once in a
+// dialect of both languages: in C++ a template on the scalar REAL, NameT<REAL> (the reference
+// runs in float and double; the GPU uploads the float one's bytes as they are, and only its
+// layout is checked), with `Name` the float one; in GLSL the plain struct `Name` of floats.
+#ifdef __cplusplus
+#define VEC3 glm::vec<3, REAL>
+#define VEC4 glm::vec<4, REAL>
+#define UINT uint32_t
+#define SCALAR_STRUCT(Name) template <class REAL> struct alignas(16) Name##T
+#else
+#define REAL float
+#define VEC3 vec3
+#define VEC4 vec4
+#define UINT uint
+#define SCALAR_STRUCT(Name) struct Name
+#endif
 
 // Shader-storage buffer bindings of the simulation (one per per-particle stream). The
 // simulator binds them once per step; nothing else uses these points, so they stay put while
@@ -148,30 +164,40 @@ struct MaterialTexels {
 
 // `motion`: the collider's displacement over this substep (keyframed motion, set by the host
 // every substep); exactly 0 for a static collider, which then takes the classic formulas.
-struct SphereCollider {
-  vec4 origin_radius;  // xyz origin (at the substep's end), w radius
-  vec4 keep;           // x = 1 - friction, y = friction (xpbd's Coulomb mu)
-  vec4 motion;         // xyz m over this substep
+// keep.x multiplies the tangential motion kept in a contact (the CS184 blend), keep.y is
+// xpbd's Coulomb mu. Origin, point and motion belong to the substep (Control in
+// host/core/reference/reference.hpp); the rest is fixed over a run.
+SCALAR_STRUCT(SphereCollider) {
+  VEC4 origin_radius;  // xyz origin (at the substep's end), w radius
+  VEC4 keep;           // x = 1 - friction, y = friction (xpbd's Coulomb mu)
+  VEC4 motion;         // xyz m over this substep
 };
 
-struct PlaneCollider {
-  vec4 point;   // xyz a point on the plane (at the substep's end), w its front: +1 or -1, the cloth's side
-  vec4 normal;  // xyz unit normal, w = 1 - friction
-  vec4 motion;  // xyz m over this substep, w = friction (xpbd's Coulomb mu)
+// point.w, the front: the side of the plane the cloth starts on (its rest centre's side, +1
+// when on it); a mass is in contact whenever it is not in front, however it got behind (with
+// xpbd's Coulomb friction also when within the surface offset in front: docs/model.md).
+SCALAR_STRUCT(PlaneCollider) {
+  VEC4 point;   // xyz a point on the plane (at the substep's end), w its front: +1 or -1, the cloth's side
+  VEC4 normal;  // xyz unit normal, w = 1 - friction
+  VEC4 motion;  // xyz m over this substep, w = friction (xpbd's Coulomb mu)
 };
 
-// A mesh collider (MeshC in host/core/reference/reference.hpp): a mass at x is at local =
-// rows (x - origin) in its field's frame; node (0, 0, 0) of the field is at grid_min, its nodes
-// are the texels of TEXTURE_SDF from dims.w on, x fastest (each with its +x, +y, +x+y neighbours).
-struct MeshCollider {
-  vec4 row0;       // xyz the first row of the rotation's transpose, w origin.x (at the substep's end)
-  vec4 row1;       // xyz the second row, w origin.y
-  vec4 row2;       // xyz the third row, w origin.z
-  vec4 grid;       // xyz grid_min, w 1 / node spacing
+// A mesh collider through its signed distance field (host/core/colliders/sdf.hpp): a mass at x
+// is at local = rows (x - origin) in its field's frame (rows: the rotation's transpose); node
+// (0, 0, 0) of the field is at grid_min, its nodes are the texels of TEXTURE_SDF (on the CPU
+// Constants::sdf) from dims.w on, x fastest (each with its +x, +y, +x+y neighbours). A mass
+// closer than `thickness` to the surface (or inside) is pushed out along the field's gradient.
+// closed: the field is signed (a closed mesh); else unsigned, the collider a shell. crossing:
+// half the thickness, how near two path samples straddling a shell pass (passed_through_mesh).
+SCALAR_STRUCT(MeshCollider) {
+  VEC4 row0;       // xyz the first row of the rotation's transpose, w origin.x (at the substep's end)
+  VEC4 row1;       // xyz the second row, w origin.y
+  VEC4 row2;       // xyz the third row, w origin.z
+  VEC4 grid;       // xyz grid_min, w 1 / node spacing
   ivec4 dims;      // xyz nodes along x, y, z, w the offset of node (0, 0, 0) (read through TEXTURE_MESHES_INT)
-  vec4 motion;     // xyz m over this substep, w = 1 - friction
-  vec4 material;   // x friction (xpbd's Coulomb mu), y thickness (m), z crossing (MeshC), w 1 closed, 0 open
-  vec4 bound;      // x the field's slope bound in the world (sdf_slopes), yzw unused
+  VEC4 motion;     // xyz m over this substep, w = 1 - friction
+  VEC4 material;   // x friction (xpbd's Coulomb mu), y thickness (m), z crossing, w 1 closed, 0 open
+  VEC4 bound;      // x the field's slope bound in the world (sdf_slopes; the GPU's contact list), yzw unused
 };
 
 // Per-vertex extras of a drawn mesh: a collider's uv and tangent; the cloth's uv, and in uv.zw the particles
@@ -197,45 +223,47 @@ struct ShadowFrame {
   vec4 range;               // x near, y far (m along the light's axis), z tan of the half angle, w 1 / map texels per side
 };
 
-// Everything a pass needs that is constant over a substep. Built on the host from the
-// same Constants<float> the CPU reference uses, so both sides see identical floats. One
+// Everything a pass needs that is constant over a substep: the CPU reference's own (Constants<R>
+// in host/core/reference/reference.hpp is built on StepParamsT<R>), uploaded from
+// Constants<float> as it is, so both sides see identical floats. One
 // named scalar per value (std140 packs consecutive scalars as C++ does, and the vec3 first
 // leaves exactly the 4 bytes the scalar after it takes), declared once through
 // STEP_PARAMS_FIELDS so that tests/test_gpu_layout.cpp checks every field's offset and
 // value, a field added later included.
 #define STEP_PARAMS_FIELDS(F)                                                               \
-  F(vec3, gravity)             /* m/s^2 */                                                 \
-  F(float, dt2)                /* s^2, the substep squared */                              \
-  F(vec3, wind_velocity)       /* m/s, of the air (WindC in host/core/reference/reference.hpp) */    \
-  F(float, wind_drag)          /* -rho C_d / 12 */                                         \
-  F(vec3, gust_velocity)       /* m/s, strength * wind_velocity */                         \
-  F(float, wind_lift)          /* -rho C_l / 12 */                                         \
-  F(vec3, wind_direction)      /* unit wind_velocity (gusts travel along it) */            \
-  F(float, gust_phase)         /* fract(t / period) at the substep's start */              \
-  F(vec3, pin_offset)          /* m, pinned_motion at the substep's end */                 \
-  F(float, wind_inv_3dt)       /* 1/s, 1 / (3 dt) */                                       \
-  F(float, stretch_limit)      /* 1 + max_stretch */                                       \
-  F(float, contact_distance)   /* m, 2 thickness: self-collision keeps masses this far */  \
-  F(float, inv_cell)           /* 1/m, 1 / the hash cell edge (edge = contact_distance) */ \
-  F(float, steps)              /* simulation_steps, as a float */                          \
-  F(float, tether_limit)       /* xpbd: 1 + tether_stretch */                              \
-  F(uint, count)               /* particles */                                             \
-  F(uint, table_size)          /* hash buckets, a power of two */                          \
-  F(uint, sphere_count)        /* SphereCollider entries in use */                         \
-  F(uint, plane_count)         /* PlaneCollider entries in use */                          \
-  F(float, gust_inv_length3)   /* 1/m, 1 / (3 gust length) */                              \
-  F(uint, wind_enabled)        /* 1 = compute_wind_forces runs and advance adds its force */ \
-  F(uint, gust_enabled)        /* 1 = the wind has gusts */                                \
-  F(uint, pins_moving)         /* 1 = pinned masses follow pinned_motion */                \
-  F(uint, bounded_contact)     /* 1 = xpbd's self-contact (docs/model.md) */               \
-  F(float, max_step)           /* m, predict's displacement limit per substep (0: none) */ \
-  F(uint, coulomb_friction)    /* 1 = contacts take Coulomb friction (xpbd), 0 the CS184 blend */ \
-  F(uint, mesh_count)          /* MeshCollider entries in use */                         \
-  F(float, inv_dt2)            /* 1/s^2, 1 / dt^2: a mass's inertia per kg (multigrid) */   \
-  F(uint, multigrid)           /* 1 = the multigrid solver: predict leaves the external forces to its solve */
+  F(VEC3, gravity)             /* m/s^2 */                                                 \
+  F(REAL, dt2)                 /* s^2, the substep squared */                              \
+  F(VEC3, wind_velocity)       /* m/s, of the air (docs/model.md, "Wind") */                \
+  F(REAL, wind_drag)           /* -rho C_d / 12 */                                         \
+  F(VEC3, gust_velocity)       /* m/s, strength * wind_velocity */                         \
+  F(REAL, wind_lift)           /* -rho C_l / 12 */                                         \
+  F(VEC3, wind_direction)      /* unit wind_velocity (gusts travel along it) */            \
+  F(REAL, gust_phase)          /* fract(t / period) at the substep's start */              \
+  F(VEC3, pin_offset)          /* m, pinned_motion at the substep's end */                 \
+  F(REAL, wind_inv_3dt)        /* 1/s, 1 / (3 dt) */                                       \
+  F(REAL, stretch_limit)       /* 1 + max_stretch */                                       \
+  F(REAL, contact_distance)    /* m, 2 thickness: self-collision keeps masses this far */  \
+  F(REAL, inv_cell)            /* 1/m, 1 / the hash cell edge (edge = contact_distance) */ \
+  F(REAL, steps)               /* simulation_steps, as a float */                          \
+  F(REAL, tether_limit)        /* xpbd: 1 + tether_stretch */                              \
+  F(UINT, count)               /* particles */                                             \
+  F(UINT, table_size)          /* hash buckets, a power of two */                          \
+  F(UINT, sphere_count)        /* SphereCollider entries in use */                         \
+  F(UINT, plane_count)         /* PlaneCollider entries in use */                          \
+  F(REAL, gust_inv_length3)    /* 1/m, 1 / (3 gust length) */                              \
+  F(UINT, wind_enabled)        /* 1 = compute_wind_forces runs and advance adds its force */ \
+  F(UINT, gust_enabled)        /* 1 = the wind has gusts */                                \
+  F(UINT, pins_moving)         /* 1 = pinned masses follow pinned_motion */                \
+  F(UINT, bounded_contact)     /* 1 = xpbd's self-contact (docs/model.md) */               \
+  F(REAL, max_step)            /* m, predict's displacement limit per substep (0: none) */ \
+  F(UINT, coulomb_friction)    /* 1 = contacts take Coulomb friction (xpbd), 0 the CS184 blend */ \
+  F(UINT, mesh_count)          /* MeshCollider entries in use */                         \
+  F(REAL, inv_dt2)             /* 1/s^2, 1 / dt^2: a mass's inertia per kg (multigrid) */   \
+  F(UINT, multigrid)           /* 1 = the multigrid solver: predict leaves the external forces to its solve */
 #define STEP_PARAMS_DECLARE(type, name) type name;
-// std140 rounds the block's size up to 16 bytes; alignas makes sizeof agree.
-STRUCT_ALIGN16 StepParams { STEP_PARAMS_FIELDS(STEP_PARAMS_DECLARE) };
+// std140 rounds the block's size up to 16 bytes; alignas makes sizeof agree (for REAL = float:
+// StepParamsT<double> is the double reference's, never uploaded).
+SCALAR_STRUCT(StepParams) { STEP_PARAMS_FIELDS(STEP_PARAMS_DECLARE) };
 
 // The divergence guard's reduction of one frame. Coordinates are stored as ordered bits
 // (compute/divergence.glsl): uints whose unsigned order is the float order, so that
@@ -264,6 +292,10 @@ struct LastGoodHeader {
 };
 
 #ifdef __cplusplus
+using SphereCollider = SphereColliderT<float>;
+using PlaneCollider = PlaneColliderT<float>;
+using MeshCollider = MeshColliderT<float>;
+using StepParams = StepParamsT<float>;
 static_assert(sizeof(MaterialTexels) == MATERIAL_TEXELS * sizeof(vec4), "MaterialTexels texels");
 static_assert(sizeof(SphereCollider) == SPHERE_TEXELS * sizeof(vec4), "SphereCollider texels");
 static_assert(sizeof(PlaneCollider) == PLANE_TEXELS * sizeof(vec4), "PlaneCollider texels");

@@ -47,7 +47,7 @@ TEST_CASE("mesh colliders on the GPU: every pass and a whole drop as the referen
         gpu.step_frame();
         cpu.step_frame();
         gpu.download(out);
-        const glm::dvec3 at = glm::dvec3(cpu.constants().meshes[0].origin);
+        const glm::dvec3 at = glm::dvec3(mesh_origin(cpu.constants().meshes[0]));
         for (const auto& p : out.pos) deepest = std::max(deepest, shape.depth(glm::dvec3(p.x, p.y, p.z) - at));
       }
       INFO("deepest inside " << deepest << " m");
@@ -101,24 +101,22 @@ TEST_CASE("a drop onto two mesh colliders on the GPU is the reference's", "[gpu]
 // +x+y neighbours, within its own mesh's field (two fields of different shapes side by side), so
 // a cell's eight corners are the x, y, z, w of its lower and upper faces' texels.
 TEST_CASE("a field's texel holds its node and the node's +x, +y and +x+y neighbours", "[mesh_collider]") {
-  std::vector<MeshC<float>> meshes(2);
-  meshes[0].dims = {3, 4, 2};
-  meshes[0].offset = 0;
-  meshes[1].dims = {5, 2, 3};
-  meshes[1].offset = 24;
+  std::vector<layout::MeshCollider> meshes(2);
+  meshes[0].dims = {3, 4, 2, 0};  // w: the offset
+  meshes[1].dims = {5, 2, 3, 24};
   std::vector<float> fields(24 + 30);
   for (size_t k = 0; k < fields.size(); ++k) fields[k] = 0.5f + float(k);
   const std::vector<glm::vec4> texels = sdf_cell_texels(fields, meshes);
   REQUIRE(texels.size() == fields.size());
-  for (const MeshC<float>& m : meshes)
+  for (const layout::MeshCollider& m : meshes)
     for (int z = 0; z < m.dims.z; ++z)
       for (int y = 0; y < m.dims.y; ++y)
         for (int x = 0; x < m.dims.x; ++x) {
           auto node = [&](int i, int j) {
-            return i < m.dims.x && j < m.dims.y ? fields[m.offset + i + m.dims.x * (j + m.dims.y * z)] : 0.f;
+            return i < m.dims.x && j < m.dims.y ? fields[m.dims.w + i + m.dims.x * (j + m.dims.y * z)] : 0.f;
           };
-          const glm::vec4 t = texels[m.offset + x + m.dims.x * (y + m.dims.y * z)];
-          INFO("node " << x << ", " << y << ", " << z << " of the field at " << m.offset);
+          const glm::vec4 t = texels[m.dims.w + x + m.dims.x * (y + m.dims.y * z)];
+          INFO("node " << x << ", " << y << ", " << z << " of the field at " << m.dims.w);
           CHECK(t == glm::vec4(node(x, y), node(x + 1, y), node(x, y + 1), node(x + 1, y + 1)));
         }
 }
@@ -142,26 +140,26 @@ TEST_CASE("a field's slope bound holds between any two points of its grid", "[me
     const Scene s = test::drop_onto_mesh(obj, "xpbd");
     const auto c = make_constants<float>(s, build_cloth(s));
     REQUIRE(c.meshes.size() == 1);
-    const MeshC<float>& m = c.meshes[0];
-    CHECK(m.closed == (shape.name != "open box"));
+    const layout::MeshCollider& m = c.meshes[0];
+    CHECK((m.material.w == 1.f) == (shape.name != "open box"));  // w: closed
     const float slope = sdf_slopes(*c.sdf, c.meshes).at(0);
     INFO("slope bound " << slope);
     // A distance field's neighbours differ by at most a spacing: at most sqrt(3).
     CHECK(slope >= 0.9f);
     CHECK(slope <= 1.7321f);
-    const glm::dvec3 extent = glm::dvec3(m.dims - 1) / double(m.inv_voxel);
+    const glm::dvec3 extent = glm::dvec3(glm::ivec3(m.dims) - 1) / double(m.grid.w);
     std::uniform_real_distribution<double> unit(0.0, 0.999999);
     double worst = 0;  // the largest |phi(a) - phi(b)| / |a - b| seen
     for (int k = 0; k < 4000; ++k) {
       const glm::dvec3 a = glm::dvec3(unit(rng), unit(rng), unit(rng)) * extent;
       // Every other pair within one node spacing: the slope inside and across a few cells.
-      const double reach = k % 2 == 0 ? 1.0 / m.inv_voxel : glm::length(extent);
+      const double reach = k % 2 == 0 ? 1.0 / m.grid.w : glm::length(extent);
       glm::dvec3 b = a + (glm::dvec3(unit(rng), unit(rng), unit(rng)) - 0.5) * reach;
       b = glm::clamp(b, glm::dvec3(0.0), extent * 0.999999);
       float pa = 0, pb = 0;
       Vec3<float> grad;
-      REQUIRE(sample_mesh_field(m, c.sdf->data(), Vec3<float>(m.grid_min) + Vec3<float>(a), pa, grad));
-      REQUIRE(sample_mesh_field(m, c.sdf->data(), Vec3<float>(m.grid_min) + Vec3<float>(b), pb, grad));
+      REQUIRE(sample_mesh_field(m, c.sdf->data(), Vec3<float>(m.grid) + Vec3<float>(a), pa, grad));
+      REQUIRE(sample_mesh_field(m, c.sdf->data(), Vec3<float>(m.grid) + Vec3<float>(b), pb, grad));
       const double apart = glm::length(b - a);
       if (apart > 1e-4) worst = std::max(worst, std::abs(double(pa) - double(pb)) / apart);
     }
@@ -170,9 +168,9 @@ TEST_CASE("a field's slope bound holds between any two points of its grid", "[me
     CHECK(worst >= 0.5 * slope);  // and the bound is not loose by much
   }
   // A field of nodes on a plane, phi = 0.3 x - 0.4 y + 1.2 z (m): slope 1.3, exactly as measured.
-  std::vector<MeshC<float>> plane(1);
-  plane[0].dims = {4, 5, 3};
-  plane[0].inv_voxel = 50.f;  // 2 cm
+  std::vector<layout::MeshCollider> plane(1);
+  plane[0].dims = {4, 5, 3, 0};
+  plane[0].grid.w = 50.f;  // 2 cm
   std::vector<float> nodes;
   for (int z = 0; z < 3; ++z)
     for (int y = 0; y < 5; ++y)

@@ -17,15 +17,13 @@ using namespace clothsim;
 namespace {
 
 // The field of `mesh` at the identity placement, as the collision pass samples it.
-MeshC<double> identity_collider(const SdfGrid& g) {
-  MeshC<double> m;
-  m.rows[0] = {1, 0, 0};
-  m.rows[1] = {0, 1, 0};
-  m.rows[2] = {0, 0, 1};
-  m.origin = glm::dvec3(0.0);
-  m.grid_min = g.min;
-  m.inv_voxel = 1.0 / g.voxel;
-  m.dims = g.dims;
+MeshColliderT<double> identity_collider(const SdfGrid& g) {
+  MeshColliderT<double> m{};
+  m.row0 = {1, 0, 0, 0};  // w: the origin
+  m.row1 = {0, 1, 0, 0};
+  m.row2 = {0, 0, 1, 0};
+  m.grid = glm::dvec4(g.min, 1.0 / g.voxel);
+  m.dims = glm::ivec4(g.dims, 0);
   return m;
 }
 
@@ -38,7 +36,7 @@ TEST_CASE("a mesh's signed distance field agrees with the exact distance in its 
     const SdfGrid g = build_sdf(shape.mesh, 0.01);
     CHECK(g.closed);
     CHECK(g.boundary_edges == 0);
-    const MeshC<double> m = identity_collider(g);
+    const MeshColliderT<double> m = identity_collider(g);
     std::mt19937_64 rng(7);
     const glm::dvec3 lo = g.min, hi = g.min + glm::dvec3(g.dims - 1) * g.voxel;
     std::uniform_real_distribution<double> ux(lo.x, hi.x), uy(lo.y, hi.y), uz(lo.z, hi.z);
@@ -80,7 +78,7 @@ TEST_CASE("an open mesh gets an unsigned field: a shell with no inside", "[mesh_
   for (float v : g.values) lowest = std::min(lowest, double(v));
   CHECK(lowest >= 0);
   // At the centre the distance to the shell is its radius (beyond the band: clamped to it).
-  const MeshC<double> m = identity_collider(g);
+  const MeshColliderT<double> m = identity_collider(g);
   double phi;
   glm::dvec3 grad;
   REQUIRE(sample_mesh_field(m, g.values.data(), glm::dvec3(0.0), phi, grad));

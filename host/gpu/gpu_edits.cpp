@@ -9,12 +9,26 @@
 
 namespace clothsim {
 
+namespace {
+
+// A collider array as it is (a storage buffer may not be empty when bound: one dummy element
+// for none): in place when its size holds (moving colliders, every substep; the views stay
+// attached), else made again. True when made again.
+template <class T> bool upload_array(gl::Buffer& buffer, const std::vector<T>& items) {
+  const std::vector<T> dummy(1);
+  const std::vector<T>& v = items.empty() ? dummy : items;
+  const size_t bytes = v.size() * sizeof(T);
+  if (buffer.size() == bytes) {
+    buffer.upload(0, bytes, v.data());
+    return false;
+  }
+  gl::upload_vector(buffer, v, GL_DYNAMIC_DRAW);
+  return true;
+}
+
+}  // namespace
+
 void GpuSimulator::upload_colliders() {
-  auto v4 = [](const Vec3<float>& v, float w) { return glm::vec4(v.x, v.y, v.z, w); };
-  std::vector<layout::SphereCollider> spheres;
-  for (auto& s : constants_.spheres) spheres.push_back({v4(s.origin, s.radius), {s.keep, s.mu, 0.f, 0.f}, v4(s.motion, 0.f)});
-  std::vector<layout::PlaneCollider> planes;
-  for (auto& p : constants_.planes) planes.push_back({v4(p.point, p.front), v4(p.normal, p.keep), v4(p.motion, p.mu)});
   // The fields never change during a run: uploaded when the constants bring another set.
   const std::vector<float>* sdf = constants_.sdf.get();
   if (sdf != sdf_source_ || sdf_.size() == 0) {
@@ -31,45 +45,18 @@ void GpuSimulator::upload_colliders() {
     sdf_source_ = sdf;
     sdf_slopes_.clear();
   }
-  // Each field's slope bound, measured once per set of fields (the contact list's bound).
+  // Each field's slope bound, measured once per set of fields (the contact list's bound, which
+  // the reference does not read): kept in the colliders' own bound.x.
   if (sdf_slopes_.size() != constants_.meshes.size())
     sdf_slopes_ = sdf != nullptr ? sdf_slopes(*sdf, constants_.meshes) : std::vector<float>(constants_.meshes.size(), 1e30f);
-  std::vector<layout::MeshCollider> meshes;
-  for (auto& m : constants_.meshes) {
-    layout::MeshCollider g;
-    g.row0 = v4(m.rows[0], m.origin.x);
-    g.row1 = v4(m.rows[1], m.origin.y);
-    g.row2 = v4(m.rows[2], m.origin.z);
-    g.grid = v4(m.grid_min, m.inv_voxel);
-    g.dims = glm::ivec4(m.dims, int(m.offset));
-    g.motion = v4(m.motion, m.keep);
-    g.material = glm::vec4(m.mu, m.thickness, m.crossing, m.closed ? 1.f : 0.f);
-    g.bound = glm::vec4(sdf_slopes_[meshes.size()], 0.f, 0.f, 0.f);
-    meshes.push_back(g);
-  }
-  // A storage buffer may not be empty when bound: keep one dummy element for zero colliders.
-  if (spheres.empty()) spheres.resize(1);
-  if (planes.empty()) planes.resize(1);
-  if (meshes.empty()) meshes.resize(1);
-  const size_t mesh_bytes = meshes.size() * sizeof(meshes[0]);
-  if (meshes_.size() == mesh_bytes) {
-    meshes_.upload(0, mesh_bytes, meshes.data());
-  } else {
-    gl::upload_vector(meshes_, meshes, GL_DYNAMIC_DRAW);
+  for (size_t k = 0; k < constants_.meshes.size(); ++k) constants_.meshes[k].bound.x = sdf_slopes_[k];
+  // Control<float>'s arrays are the GPU's structs: uploaded as they are.
+  if (upload_array(meshes_, constants_.meshes)) {
     meshes_view_.attach(meshes_, GL_RGBA32F);
     meshes_int_view_.attach(meshes_, GL_RGBA32I);
   }
-  const size_t sphere_bytes = spheres.size() * sizeof(spheres[0]), plane_bytes = planes.size() * sizeof(planes[0]);
-  if (spheres_.size() == sphere_bytes && planes_.size() == plane_bytes) {
-    // Moving colliders, every substep: rewrite in place (the views stay attached).
-    spheres_.upload(0, sphere_bytes, spheres.data());
-    planes_.upload(0, plane_bytes, planes.data());
-    return;
-  }
-  gl::upload_vector(spheres_, spheres, GL_DYNAMIC_DRAW);
-  gl::upload_vector(planes_, planes, GL_DYNAMIC_DRAW);
-  spheres_view_.attach(spheres_, GL_RGBA32F);
-  planes_view_.attach(planes_, GL_RGBA32F);
+  if (upload_array(spheres_, constants_.spheres)) spheres_view_.attach(spheres_, GL_RGBA32F);
+  if (upload_array(planes_, constants_.planes)) planes_view_.attach(planes_, GL_RGBA32F);
 }
 
 void GpuSimulator::upload_anchors() {
@@ -79,9 +66,8 @@ void GpuSimulator::upload_anchors() {
 }
 
 void GpuSimulator::apply_substep_time() {
-  set_substep_time(constants_, time_);
-  params_ = make_step_params(constants_, model_);
-  step_params_.upload(0, sizeof(params_), &params_);
+  set_substep_time(constants_, time_);  // the Control part and the block's pin_offset, gust_phase
+  step_params_.upload(0, sizeof(layout::StepParams), &constants_.params());
   upload_colliders();
 }
 
@@ -92,7 +78,7 @@ void GpuSimulator::set_time(double t) {
 
 void GpuSimulator::set_parameters(const Scene& scene) {
   const std::vector<float> old_mass = constants_.mass;
-  const bool had_anchors = constants_.moving_pins(), had_wind = constants_.wind.enabled;
+  const bool had_anchors = constants_.moving_pins(), had_wind = constants_.wind_enabled;
   const bool had_bounded = constants_.bounded_contact;
   // xpbd's carried multipliers hold the springs' forces: a switch of solver or of a spring type
   // makes them meaningless, so they start over from zero (as at the start of a run).
@@ -106,11 +92,10 @@ void GpuSimulator::set_parameters(const Scene& scene) {
   masses_ = particle_masses(scene, model_);
   if (constants_.timeline.moves()) set_substep_time(constants_, time_);
   if (constants_.moving_pins() != had_anchors) upload_anchors();
-  if (constants_.bounded_contact != had_bounded) upload_rest_positions();  // switched solver or self-collision
-  if (constants_.wind.enabled != had_wind)
-    wind_forces_.allocate((constants_.wind.enabled ? model_.count() : 1) * sizeof(glm::vec4));
-  params_ = make_step_params(constants_, model_);
-  step_params_.upload(0, sizeof(params_), &params_);
+  if (bool(constants_.bounded_contact) != had_bounded) upload_rest_positions();  // switched solver or self-collision
+  if (bool(constants_.wind_enabled) != had_wind)
+    wind_forces_.allocate((constants_.wind_enabled ? model_.count() : 1) * sizeof(glm::vec4));
+  step_params_.upload(0, sizeof(layout::StepParams), &constants_.params());
   // Something compiled into the passes changed (a solver, the collider kinds, wind, moving
   // colliders or pins: shader_features.hpp): they are compiled again.
   if (const ShaderFeatures features = ShaderFeatures::of(constants_); features != features_) load_passes(features);

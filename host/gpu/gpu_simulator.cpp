@@ -11,44 +11,8 @@
 
 
 namespace clothsim {
-layout::StepParams make_step_params(const Constants<float>& c, const ClothModel& m) {
-  layout::StepParams p{};
-  p.gravity = glm::vec3(c.gravity.x, c.gravity.y, c.gravity.z);
-  p.dt2 = c.dt2;
-  p.stretch_limit = c.stretch_limit;
-  p.contact_distance = c.contact_distance;
-  p.inv_cell = c.inv_cell;
-  p.steps = c.steps;
-  p.tether_limit = c.tether_limit;
-  p.bounded_contact = c.bounded_contact;
-  p.max_step = c.max_step;
-  p.count = uint32_t(m.count());
-  p.table_size = hash_table_size(uint32_t(m.count()));
-  p.sphere_count = uint32_t(c.spheres.size());
-  p.plane_count = uint32_t(c.planes.size());
-  p.mesh_count = uint32_t(c.meshes.size());
-  const WindC<float>& w = c.wind;
-  p.wind_enabled = w.enabled;
-  p.wind_velocity = glm::vec3(w.velocity.x, w.velocity.y, w.velocity.z);
-  p.wind_drag = w.drag;
-  p.wind_lift = w.lift;
-  p.wind_inv_3dt = w.inv_3dt;
-  p.gust_enabled = w.gusts;
-  p.gust_velocity = glm::vec3(w.gust_velocity.x, w.gust_velocity.y, w.gust_velocity.z);
-  p.wind_direction = glm::vec3(w.direction.x, w.direction.y, w.direction.z);
-  p.gust_phase = w.gust_phase;
-  p.gust_inv_length3 = w.gust_inv_length3;
-  p.pins_moving = c.moving_pins();
-  p.coulomb_friction = c.xpbd;
-  p.inv_dt2 = c.inv_dt2;
-  p.multigrid = c.multigrid;
-  p.pin_offset = glm::vec3(c.pin_offset.x, c.pin_offset.y, c.pin_offset.z);
-  return p;
-}
-
 GpuSimulator::GpuSimulator(const Scene& scene, const ClothModel& model, const std::filesystem::path& dir)
     : GpuPasses(scene, model, dir),
-      params_(make_step_params(constants_, model)),
       masses_(particle_masses(scene, model)),
       dt_(scene.dt()) {
   const size_t n = model.count();
@@ -58,12 +22,12 @@ GpuSimulator::GpuSimulator(const Scene& scene, const ClothModel& model, const st
   upload_colliders();
   upload_anchors();
   upload_materials();
-  step_params_.allocate(sizeof(params_), &params_, GL_DYNAMIC_DRAW);
+  step_params_.allocate(sizeof(layout::StepParams), &constants_.params(), GL_DYNAMIC_DRAW);  // as it is
   forces_.allocate(n * sizeof(glm::vec4));
   // A storage buffer may not be empty when bound: one dummy element without wind.
-  wind_forces_.allocate((constants_.wind.enabled ? n : 1) * sizeof(glm::vec4));
+  wind_forces_.allocate((constants_.wind_enabled ? n : 1) * sizeof(glm::vec4));
   // The hash table is sized once; start[table_size] is the total, always n.
-  table_size_ = params_.table_size;
+  table_size_ = constants_.table_size;
   cell_count_.allocate(table_size_ * sizeof(uint32_t));
   std::vector<uint32_t> start(table_size_ + 1, 0);
   start.back() = uint32_t(n);

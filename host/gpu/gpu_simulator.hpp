@@ -62,14 +62,10 @@ class GpuSimulator : public GpuPasses {
   std::vector<float> inverse_masses() const;  // of every particle for the current densities
   void apply_substep_time();  // the moving parts of constants_ for the substep at time_, uploaded
 
-  layout::StepParams params_{};
   std::vector<double> masses_;  // kg, for the current densities (particle_masses)
   double dt_;  // the substep length the displacements are per
   double time_ = 0;  // simulated seconds at the start of the next substep
 };
-
-// The parameter block of a substep, from the same Constants<float> the reference uses.
-layout::StepParams make_step_params(const Constants<float>& c, const ClothModel& m);
 
 // The GPU simulator as a Backend: owns the headless context it runs in.
 class GpuBackend final : public Backend {

@@ -8,7 +8,7 @@ void GpuSimulator::upload(const State<float>& s) {
   gl::upload_vector(positions_, s.pos);
   gl::upload_vector(displacement_, s.disp);
   if (s.force.size() == s.pos.size()) gl::upload_vector(forces_, s.force);
-  if (constants_.wind.enabled && s.wind.size() == s.pos.size()) gl::upload_vector(wind_forces_, s.wind);
+  if (constants_.wind_enabled && s.wind.size() == s.pos.size()) gl::upload_vector(wind_forces_, s.wind);
   upload_multipliers(s.lambda);  // zero for a state without them
   // The Jacobi/ping-pong output matches the buffer it stands in for.
   positions_out_.allocate(positions_.size());
@@ -22,7 +22,7 @@ void GpuSimulator::download(State<float>& s) {
   s.disp = download_displacement();
   s.force = gl::download_vector<Vec4<float>>(forces_);
   s.normal = gl::download_vector<Vec4<float>>(normals_);
-  if (constants_.wind.enabled) s.wind = gl::download_vector<Vec4<float>>(wind_forces_);
+  if (constants_.wind_enabled) s.wind = gl::download_vector<Vec4<float>>(wind_forces_);
   s.lambda = gl::download_vector<Vec4<float>>(multipliers_);
   s.lambda.resize(model_.springs.size());  // less the dummy of a cloth without springs
 }

@@ -237,7 +237,7 @@ void check_classic_passes(PassCheck& k) {
   const ClothModel& model = k.model;
   const Constants<float>& c = k.c;
   State<float>& s = k.s;
-  if (c.wind.enabled) k.check(PassId::compute_wind_forces, [&] { compute_wind_forces(model, c, s); }, k.displacement_of(&State<float>::wind));
+  if (c.wind_enabled) k.check(PassId::compute_wind_forces, [&] { compute_wind_forces(model, c, s); }, k.displacement_of(&State<float>::wind));
   const State<float> start = s;
   k.check(PassId::accumulate_forces, [&] { accumulate_forces(model, c, s); }, k.displacement_of(&State<float>::force));
   k.check(PassId::integrate, [&] { integrate(model, c, s); }, kBoth);

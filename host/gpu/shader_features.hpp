@@ -36,7 +36,7 @@ struct ShaderFeatures {
     f.coulomb = c.xpbd;
     f.pins_moving = c.moving_pins();
     f.multigrid = c.multigrid;
-    f.wind = c.wind.enabled;
+    f.wind = c.wind_enabled;
     return f;
   }
 

@@ -16,12 +16,12 @@ Viewer* self(GLFWwindow* w) { return static_cast<Viewer*>(glfwGetWindowUserPoint
 
 // The sphere whose surface the ray meets first, and where. Taken from the simulation's
 // constants, where a keyframed sphere is now (the scene's origin is only its static value).
-std::optional<std::pair<int, glm::vec3>> pick_sphere(const Ray& ray, const std::vector<SphereC<float>>& spheres) {
+std::optional<std::pair<int, glm::vec3>> pick_sphere(const Ray& ray, const std::vector<layout::SphereCollider>& spheres) {
   std::optional<std::pair<int, glm::vec3>> best;
   float best_t = INFINITY;
   for (size_t k = 0; k < spheres.size(); ++k) {
-    const glm::vec3 oc = ray.origin - spheres[k].origin;
-    const float b = glm::dot(oc, ray.direction), c = glm::dot(oc, oc) - spheres[k].radius * spheres[k].radius;
+    const glm::vec3 oc = ray.origin - glm::vec3(spheres[k].origin_radius);
+    const float b = glm::dot(oc, ray.direction), c = glm::dot(oc, oc) - spheres[k].origin_radius.w * spheres[k].origin_radius.w;
     const float disc = b * b - c;
     if (disc < 0.f) continue;
     const float t = -b - std::sqrt(disc);
@@ -35,12 +35,12 @@ std::optional<std::pair<int, glm::vec3>> pick_sphere(const Ray& ray, const std::
 // The mesh collider whose surface the ray meets first (Moeller-Trumbore over its triangles,
 // placed where the simulation has it now), and where: as pick_sphere, at click time only.
 std::optional<std::pair<int, glm::vec3>> pick_mesh(const Ray& ray, const Scene& scene,
-                                                   const std::vector<MeshC<float>>& meshes, float best_t) {
+                                                   const std::vector<layout::MeshCollider>& meshes, float best_t) {
   std::optional<std::pair<int, glm::vec3>> best;
   for (size_t k = 0; k < meshes.size() && k < scene.meshes.size(); ++k) {
     const SurfaceMesh& surface = load_collider_mesh(scene, k)->surface;
     const glm::mat3 rot(collider_rotation(scene.meshes[k]));
-    const glm::vec3 origin = meshes[k].origin;
+    const glm::vec3 origin = mesh_origin(meshes[k]);
     for (const glm::uvec3& t : surface.triangles) {
       const glm::vec3 a = rot * glm::vec3(surface.positions[t[0]]) + origin;
       const glm::vec3 e1 = rot * glm::vec3(surface.positions[t[1]]) + origin - a;

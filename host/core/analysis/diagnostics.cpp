@@ -88,8 +88,8 @@ ClothStats measure(const Scene& scene, const ClothModel& m, const ClothSnapshot&
     // frame; a mass outside the grid is further than the band.
     const MeshColliderParams& mp = scene.meshes[k];
     const std::shared_ptr<const ColliderMesh> mesh = load_collider_mesh(scene, k);
-    MeshC<double> mc = make_mesh_collider<double>(mp, mesh->sdf, 0);  // its own field: offset 0
-    if (mp.motion) mc.origin = interpolate(mp.motion->keyframes, time);
+    MeshColliderT<double> mc = make_mesh_collider<double>(mp, mesh->sdf, 0);  // its own field: offset 0
+    if (mp.motion) set_mesh_origin(mc, interpolate(mp.motion->keyframes, time));
     double best = mesh->sdf.band;
     for (auto& p : s.pos) {
       double phi;

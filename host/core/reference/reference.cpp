@@ -21,22 +21,24 @@ bool Timeline::moves() const {
 
 namespace {
 
+// xyz of a collider's vec4 from a point in double, rounded once; w kept.
+template <class R> void set_xyz(Vec4<R>& v, const glm::dvec3& p) { v = Vec4<R>(Vec3<R>(p), v.w); }
+
 template <class R> void make_wind(const Scene& scene, Constants<R>& c) {
   if (!scene.wind) return;
   const WindParams& w = *scene.wind;
-  WindC<R>& wc = c.wind;
-  wc.enabled = true;
-  wc.velocity = Vec3<R>(w.velocity);
-  wc.drag = R(-w.air_density * w.drag_coefficient / 12.0);
-  wc.lift = R(-w.air_density * w.lift_coefficient / 12.0);
-  wc.inv_3dt = R(1.0 / (3.0 * scene.dt()));
+  c.wind_enabled = 1;
+  c.wind_velocity = Vec3<R>(w.velocity);
+  c.wind_drag = R(-w.air_density * w.drag_coefficient / 12.0);
+  c.wind_lift = R(-w.air_density * w.lift_coefficient / 12.0);
+  c.wind_inv_3dt = R(1.0 / (3.0 * scene.dt()));
   const double speed = std::sqrt(w.velocity.x * w.velocity.x + w.velocity.y * w.velocity.y + w.velocity.z * w.velocity.z);
   // Gusts need a direction to travel along: none in still air.
   if (w.gust && w.gust->strength > 0 && speed > 0) {
-    wc.gusts = true;
-    wc.gust_velocity = Vec3<R>(w.velocity * w.gust->strength);
-    wc.direction = Vec3<R>(w.velocity / speed);
-    wc.gust_inv_length3 = R(1.0 / (3.0 * w.gust->length));
+    c.gust_enabled = 1;
+    c.gust_velocity = Vec3<R>(w.velocity * w.gust->strength);
+    c.wind_direction = Vec3<R>(w.velocity / speed);
+    c.gust_inv_length3 = R(1.0 / (3.0 * w.gust->length));
     c.timeline.gust_period = w.gust->period;
   }
 }
@@ -55,11 +57,11 @@ template <class R> void make_timeline(const Scene& scene, const ClothModel& mode
   }
   // Where the colliders are at t = 0, at rest: set_substep_time takes over from the first substep.
   for (size_t k = 0; k < tl.spheres.size(); ++k)
-    if (tl.spheres[k]) c.spheres[k].origin = Vec3<R>(interpolate(*tl.spheres[k], 0.0));
+    if (tl.spheres[k]) set_xyz(c.spheres[k].origin_radius, interpolate(*tl.spheres[k], 0.0));
   for (size_t k = 0; k < tl.planes.size(); ++k)
-    if (tl.planes[k]) c.planes[k].point = Vec3<R>(interpolate(*tl.planes[k], 0.0));
+    if (tl.planes[k]) set_xyz(c.planes[k].point, interpolate(*tl.planes[k], 0.0));
   for (size_t k = 0; k < tl.meshes.size(); ++k)
-    if (tl.meshes[k]) c.meshes[k].origin = Vec3<R>(interpolate(*tl.meshes[k], 0.0));
+    if (tl.meshes[k]) set_mesh_origin(c.meshes[k], Vec3<R>(interpolate(*tl.meshes[k], 0.0)));
 }
 
 // Each mesh collider's field, appended to one array the backends share (GPU: one buffer).
@@ -80,27 +82,30 @@ template <class R> void make_meshes(const Scene& scene, Constants<R>& c) {
 
 template <class R> void set_substep_time(Constants<R>& c, double t) {
   const Timeline& tl = c.timeline;
+  Control<R>& now = c.control();
   const double t1 = t + tl.dt;
+  // The motion is rounded once, from double.
+  auto motion = [&](const Keyframes& k, const glm::dvec3& at, R w) { return Vec4<R>(Vec3<R>(at - interpolate(k, t)), w); };
   for (size_t k = 0; k < tl.spheres.size(); ++k)
     if (tl.spheres[k]) {
       const glm::dvec3 at = interpolate(*tl.spheres[k], t1);
-      c.spheres[k].origin = Vec3<R>(at);
-      c.spheres[k].motion = Vec3<R>(at - interpolate(*tl.spheres[k], t));  // rounded once, from double
+      set_xyz(now.spheres[k].origin_radius, at);
+      now.spheres[k].motion = motion(*tl.spheres[k], at, now.spheres[k].motion.w);
     }
   for (size_t k = 0; k < tl.planes.size(); ++k)
     if (tl.planes[k]) {
       const glm::dvec3 at = interpolate(*tl.planes[k], t1);
-      c.planes[k].point = Vec3<R>(at);
-      c.planes[k].motion = Vec3<R>(at - interpolate(*tl.planes[k], t));
+      set_xyz(now.planes[k].point, at);
+      now.planes[k].motion = motion(*tl.planes[k], at, now.planes[k].motion.w);
     }
   for (size_t k = 0; k < tl.meshes.size(); ++k)
     if (tl.meshes[k]) {
       const glm::dvec3 at = interpolate(*tl.meshes[k], t1);
-      c.meshes[k].origin = Vec3<R>(at);
-      c.meshes[k].motion = Vec3<R>(at - interpolate(*tl.meshes[k], t));
+      set_mesh_origin(now.meshes[k], Vec3<R>(at));
+      now.meshes[k].motion = motion(*tl.meshes[k], at, now.meshes[k].motion.w);
     }
   if (tl.pins) c.pin_offset = Vec3<R>(interpolate(*tl.pins, t1));
-  if (tl.gust_period > 0) c.wind.gust_phase = R(gust_phase(t, tl.gust_period));
+  if (tl.gust_period > 0) c.gust_phase = R(gust_phase(t, tl.gust_period));
 }
 
 int stretch_passes_for(const Scene& scene, const ClothModel& model) {
@@ -172,6 +177,7 @@ Constants<R> make_constants(const Scene& scene, const ClothModel& model, std::sh
   c.stretch_passes_max = c.xpbd ? std::max(sp.stretch_passes_max, c.stretch_passes) : 0;
   c.self_collision = sp.self_collision;
   c.bounded_contact = c.xpbd && c.self_collision;
+  c.coulomb_friction = c.xpbd;
   if (c.bounded_contact) {
     // A mass moves at most a quarter of the contact distance per substep: two masses closing
     // on each other cover at most half of it, so a mass of one layer is seen by the other's
@@ -179,10 +185,13 @@ Constants<R> make_constants(const Scene& scene, const ClothModel& model, std::sh
     c.max_step = R(kMaxStepFraction * 2.0 * thickness);
     for (const glm::dvec3& p : model.initial) c.rest.push_back(Vec3<R>(p));
   }
+  c.count = uint32_t(model.count());
+  c.table_size = hash_table_size(uint32_t(model.count()));
   for (auto& s : scene.spheres)
-    c.spheres.push_back({Vec3<R>(s.origin), R(s.radius), R(1.0 - s.friction), Vec3<R>(0), R(s.friction)});
+    c.spheres.push_back({Vec4<R>(Vec3<R>(s.origin), R(s.radius)), Vec4<R>(R(1.0 - s.friction), R(s.friction), 0, 0), Vec4<R>(0)});
   for (auto& p : scene.planes)
-    c.planes.push_back({Vec3<R>(p.point), Vec3<R>(p.normal), R(1.0 - p.friction), Vec3<R>(0), R(1), R(p.friction)});
+    c.planes.push_back({Vec4<R>(Vec3<R>(p.point), R(1)), Vec4<R>(Vec3<R>(p.normal), R(1.0 - p.friction)),
+                        Vec4<R>(Vec3<R>(0), R(p.friction))});
   make_meshes(scene, c);
   make_wind(scene, c);
   make_timeline(scene, model, c);
@@ -192,8 +201,12 @@ Constants<R> make_constants(const Scene& scene, const ClothModel& model, std::sh
   centre /= double(std::max(1, model.count()));
   for (size_t k = 0; k < c.planes.size(); ++k) {
     const glm::dvec3 at = c.timeline.planes[k] ? interpolate(*c.timeline.planes[k], 0.0) : scene.planes[k].point;
-    c.planes[k].front = glm::dot(centre - at, scene.planes[k].normal) < 0 ? R(-1) : R(1);
+    c.planes[k].point.w = glm::dot(centre - at, scene.planes[k].normal) < 0 ? R(-1) : R(1);  // its front
   }
+  c.sphere_count = uint32_t(c.spheres.size());
+  c.plane_count = uint32_t(c.planes.size());
+  c.mesh_count = uint32_t(c.meshes.size());
+  c.pins_moving = c.moving_pins();
   return c;
 }
 

@@ -17,6 +17,7 @@
 #include "cloth/hierarchy.hpp"
 #include "scene/scene.hpp"
 #include "reference/spatial_hash.hpp"
+#include "../../../compute/layout.glsl"
 
 namespace clothsim {
 
@@ -27,46 +28,28 @@ template <class R> using Vec4 = glm::vec<4, R>;
 template <class R> R length3(const Vec3<R>& v) { return std::sqrt(v.x * v.x + v.y * v.y + v.z * v.z); }
 template <class R> R dot3(const Vec3<R>& a, const Vec3<R>& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
 
-// keep = 1 - friction; motion = the collider's displacement over this substep (0: static, and
-// then exactly the classic formulas run).
-// mu: the friction coefficient itself, for xpbd's Coulomb friction (docs/model.md, "Coulomb friction (xpbd)").
-template <class R> struct SphereC { Vec3<R> origin; R radius; R keep; Vec3<R> motion{0}; R mu = R(0); };
-// front: +1 or -1, the side of the plane the cloth starts on (its rest centre's side, +1 when on
-// it); a mass is in contact whenever it is not in front, however it got behind (with xpbd's
-// Coulomb friction also when within the surface offset in front: docs/model.md).
-template <class R> struct PlaneC { Vec3<R> point; Vec3<R> normal; R keep; Vec3<R> motion{0}; R front = R(1); R mu = R(0); };
-// A mesh collider through its signed distance field (sdf.hpp): a mass at x is at
-// local = rows (x - origin) in the field's frame (rows: the rotation's transpose), the field's
-// node (0, 0, 0) at grid_min; its nodes are Constants::sdf[offset ...], x fastest. A mass
-// closer than `thickness` to the surface (or inside) is pushed out along the field's gradient.
-template <class R> struct MeshC {
-  Vec3<R> rows[3];
-  Vec3<R> origin, motion{0};
-  R keep = R(1), mu = R(0), thickness = R(0);
-  // closed: the field is signed (a closed mesh); else unsigned, the collider a shell. crossing:
-  // half the thickness, how near two path samples straddling a shell pass (passed_through_mesh).
-  bool closed = true;
-  R crossing = R(0);
-  Vec3<R> grid_min;
-  R inv_voxel;
-  glm::ivec3 dims{0};
-  uint32_t offset = 0;
-};
+// The colliders as the passes read them, on both sides: the structs of compute/layout.glsl, on
+// the scalar R (layout::SphereCollider is SphereColliderT<float>). keep = 1 - friction; motion =
+// the collider's displacement over this substep (0: static, and then exactly the classic
+// formulas run); mu: the friction coefficient itself, for xpbd's Coulomb friction (docs/model.md,
+// "Coulomb friction (xpbd)"). A mesh collider's nodes are Constants::sdf[dims.w ...].
+using layout::SphereColliderT;
+using layout::PlaneColliderT;
+using layout::MeshColliderT;
+// A mesh collider's origin, in the w of its rows.
+template <class R> Vec3<R> mesh_origin(const MeshColliderT<R>& m) { return Vec3<R>(m.row0.w, m.row1.w, m.row2.w); }
+template <class R> void set_mesh_origin(MeshColliderT<R>& m, const Vec3<R>& o) {
+  m.row0.w = o.x;
+  m.row1.w = o.y;
+  m.row2.w = o.z;
+}
 
-// The wind as the passes use it (docs/model.md, "Wind"). The factors fold the constants of
-// the formulas: drag = -rho C_d / 12 is -1/2 rho C_d, times 1/2 (the cross product of two
-// edges is twice the area), times 1/3 (each corner gathers a third); lift likewise.
-template <class R> struct WindC {
-  bool enabled = false;
-  bool gusts = false;
-  Vec3<R> velocity{0}, gust_velocity{0}, direction{0};  // gust_velocity = strength * velocity
-  R drag = 0, lift = 0;
-  R inv_3dt = 0;            // 1 / (3 dt): the mean of three displacements as a velocity
-  R gust_phase = 0;         // fract(t / period) at the substep's start
-  R gust_inv_length3 = 0;   // 1 / (3 length): the centroid's phase is dot(sum of corners, direction) times this
-};
+// The wind as the passes use it (docs/model.md, "Wind") is in the parameter block (wind_*,
+// gust_*). The factors fold the constants of the formulas: drag = -rho C_d / 12 is -1/2 rho
+// C_d, times 1/2 (the cross product of two edges is twice the area), times 1/3 (each corner
+// gathers a third); lift likewise.
 
-// What moves with time, in double: evaluated once per substep by set_substep_time.
+// What moves with time, in double: evaluated once per substep by set_substep_time into Control.
 struct Timeline {
   std::vector<std::optional<Keyframes>> spheres, planes, meshes;  // by collider, in file order
   std::optional<Keyframes> pins;                          // offsets of the pinned masses
@@ -90,21 +73,28 @@ template <class R> struct MaterialC {
 // distance per substep (Constants::max_step).
 inline constexpr double kMaxStepFraction = 0.25;
 
-// Scene parameters converted once to R: the GPU uploads exactly Constants<float>.
-template <class R> struct Constants {
-  Vec3<R> gravity;
-  R dt2;
-  R stretch_limit;      // 1 + max_stretch
-  R contact_distance;   // 2 * thickness (the thickest cloth's)
-  R inv_cell;           // 1 / cell edge (cell edge = contact_distance)
-  R steps;              // simulation_steps
-  R tether_limit;       // xpbd: 1 + tether_stretch
-  // xpbd with self-collision, the bounded contact (docs/model.md, "Self-contact that holds"):
-  // predict clamps each substep's displacement to max_step (0: no clamp), and
-  // resolve_self_contacts keeps two masses min(contact_distance, their rest distance) apart,
-  // the rest distance from `rest` (the model's rest positions, rounded to R once).
-  bool bounded_contact = false;
-  R max_step = 0;
+// The substep's control: the colliders where they are at its end, with their motion over it
+// (the pose; their shape and friction are fixed over a run). With the parameter block's two
+// moving fields, pin_offset (where moving pins are at the substep's end) and gust_phase (at
+// its start), it is all that set_substep_time writes: the rest of Constants, the model, is
+// fixed between edits. The GPU uploads these arrays of Constants<float> as they are.
+template <class R> struct Control {
+  std::vector<SphereColliderT<R>> spheres;
+  std::vector<PlaneColliderT<R>> planes;
+  std::vector<MeshColliderT<R>> meshes;
+};
+
+// Scene parameters converted once to R. The scalars the shaders read are the parameter block
+// of compute/layout.glsl itself (StepParamsT<R>: gravity, dt2, stretch_limit, contact_distance,
+// inv_cell, steps, tether_limit, max_step, inv_dt2, the wind's, bounded_contact, multigrid,
+// ...), and the colliders its structs (Control): the GPU uploads Constants<float>'s bytes.
+// bounded_contact: xpbd with self-collision, the bounded contact (docs/model.md, "Self-contact
+// that holds"): predict clamps each substep's displacement to max_step (0: no clamp), and
+// resolve_self_contacts keeps two masses min(contact_distance, their rest distance) apart, the
+// rest distance from `rest` (the model's rest positions, rounded to R once).
+// multigrid: the multigrid solver, whose solve replaces xpbd's sweep (docs/model.md) and whose
+// hierarchy (hierarchy.hpp) is built once here.
+template <class R> struct Constants : layout::StepParamsT<R>, Control<R> {
   std::vector<Vec3<R>> rest;
   std::vector<MaterialC<R>> materials;  // by cloth, Scene::cloths() order
   std::vector<R> mass;  // kg, per particle (particle_masses: follows a live density edit)
@@ -115,23 +105,19 @@ template <class R> struct Constants {
   int stretch_passes_max = 0;
   bool self_collision;
   // simulation.solver: xpbd for both position-based solvers (they share predict, the bounded
-  // self-contact and Coulomb friction); multigrid for the multigrid one, whose solve replaces
-  // xpbd's sweep (docs/model.md) and whose hierarchy (hierarchy.hpp) is built once here.
+  // self-contact and Coulomb friction: coulomb_friction in the block); multigrid (the block's)
+  // for the multigrid one.
   bool xpbd;
-  bool multigrid = false;
-  R inv_dt2 = 0;        // 1 / dt^2, the inertia of a mass per kg in the multigrid solve
   std::shared_ptr<const Hierarchy> hierarchy;
-  std::vector<SphereC<R>> spheres;
-  std::vector<PlaneC<R>> planes;
-  std::vector<MeshC<R>> meshes;
   std::shared_ptr<const std::vector<float>> sdf;  // every mesh's field, concatenated (shared, never edited)
-  WindC<R> wind;
   // Moving pins: every pinned mass is at anchor + pin_offset at the end of each substep.
   // anchors: per particle, xyz the start position, w 1 for a pinned mass; empty without pinned_motion.
   std::vector<Vec4<R>> anchors;
-  Vec3<R> pin_offset{0};
   Timeline timeline;
-  bool has_colliders() const { return !spheres.empty() || !planes.empty() || !meshes.empty(); }
+  const layout::StepParamsT<R>& params() const { return *this; }  // the block, as uploaded
+  Control<R>& control() { return *this; }
+  const Control<R>& control() const { return *this; }
+  bool has_colliders() const { return !this->spheres.empty() || !this->planes.empty() || !this->meshes.empty(); }
   bool moving_pins() const { return !anchors.empty(); }
   bool enabled(const Spring& s) const { return materials[s.material].enabled[int(s.type)]; }
   // Colour c of `m` runs at all: its type is enabled in some cloth (a colour is of one type).
@@ -149,7 +135,8 @@ template <class R>
 Constants<R> make_constants(const Scene& scene, const ClothModel& model,
                             std::shared_ptr<const Hierarchy> reuse = nullptr);
 
-// The time-dependent constants of the substep from t to t + dt: the colliders where they are
+// The control of the substep from t to t + dt (Control and the block's pin_offset and
+// gust_phase; nothing else of c): the colliders where they are
 // at t + dt (when the collision passes run) with their motion over the substep, the pins'
 // offset at t + dt (advance moves them there), the gusts' phase at t (when the forces are
 // computed). A no-op for a scene in which nothing moves (!c.timeline.moves()).
@@ -293,7 +280,7 @@ template <class R> void solve_multigrid(const ClothModel& m, const Constants<R>&
 
 // One substep: the pass list of docs/design.md §1, or of docs/model.md for xpbd.
 template <class R> void step(const ClothModel& m, const Constants<R>& c, State<R>& s) {
-  if (c.wind.enabled) compute_wind_forces(m, c, s);  // advance or predict add them
+  if (c.wind_enabled) compute_wind_forces(m, c, s);  // advance or predict add them
   if (c.xpbd) {
     predict(m, c, s);
     if (c.self_collision) collide_self(c, s);

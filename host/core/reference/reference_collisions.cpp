@@ -91,11 +91,11 @@ template <class R> bool passed_through_sphere(const Vec3<R>& e, R dist, R r, con
 // two points of a sphere runs inside it: a fast mass sliding over a sphere can end the blend
 // deep inside. Deeper than 0.1 mm it is put back on the surface along e, without friction (the
 // classic scenes never come near: their chords sink by under a micrometre).
-template <class R> void keep_out_of_sphere(const SphereC<R>& sp, Vec3<R>& x, Vec3<R>& d) {
-  const Vec3<R> e = x - sp.origin;
-  const R dist = length3(e);
-  if (!(sp.radius - dist > R(1e-4)) || !(dist > R(0))) return;
-  const Vec3<R> out = e * ((sp.radius - dist) * (R(1) / dist));
+template <class R> void keep_out_of_sphere(const SphereColliderT<R>& sp, Vec3<R>& x, Vec3<R>& d) {
+  const Vec3<R> e = x - Vec3<R>(sp.origin_radius);
+  const R dist = length3(e), radius = sp.origin_radius.w;
+  if (!(radius - dist > R(1e-4)) || !(dist > R(0))) return;
+  const Vec3<R> out = e * ((radius - dist) * (R(1) / dist));
   x = x + out;
   d = d + out;
 }
@@ -103,17 +103,19 @@ template <class R> void keep_out_of_sphere(const SphereC<R>& sp, Vec3<R>& x, Vec
 // A mass deeper than 0.1 mm behind a plane's front goes to its surface offset on the front,
 // along the normal, without friction: after Provot's pull, and after the CS184 blend of a mass
 // found behind (the blend starts from x_prev, behind too, so it can end still behind).
-template <class R> void keep_in_front_of_plane(const PlaneC<R>& pl, Vec3<R>& x, Vec3<R>& d) {
-  const R dist = dot3(x - pl.point, pl.normal);
-  if (!(dist * pl.front < R(-1e-4))) return;
-  const Vec3<R> out = pl.normal * (R(1e-4) * pl.front - dist);
+template <class R> void keep_in_front_of_plane(const PlaneColliderT<R>& pl, Vec3<R>& x, Vec3<R>& d) {
+  const Vec3<R> normal(pl.normal);
+  const R front = pl.point.w;
+  const R dist = dot3(x - Vec3<R>(pl.point), normal);
+  if (!(dist * front < R(-1e-4))) return;
+  const Vec3<R> out = normal * (R(1e-4) * front - dist);
   x = x + out;
   d = d + out;
 }
 
 // The outward normal of a sphere at the point x + t_minus_x (up at the centre).
-template <class R> Vec3<R> sphere_normal(const SphereC<R>& sp, const Vec3<R>& x, const Vec3<R>& t_minus_x) {
-  const Vec3<R> e = (x + t_minus_x) - sp.origin;
+template <class R> Vec3<R> sphere_normal(const SphereColliderT<R>& sp, const Vec3<R>& x, const Vec3<R>& t_minus_x) {
+  const Vec3<R> e = (x + t_minus_x) - Vec3<R>(sp.origin_radius);
   const R len = length3(e);
   return len > R(0) ? e * (R(1) / len) : Vec3<R>(0, 1, 0);
 }
@@ -121,29 +123,31 @@ template <class R> Vec3<R> sphere_normal(const SphereC<R>& sp, const Vec3<R>& x,
 // One sphere contact's response: xpbd's Coulomb friction (with friction on), else the CS184
 // blend, in the sphere's frame when it moves.
 template <class R>
-void respond_to_sphere(const Constants<R>& c, bool friction, const SphereC<R>& sp, const Vec3<R>& t_minus_x,
+void respond_to_sphere(const Constants<R>& c, bool friction, const SphereColliderT<R>& sp, const Vec3<R>& t_minus_x,
                        Vec3<R>& x, Vec3<R>& d) {
-  if (friction && c.xpbd) coulomb_respond(t_minus_x, sphere_normal(sp, x, t_minus_x), sp.mu, sp.motion, x, d);
-  else if (sp.motion != Vec3<R>(0)) blend_to_moving(t_minus_x, friction ? sp.keep : R(1), sp.motion, x, d);
-  else blend_to(t_minus_x, friction ? sp.keep : R(1), x, d);
+  const Vec3<R> motion(sp.motion);
+  const R keep = sp.keep.x, mu = sp.keep.y;
+  if (friction && c.xpbd) coulomb_respond(t_minus_x, sphere_normal(sp, x, t_minus_x), mu, motion, x, d);
+  else if (motion != Vec3<R>(0)) blend_to_moving(t_minus_x, friction ? keep : R(1), motion, x, d);
+  else blend_to(t_minus_x, friction ? keep : R(1), x, d);
 }
 
 // One particle against every sphere, then every plane, then every mesh. With `friction` false every contact
 // keeps all of its tangential motion (keep = 1): the pure push-out of xpbd's constraint pass.
 template <class R> void collide_particle(const Constants<R>& c, Vec3<R>& x, Vec3<R>& d, bool friction) {
-  for (const SphereC<R>& sp : c.spheres) {
-    const Vec3<R> e = x - sp.origin;
-    const R dist = length3(e);
-    if (dist > sp.radius) {
+  for (const SphereColliderT<R>& sp : c.spheres) {
+    const Vec3<R> e = x - Vec3<R>(sp.origin_radius), motion(sp.motion);
+    const R dist = length3(e), radius = sp.origin_radius.w;
+    if (dist > radius) {
       // Outside at the end: caught if it went through the sphere during the substep.
       Vec3<R> t_minus_x;
-      if (!passed_through_sphere(e, dist, sp.radius, d - sp.motion, t_minus_x)) continue;
+      if (!passed_through_sphere(e, dist, radius, d - motion, t_minus_x)) continue;
       respond_to_sphere(c, friction, sp, t_minus_x, x, d);
       keep_out_of_sphere(sp, x, d);
       continue;
     }
-    if (sp.motion != Vec3<R>(0)) {
-      respond_to_sphere(c, friction, sp, moving_sphere_push(e, dist, sp.radius, d, sp.motion), x, d);
+    if (motion != Vec3<R>(0)) {
+      respond_to_sphere(c, friction, sp, moving_sphere_push(e, dist, radius, d, motion), x, d);
       keep_out_of_sphere(sp, x, d);
       continue;
     }
@@ -152,42 +156,44 @@ template <class R> void collide_particle(const Constants<R>& c, Vec3<R>& x, Vec3
     // than the sphere's radius per substep): then back out on its own side.
     const Vec3<R> e_prev = e - d;
     const R prev_dist = length3(e_prev);
-    const Vec3<R> t_minus_x = dot3(e, e_prev) < R(0) && prev_dist > R(0) ? e_prev * (sp.radius * (R(1) / prev_dist)) - e
-                              : dist > R(0) ? e * ((sp.radius - dist) * (R(1) / dist))
-                                            : Vec3<R>(0, sp.radius, 0);
+    const Vec3<R> t_minus_x = dot3(e, e_prev) < R(0) && prev_dist > R(0) ? e_prev * (radius * (R(1) / prev_dist)) - e
+                              : dist > R(0) ? e * ((radius - dist) * (R(1) / dist))
+                                            : Vec3<R>(0, radius, 0);
     respond_to_sphere(c, friction, sp, t_minus_x, x, d);
     keep_out_of_sphere(sp, x, d);
   }
-  for (const PlaneC<R>& pl : c.planes) {
+  for (const PlaneColliderT<R>& pl : c.planes) {
     const bool coulomb = friction && c.xpbd;
+    const Vec3<R> point(pl.point), normal(pl.normal), motion(pl.motion);
+    const R front = pl.point.w, keep = pl.normal.w, mu = pl.motion.w;
     // The classic test: a mass that crossed the plane this substep (dist * dist_prev <= 0; for
     // a moving plane in its frame, x_prev - p_prev = (x - p) - (d - m), so a sweep is seen at
     // any speed) goes back to the side it came from. And a mass found behind the plane's front
     // at both ends of the substep (a correction put it there) is lifted to the front. With
     // Coulomb friction a mass within the surface offset in front is in contact too: a mass
     // resting there is pressed in a little every substep, and held every substep.
-    const R dist = dot3(x - pl.point, pl.normal);
-    const R dist_prev = dist - dot3(d - pl.motion, pl.normal);
+    const R dist = dot3(x - point, normal);
+    const R dist_prev = dist - dot3(d - motion, normal);
     R side;
     if (dist * dist_prev > R(0)) {
-      if (!(dist * pl.front < (coulomb ? R(1e-4) : R(0)))) continue;
-      side = pl.front;
+      if (!(dist * front < (coulomb ? R(1e-4) : R(0)))) continue;
+      side = front;
     } else {
       side = dist_prev > R(0) ? R(1) : (dist_prev < R(0) ? R(-1) : R(0));
     }
     // t = x - dist n + SURFACE_OFFSET side n, so t - x is along n.
-    const Vec3<R> t_minus_x = pl.normal * (R(1e-4) * side - dist);
-    respond_to_contact(coulomb, t_minus_x, pl.normal * (side != R(0) ? side : pl.front), friction ? pl.keep : R(1),
-                       pl.mu, pl.motion, x, d);
-    if (side == pl.front) keep_in_front_of_plane(pl, x, d);
+    const Vec3<R> t_minus_x = normal * (R(1e-4) * side - dist);
+    respond_to_contact(coulomb, t_minus_x, normal * (side != R(0) ? side : front), friction ? keep : R(1),
+                       mu, motion, x, d);
+    if (side == front) keep_in_front_of_plane(pl, x, d);
   }
-  for (const MeshC<R>& m : c.meshes) collide_with_mesh(c, m, friction, x, d);
+  for (const MeshColliderT<R>& m : c.meshes) collide_with_mesh(c, m, friction, x, d);
 }
 
 template <class R> void keep_out_of_colliders(const Constants<R>& c, Vec3<R>& x, Vec3<R>& d) {
-  for (const SphereC<R>& sp : c.spheres) keep_out_of_sphere(sp, x, d);
-  for (const PlaneC<R>& pl : c.planes) keep_in_front_of_plane(pl, x, d);
-  for (const MeshC<R>& m : c.meshes) keep_out_of_mesh(c, m, x, d);
+  for (const SphereColliderT<R>& sp : c.spheres) keep_out_of_sphere(sp, x, d);
+  for (const PlaneColliderT<R>& pl : c.planes) keep_in_front_of_plane(pl, x, d);
+  for (const MeshColliderT<R>& m : c.meshes) keep_out_of_mesh(c, m, x, d);
 }
 
 template <class R> void collide_objects(const Constants<R>& c, State<R>& s) {

@@ -69,15 +69,15 @@ void respond_to_contact(bool coulomb, const Vec3<R>& t_minus_x, const Vec3<R>& n
 // A mass against one mesh collider's field (reference_mesh_collisions.cpp): pushed out to
 // `thickness` along the field's gradient, with the collider's friction (none when `friction` is
 // false); and the same push without friction for a mass deeper than 0.1 mm (keep_out_of_mesh).
-template <class R> void collide_with_mesh(const Constants<R>& c, const MeshC<R>& m, bool friction, Vec3<R>& x, Vec3<R>& d);
-template <class R> void keep_out_of_mesh(const Constants<R>& c, const MeshC<R>& m, Vec3<R>& x, Vec3<R>& d);
+template <class R> void collide_with_mesh(const Constants<R>& c, const MeshColliderT<R>& m, bool friction, Vec3<R>& x, Vec3<R>& d);
+template <class R> void keep_out_of_mesh(const Constants<R>& c, const MeshColliderT<R>& m, Vec3<R>& x, Vec3<R>& d);
 // The field of `m` at local point p (sdf: Constants::sdf): false outside its grid.
-template <class R> bool sample_mesh_field(const MeshC<R>& m, const float* sdf, const Vec3<R>& p, R& phi, Vec3<R>& grad);
+template <class R> bool sample_mesh_field(const MeshColliderT<R>& m, const float* sdf, const Vec3<R>& p, R& phi, Vec3<R>& grad);
 // The same at world point x (where m.origin puts the mesh).
-template <class R> bool sample_mesh_at(const MeshC<R>& m, const float* sdf, const Vec3<R>& x, R& phi, Vec3<R>& grad);
+template <class R> bool sample_mesh_at(const MeshColliderT<R>& m, const float* sdf, const Vec3<R>& x, R& phi, Vec3<R>& grad);
 // A mesh collider's constants from its scene entry and its field, placed at p.origin; offset:
 // its first node in the array the field is read from (Constants::sdf).
-template <class R> MeshC<R> make_mesh_collider(const MeshColliderParams& p, const SdfGrid& g, uint32_t offset);
+template <class R> MeshColliderT<R> make_mesh_collider(const MeshColliderParams& p, const SdfGrid& g, uint32_t offset);
 
 
 }  // namespace clothsim

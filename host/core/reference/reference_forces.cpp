@@ -16,27 +16,27 @@ template <class R> R gust_wave(R phase) {
 // The share of one corner in the aerodynamic force on triangle (a, b, c), from its corners'
 // positions and displacements (docs/model.md, "Wind"; wind.glsl is the twin).
 template <class R>
-Vec3<R> triangle_wind_share(const WindC<R>& w, const Vec3<R>& pa, const Vec3<R>& pb, const Vec3<R>& pc,
+Vec3<R> triangle_wind_share(const layout::StepParamsT<R>& w, const Vec3<R>& pa, const Vec3<R>& pb, const Vec3<R>& pc,
                             const Vec3<R>& da, const Vec3<R>& db, const Vec3<R>& dc) {
   const Vec3<R> u = pb - pa, v = pc - pa;
   const Vec3<R> twice_area_n(u.y * v.z - u.z * v.y, u.z * v.x - u.x * v.z, u.x * v.y - u.y * v.x);
   const R len = length3(twice_area_n);
   if (!(len > R(0))) return Vec3<R>(0);  // a degenerate triangle catches no air
   const Vec3<R> n = twice_area_n * (R(1) / len);
-  Vec3<R> air = w.velocity;
-  if (w.gusts) {
-    const R phase = w.gust_phase - dot3((pa + pb) + pc, w.direction) * w.gust_inv_length3;
-    air = w.velocity + w.gust_velocity * gust_wave(phase);
+  Vec3<R> air = w.wind_velocity;
+  if (w.gust_enabled) {
+    const R phase = w.gust_phase - dot3((pa + pb) + pc, w.wind_direction) * w.gust_inv_length3;
+    air = w.wind_velocity + w.gust_velocity * gust_wave(phase);
   }
-  const Vec3<R> rel = ((da + db) + dc) * w.inv_3dt - air;  // the triangle's velocity relative to the air
+  const Vec3<R> rel = ((da + db) + dc) * w.wind_inv_3dt - air;  // the triangle's velocity relative to the air
   const R speed = length3(rel);
   if (!(speed > R(0))) return Vec3<R>(0);
   const R normal_speed = dot3(rel, n);
   // Drag -1/2 rho C_d A |v| (v.n) n; lift -1/2 rho C_l A (v.n) (|v| n - (v.n)/|v| v), where
   // |v| n - (v.n)/|v| v is |v| times the part of n across v.
-  const Vec3<R> drag = n * (w.drag * len * speed * normal_speed);
+  const Vec3<R> drag = n * (w.wind_drag * len * speed * normal_speed);
   const Vec3<R> across = n * speed - rel * (normal_speed * (R(1) / speed));
-  return drag + across * (w.lift * len * normal_speed);
+  return drag + across * (w.wind_lift * len * normal_speed);
 }
 
 // Calls visit(t) for each triangle that has particle i as a corner, in ascending order (on a
@@ -55,7 +55,7 @@ template <class R> void compute_wind_forces(const ClothModel& m, const Constants
   for (uint32_t self = 0; self < uint32_t(m.count()); ++self) {
     Vec3<R> f(0);
     for_each_triangle_around(m, self, [&](const int (&t)[3]) {
-      f += triangle_wind_share(c.wind, Vec3<R>(s.pos[t[0]]), Vec3<R>(s.pos[t[1]]), Vec3<R>(s.pos[t[2]]),
+      f += triangle_wind_share(c.params(), Vec3<R>(s.pos[t[0]]), Vec3<R>(s.pos[t[1]]), Vec3<R>(s.pos[t[2]]),
                                Vec3<R>(s.disp[t[0]]), Vec3<R>(s.disp[t[1]]), Vec3<R>(s.disp[t[2]]));
     });
     s.wind[self] = Vec4<R>(f, R(0));
@@ -81,7 +81,7 @@ template <class R> void accumulate_forces(const ClothModel& m, const Constants<R
         f += e * (k * (len - rest) * inv);
       }
     }
-    if (c.wind.enabled) f += Vec3<R>(s.wind[i]);  // after the springs, as advance.comp adds it
+    if (c.wind_enabled) f += Vec3<R>(s.wind[i]);  // after the springs, as advance.comp adds it
     s.force[i] = Vec4<R>(f, R(0));
   }
 }
@@ -136,7 +136,7 @@ template <class R> void predict(const ClothModel& m, const Constants<R>& c, Stat
       continue;
     }
     Vec3<R> acc = c.gravity;
-    if (c.wind.enabled) acc = acc + Vec3<R>(s.wind[i]) * w;  // compute_wind_forces ran before
+    if (c.wind_enabled) acc = acc + Vec3<R>(s.wind[i]) * w;  // compute_wind_forces ran before
     // The springs' multipliers of the last substep, as their forces over this one (times dt^2):
     // -n lambda on the spring's i end, +n lambda on its j end, in the gather order.
     // (The multigrid solver carries none: its springs act in its own solve.)

@@ -11,17 +11,17 @@
 namespace clothsim {
 namespace {
 
-template <class R> Vec3<R> to_local(const MeshC<R>& m, const Vec3<R>& v) {
-  return Vec3<R>(dot3(m.rows[0], v), dot3(m.rows[1], v), dot3(m.rows[2], v));
+template <class R> Vec3<R> to_local(const MeshColliderT<R>& m, const Vec3<R>& v) {
+  return Vec3<R>(dot3(Vec3<R>(m.row0), v), dot3(Vec3<R>(m.row1), v), dot3(Vec3<R>(m.row2), v));
 }
-template <class R> Vec3<R> to_world(const MeshC<R>& m, const Vec3<R>& v) {
-  return (m.rows[0] * v.x + m.rows[1] * v.y) + m.rows[2] * v.z;
+template <class R> Vec3<R> to_world(const MeshColliderT<R>& m, const Vec3<R>& v) {
+  return (Vec3<R>(m.row0) * v.x + Vec3<R>(m.row1) * v.y) + Vec3<R>(m.row2) * v.z;
 }
 
 }  // namespace
 
-template <class R> bool sample_mesh_field(const MeshC<R>& m, const float* sdf, const Vec3<R>& p, R& phi, Vec3<R>& grad) {
-  const Vec3<R> g = (p - m.grid_min) * m.inv_voxel;
+template <class R> bool sample_mesh_field(const MeshColliderT<R>& m, const float* sdf, const Vec3<R>& p, R& phi, Vec3<R>& grad) {
+  const Vec3<R> g = (p - Vec3<R>(m.grid)) * m.grid.w;
   // Outside the grid the mesh is further than its band: no contact (and no read out of it).
   if (!(g.x >= R(0) && g.y >= R(0) && g.z >= R(0) && g.x < R(m.dims.x - 1) && g.y < R(m.dims.y - 1) &&
         g.z < R(m.dims.z - 1)))
@@ -29,7 +29,7 @@ template <class R> bool sample_mesh_field(const MeshC<R>& m, const float* sdf, c
   const Vec3<R> cell(std::floor(g.x), std::floor(g.y), std::floor(g.z));
   const Vec3<R> f = g - cell;
   const int nx = m.dims.x, nxy = m.dims.x * m.dims.y;
-  const int base = int(m.offset) + int(cell.x) + nx * int(cell.y) + nxy * int(cell.z);
+  const int base = m.dims.w + int(cell.x) + nx * int(cell.y) + nxy * int(cell.z);
   const R c000 = R(sdf[base]), c100 = R(sdf[base + 1]), c010 = R(sdf[base + nx]), c110 = R(sdf[base + nx + 1]);
   const R c001 = R(sdf[base + nxy]), c101 = R(sdf[base + nxy + 1]), c011 = R(sdf[base + nxy + nx]),
           c111 = R(sdf[base + nxy + nx + 1]);
@@ -46,24 +46,22 @@ template <class R> bool sample_mesh_field(const MeshC<R>& m, const float* sdf, c
   return true;
 }
 
-template <class R> bool sample_mesh_at(const MeshC<R>& m, const float* sdf, const Vec3<R>& x, R& phi, Vec3<R>& grad) {
-  return sample_mesh_field(m, sdf, to_local(m, x - m.origin), phi, grad);
+template <class R> bool sample_mesh_at(const MeshColliderT<R>& m, const float* sdf, const Vec3<R>& x, R& phi, Vec3<R>& grad) {
+  return sample_mesh_field(m, sdf, to_local(m, x - mesh_origin(m)), phi, grad);
 }
 
-template <class R> MeshC<R> make_mesh_collider(const MeshColliderParams& p, const SdfGrid& g, uint32_t offset) {
+template <class R> MeshColliderT<R> make_mesh_collider(const MeshColliderParams& p, const SdfGrid& g, uint32_t offset) {
   const glm::dmat3 rot = collider_rotation(p);
-  MeshC<R> m;
-  for (int r = 0; r < 3; ++r) m.rows[r] = Vec3<R>(rot[r]);  // column r of R is row r of its transpose
-  m.origin = Vec3<R>(p.origin);
-  m.keep = R(1.0 - p.friction);
-  m.mu = R(p.friction);
-  m.thickness = R(p.thickness);
-  m.closed = g.closed;
-  m.crossing = R(0.5 * p.thickness);
-  m.grid_min = Vec3<R>(g.min);
-  m.inv_voxel = R(1.0 / g.voxel);
-  m.dims = g.dims;
-  m.offset = offset;
+  // Column r of R is row r of its transpose; w the origin.
+  MeshColliderT<R> m{};
+  m.row0 = Vec4<R>(Vec3<R>(rot[0]), R(p.origin.x));
+  m.row1 = Vec4<R>(Vec3<R>(rot[1]), R(p.origin.y));
+  m.row2 = Vec4<R>(Vec3<R>(rot[2]), R(p.origin.z));
+  m.grid = Vec4<R>(Vec3<R>(g.min), R(1.0 / g.voxel));
+  m.dims = glm::ivec4(g.dims, int(offset));
+  m.motion = Vec4<R>(Vec3<R>(0), R(1.0 - p.friction));  // w keep
+  // mu, thickness, crossing, closed
+  m.material = Vec4<R>(R(p.friction), R(p.thickness), R(0.5 * p.thickness), g.closed ? R(1) : R(0));
   return m;
 }
 
@@ -71,7 +69,7 @@ namespace {
 
 // The outward unit normal in the world for a field gradient; false where the field is flat
 // (beyond the band on both sides of a cell: no direction to push along).
-template <class R> bool world_normal(const MeshC<R>& m, const Vec3<R>& grad, Vec3<R>& n) {
+template <class R> bool world_normal(const MeshColliderT<R>& m, const Vec3<R>& grad, Vec3<R>& n) {
   const R len = length3(grad);
   if (!(len > R(0))) return false;
   n = to_world(m, grad * (R(1) / len));
@@ -86,31 +84,32 @@ template <class R> bool world_normal(const MeshC<R>& m, const Vec3<R>& grad, Vec
 // whose distances add up to less than their spacing plus twice `crossing`, straddle the shell.
 // Either way t - x is the way back to the sample before, on the side it came from.
 template <class R>
-bool passed_through_mesh(const MeshC<R>& m, const float* sdf, const Vec3<R>& p, R phi, const Vec3<R>& rel,
+bool passed_through_mesh(const MeshColliderT<R>& m, const float* sdf, const Vec3<R>& p, R phi, const Vec3<R>& rel,
                          Vec3<R>& t_minus_x) {
   const R moved = length3(rel);
-  const R clearance = phi - m.thickness;
+  const R clearance = phi - m.material.y;  // thickness
+  const bool closed = m.material.w != R(0);
   if (!(moved > clearance)) return false;
   const Vec3<R> step_all = to_local(m, rel);
-  const R halves = std::ceil(moved * m.inv_voxel * R(2));
+  const R halves = std::ceil(moved * m.grid.w * R(2));
   const int samples = int(std::min(R(8), halves));
   const R spacing = moved * (R(1) / R(samples));
   const Vec3<R> start = p - step_all;
   R prev_phi = R(0), prev_slope = R(0);
   bool prev_in_grid = false;
   // A closed mesh's path starts and ends outside it: its ends are not sampled.
-  const int first = m.closed ? 1 : 0, last = m.closed ? samples - 1 : samples;
+  const int first = closed ? 1 : 0, last = closed ? samples - 1 : samples;
   for (int k = first; k <= last; ++k) {
     const Vec3<R> q = start + step_all * (R(k) / R(samples));
     R phi_q;
     Vec3<R> grad;
     const bool in_grid = sample_mesh_field(m, sdf, q, phi_q, grad);
     bool crossed = false;
-    if (m.closed) {
+    if (closed) {
       crossed = in_grid && phi_q < R(0);
     } else if (in_grid) {
       const R slope = dot3(grad, step_all);
-      crossed = prev_in_grid && prev_slope < R(0) && slope > R(0) && prev_phi + phi_q < spacing + R(2) * m.crossing;
+      crossed = prev_in_grid && prev_slope < R(0) && slope > R(0) && prev_phi + phi_q < spacing + R(2) * m.material.z;  // crossing
       prev_phi = phi_q;
       prev_slope = slope;
     }
@@ -125,45 +124,45 @@ bool passed_through_mesh(const MeshC<R>& m, const float* sdf, const Vec3<R>& p, 
 
 }  // namespace
 
-template <class R> void keep_out_of_mesh(const Constants<R>& c, const MeshC<R>& m, Vec3<R>& x, Vec3<R>& d) {
+template <class R> void keep_out_of_mesh(const Constants<R>& c, const MeshColliderT<R>& m, Vec3<R>& x, Vec3<R>& d) {
   R phi;
   Vec3<R> grad, n;
   if (!sample_mesh_at(m, c.sdf->data(), x, phi, grad)) return;
-  const R depth = m.thickness - phi;
+  const R depth = m.material.y - phi;  // below the thickness
   if (!(depth > R(1e-4)) || !world_normal(m, grad, n)) return;
   const Vec3<R> out = n * depth;
   x = x + out;
   d = d + out;
 }
 
-template <class R> void collide_with_mesh(const Constants<R>& c, const MeshC<R>& m, bool friction, Vec3<R>& x, Vec3<R>& d) {
+template <class R> void collide_with_mesh(const Constants<R>& c, const MeshColliderT<R>& m, bool friction, Vec3<R>& x, Vec3<R>& d) {
   const float* sdf = c.sdf->data();
-  const Vec3<R> p = to_local(m, x - m.origin);
+  const Vec3<R> p = to_local(m, x - mesh_origin(m));
   R phi;
   Vec3<R> grad, n, t_minus_x;
   if (!sample_mesh_field(m, sdf, p, phi, grad)) return;
-  if (phi < m.thickness) {
+  if (phi < m.material.y) {
     // In contact: out along the field's gradient to the offset surface.
     if (!world_normal(m, grad, n)) return;
-    t_minus_x = n * (m.thickness - phi);
+    t_minus_x = n * (m.material.y - phi);
   } else {
-    if (!passed_through_mesh(m, sdf, p, phi, d - m.motion, t_minus_x)) return;
+    if (!passed_through_mesh(m, sdf, p, phi, d - Vec3<R>(m.motion), t_minus_x)) return;
     // The normal of the contact is the field's where the mass is put back.
     R phi_back;
     Vec3<R> grad_back;
     if (!sample_mesh_field(m, sdf, p + to_local(m, t_minus_x), phi_back, grad_back) || !world_normal(m, grad_back, n))
       n = t_minus_x * (R(1) / length3(t_minus_x));
   }
-  respond_to_contact(friction && c.xpbd, t_minus_x, n, friction ? m.keep : R(1), m.mu, m.motion, x, d);
+  respond_to_contact(friction && c.xpbd, t_minus_x, n, friction ? m.motion.w : R(1), m.material.x, Vec3<R>(m.motion), x, d);
   keep_out_of_mesh(c, m, x, d);
 }
 
 #define CLOTHSIM_INSTANTIATE(R)                                                                          \
-  template bool sample_mesh_field<R>(const MeshC<R>&, const float*, const Vec3<R>&, R&, Vec3<R>&);        \
-  template bool sample_mesh_at<R>(const MeshC<R>&, const float*, const Vec3<R>&, R&, Vec3<R>&);           \
-  template MeshC<R> make_mesh_collider<R>(const MeshColliderParams&, const SdfGrid&, uint32_t);           \
-  template void keep_out_of_mesh<R>(const Constants<R>&, const MeshC<R>&, Vec3<R>&, Vec3<R>&);           \
-  template void collide_with_mesh<R>(const Constants<R>&, const MeshC<R>&, bool, Vec3<R>&, Vec3<R>&);
+  template bool sample_mesh_field<R>(const MeshColliderT<R>&, const float*, const Vec3<R>&, R&, Vec3<R>&);        \
+  template bool sample_mesh_at<R>(const MeshColliderT<R>&, const float*, const Vec3<R>&, R&, Vec3<R>&);           \
+  template MeshColliderT<R> make_mesh_collider<R>(const MeshColliderParams&, const SdfGrid&, uint32_t);           \
+  template void keep_out_of_mesh<R>(const Constants<R>&, const MeshColliderT<R>&, Vec3<R>&, Vec3<R>&);           \
+  template void collide_with_mesh<R>(const Constants<R>&, const MeshColliderT<R>&, bool, Vec3<R>&, Vec3<R>&);
 CLOTHSIM_INSTANTIATE(float)
 CLOTHSIM_INSTANTIATE(double)
 

@@ -98,14 +98,14 @@ Vec3<R> coarse_residual(const Hierarchy& h, const Constants<R>& c, const State<R
 // touches_colliders in compute/multigrid.glsl.
 template <class R> bool touches_colliders(const Constants<R>& c, const Vec3<R>& x) {
   const R reach = R(kContactReach);
-  for (const SphereC<R>& sp : c.spheres)
-    if (length3(x - sp.origin) < sp.radius + reach) return true;
-  for (const PlaneC<R>& pl : c.planes)
-    if (dot3(x - pl.point, pl.normal) * pl.front < reach) return true;
-  for (const MeshC<R>& m : c.meshes) {
+  for (const SphereColliderT<R>& sp : c.spheres)
+    if (length3(x - Vec3<R>(sp.origin_radius)) < sp.origin_radius.w + reach) return true;
+  for (const PlaneColliderT<R>& pl : c.planes)
+    if (dot3(x - Vec3<R>(pl.point), Vec3<R>(pl.normal)) * pl.point.w < reach) return true;  // w: front
+  for (const MeshColliderT<R>& m : c.meshes) {
     R phi;
     Vec3<R> grad;
-    if (sample_mesh_at(m, c.sdf->data(), x, phi, grad) && phi < m.thickness + reach) return true;
+    if (sample_mesh_at(m, c.sdf->data(), x, phi, grad) && phi < m.material.y + reach) return true;  // y: thickness
   }
   return false;
 }
