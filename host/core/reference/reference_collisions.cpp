@@ -47,146 +47,46 @@ template <class R> void resolve_self_contacts(const Constants<R>& c, State<R>& s
   s.pos.swap(s.pos_out);
 }
 
-// A moving sphere: e = x - o at the substep's end, e_prev = x_prev - o_prev = e - d + m at its
-// start. A mass normally enters by at most its motion relative to the sphere per substep and
-// is pushed out along e. Should that motion carry it past the centre (e . e_prev < 0, a
-// sphere moving by more than its radius in one substep), pushing along e would pass it
-// through: it is put back on the side it came from, along e_prev (no tunnelling at any speed).
-template <class R> Vec3<R> moving_sphere_push(const Vec3<R>& e, R dist, R r, const Vec3<R>& d, const Vec3<R>& m) {
-  const Vec3<R> e_prev = (e - d) + m;
-  const R prev_dist = length3(e_prev);
-  if (dot3(e, e_prev) < R(0) && prev_dist > R(0)) return e_prev * (r * (R(1) / prev_dist)) - e;
-  return dist > R(0) ? e * ((r - dist) * (R(1) / dist)) : Vec3<R>(0, r, 0);
-}
-
-// A mass outside a sphere at the end of the substep, e = x - o (|e| = dist > r), that moved by
-// rel = d - m relative to it: true if its path e - rel .. e went into the sphere deeper than
-// 0.1 mm (a fast mass, or a fast sphere, passing through within the substep), with t - x the
-// push back to where the path entered the surface. A mass that moved less than its distance
-// to the surface cannot have entered: the common case costs one comparison.
-template <class R> bool passed_through_sphere(const Vec3<R>& e, R dist, R r, const Vec3<R>& rel, Vec3<R>& t_minus_x) {
-  const R gap = dist - r;
-  const R a = dot3(rel, rel);
-  if (!(a > gap * gap)) return false;
-  const Vec3<R> e_prev = e - rel;
-  const R b = dot3(e_prev, rel);  // the path is e_prev + s rel, s in [0, 1]
-  if (!(b < R(0))) return false;  // moving away from the centre: leaving, not passing through
-  const R s_closest = std::min(R(1), -b * (R(1) / a));
-  const Vec3<R> closest = e_prev + rel * s_closest;
-  const R depth = r - length3(closest);
-  if (!(depth > R(1e-4))) return false;
-  const R c = dot3(e_prev, e_prev) - r * r;
-  if (c > R(0)) {
-    const R s_in = (-b - std::sqrt(b * b - a * c)) * (R(1) / a);  // b^2 - ac > 0: the path meets it
-    t_minus_x = (e_prev + rel * s_in) - e;
-  } else {
-    // It started on the surface (where the last contact put it) or inside: back out on its own side.
-    const R prev_dist = length3(e_prev);
-    t_minus_x = prev_dist > R(0) ? e_prev * (r * (R(1) / prev_dist)) - e : Vec3<R>(0, r, 0) - e;
-  }
-  return true;
-}
-
-// The friction blend moves a mass from x_prev towards the surface point t, and a chord between
-// two points of a sphere runs inside it: a fast mass sliding over a sphere can end the blend
-// deep inside. Deeper than 0.1 mm it is put back on the surface along e, without friction (the
-// classic scenes never come near: their chords sink by under a micrometre).
-template <class R> void keep_out_of_sphere(const SphereC<R>& sp, Vec3<R>& x, Vec3<R>& d) {
-  const Vec3<R> e = x - sp.origin;
-  const R dist = length3(e);
-  if (!(sp.radius - dist > R(1e-4)) || !(dist > R(0))) return;
-  const Vec3<R> out = e * ((sp.radius - dist) * (R(1) / dist));
-  x = x + out;
-  d = d + out;
-}
-
-// A mass deeper than 0.1 mm behind a plane's front goes to its surface offset on the front,
-// along the normal, without friction: after Provot's pull, and after the CS184 blend of a mass
-// found behind (the blend starts from x_prev, behind too, so it can end still behind).
-template <class R> void keep_in_front_of_plane(const PlaneC<R>& pl, Vec3<R>& x, Vec3<R>& d) {
-  const R dist = dot3(x - pl.point, pl.normal);
-  if (!(dist * pl.front < R(-1e-4))) return;
-  const Vec3<R> out = pl.normal * (R(1e-4) * pl.front - dist);
-  x = x + out;
-  d = d + out;
-}
-
-// The outward normal of a sphere at the point x + t_minus_x (up at the centre).
-template <class R> Vec3<R> sphere_normal(const SphereC<R>& sp, const Vec3<R>& x, const Vec3<R>& t_minus_x) {
-  const Vec3<R> e = (x + t_minus_x) - sp.origin;
-  const R len = length3(e);
-  return len > R(0) ? e * (R(1) / len) : Vec3<R>(0, 1, 0);
-}
-
-// One sphere contact's response: xpbd's Coulomb friction (with friction on), else the CS184
-// blend, in the sphere's frame when it moves.
-template <class R>
-void respond_to_sphere(const Constants<R>& c, bool friction, const SphereC<R>& sp, const Vec3<R>& t_minus_x,
-                       Vec3<R>& x, Vec3<R>& d) {
-  if (friction && c.xpbd) coulomb_respond(t_minus_x, sphere_normal(sp, x, t_minus_x), sp.mu, sp.motion, x, d);
-  else if (sp.motion != Vec3<R>(0)) blend_to_moving(t_minus_x, friction ? sp.keep : R(1), sp.motion, x, d);
-  else blend_to(t_minus_x, friction ? sp.keep : R(1), x, d);
-}
-
 // One particle against every sphere, then every plane, then every mesh. With `friction` false every contact
 // keeps all of its tangential motion (keep = 1): the pure push-out of xpbd's constraint pass.
+// The formulas are compute/shared/collisions.glsl's.
 template <class R> void collide_particle(const Constants<R>& c, Vec3<R>& x, Vec3<R>& d, bool friction) {
+  const bool coulomb = friction && c.xpbd;
   for (const SphereC<R>& sp : c.spheres) {
     const Vec3<R> e = x - sp.origin;
     const R dist = length3(e);
+    Vec3<R> t_minus_x;
     if (dist > sp.radius) {
       // Outside at the end: caught if it went through the sphere during the substep.
-      Vec3<R> t_minus_x;
       if (!passed_through_sphere(e, dist, sp.radius, d - sp.motion, t_minus_x)) continue;
-      respond_to_sphere(c, friction, sp, t_minus_x, x, d);
-      keep_out_of_sphere(sp, x, d);
-      continue;
+    } else if (sp.motion != Vec3<R>(0)) {
+      t_minus_x = moving_sphere_push(e, dist, sp.radius, d, sp.motion);
+    } else {
+      t_minus_x = static_sphere_push(e, dist, sp.radius, d);
     }
-    if (sp.motion != Vec3<R>(0)) {
-      respond_to_sphere(c, friction, sp, moving_sphere_push(e, dist, sp.radius, d, sp.motion), x, d);
-      keep_out_of_sphere(sp, x, d);
-      continue;
-    }
-    // t - x = e (r / |e| - 1): the push out to the surface (a mass exactly at the centre has no
-    // outward direction: it goes up), unless it passed the centre this substep (a mass faster
-    // than the sphere's radius per substep): then back out on its own side.
-    const Vec3<R> e_prev = e - d;
-    const R prev_dist = length3(e_prev);
-    const Vec3<R> t_minus_x = dot3(e, e_prev) < R(0) && prev_dist > R(0) ? e_prev * (sp.radius * (R(1) / prev_dist)) - e
-                              : dist > R(0) ? e * ((sp.radius - dist) * (R(1) / dist))
-                                            : Vec3<R>(0, sp.radius, 0);
-    respond_to_sphere(c, friction, sp, t_minus_x, x, d);
-    keep_out_of_sphere(sp, x, d);
+    respond_to_sphere(coulomb, sp.origin, friction ? sp.keep : R(1), sp.mu, sp.motion, t_minus_x, x, d);
+    keep_out_of_sphere(sp.origin, sp.radius, x, d);
   }
   for (const PlaneC<R>& pl : c.planes) {
-    const bool coulomb = friction && c.xpbd;
     // The classic test: a mass that crossed the plane this substep (dist * dist_prev <= 0; for
     // a moving plane in its frame, x_prev - p_prev = (x - p) - (d - m), so a sweep is seen at
     // any speed) goes back to the side it came from. And a mass found behind the plane's front
     // at both ends of the substep (a correction put it there) is lifted to the front. With
     // Coulomb friction a mass within the surface offset in front is in contact too: a mass
     // resting there is pressed in a little every substep, and held every substep.
-    const R dist = dot3(x - pl.point, pl.normal);
-    const R dist_prev = dist - dot3(d - pl.motion, pl.normal);
-    R side;
-    if (dist * dist_prev > R(0)) {
-      if (!(dist * pl.front < (coulomb ? R(1e-4) : R(0)))) continue;
-      side = pl.front;
-    } else {
-      side = dist_prev > R(0) ? R(1) : (dist_prev < R(0) ? R(-1) : R(0));
-    }
-    // t = x - dist n + SURFACE_OFFSET side n, so t - x is along n.
-    const Vec3<R> t_minus_x = pl.normal * (R(1e-4) * side - dist);
-    respond_to_contact(coulomb, t_minus_x, pl.normal * (side != R(0) ? side : pl.front), friction ? pl.keep : R(1),
-                       pl.mu, pl.motion, x, d);
-    if (side == pl.front) keep_in_front_of_plane(pl, x, d);
+    R dist, dist_prev;
+    const bool crossed = plane_sides(x, d, pl.point, pl.normal, pl.motion, dist, dist_prev);
+    if (!crossed && stays_in_front(dist, pl.front, coulomb)) continue;
+    const R side = plane_side(crossed, dist_prev, pl.front);
+    respond_to_plane(coulomb, pl.normal, pl.front, friction ? pl.keep : R(1), pl.mu, pl.motion, dist, side, x, d);
+    if (side == pl.front) keep_in_front_of_plane(pl.point, pl.normal, pl.front, x, d);
   }
   for (const MeshC<R>& m : c.meshes) collide_with_mesh(c, m, friction, x, d);
 }
 
 template <class R> void keep_out_of_colliders(const Constants<R>& c, Vec3<R>& x, Vec3<R>& d) {
-  for (const SphereC<R>& sp : c.spheres) keep_out_of_sphere(sp, x, d);
-  for (const PlaneC<R>& pl : c.planes) keep_in_front_of_plane(pl, x, d);
+  for (const SphereC<R>& sp : c.spheres) keep_out_of_sphere(sp.origin, sp.radius, x, d);
+  for (const PlaneC<R>& pl : c.planes) keep_in_front_of_plane(pl.point, pl.normal, pl.front, x, d);
   for (const MeshC<R>& m : c.meshes) keep_out_of_mesh(c, m, x, d);
 }
 
