@@ -45,14 +45,12 @@ bool touches_colliders(vec3 x) {
   float reach = CONTACT_REACH;
   for (int s = 0; s < sphere_count(); ++s) {
     vec4 origin_radius = texelFetch(spheres_view, SPHERE_TEXELS * s);
-    precise float within = origin_radius.w + reach;
-    if (length3(x - origin_radius.xyz) < within) return true;
+    if (near_sphere(x, origin_radius.xyz, origin_radius.w, reach)) return true;
   }
   for (int k = 0; k < plane_count(); ++k) {
     vec4 point_front = texelFetch(planes_view, PLANE_TEXELS * k);
     vec3 n = texelFetch(planes_view, PLANE_TEXELS * k + 1).xyz;
-    precise float ahead = dot3(x - point_front.xyz, n) * point_front.w;
-    if (ahead < reach) return true;
+    if (near_plane(x, point_front.xyz, n, point_front.w, reach)) return true;
   }
   for (int k = 0; k < mesh_count(); ++k) {
     MeshField m = mesh_field(k);

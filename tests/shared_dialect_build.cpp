@@ -83,6 +83,12 @@ template <class R> void exercise(const char* type) {
   tether_to(e, R(1), x, d);
   expect(pin_target(e, up) == V(R(3), R(5), R(0)), "pin_target", type);
   expect(cell_axis(R(-0.5)) == -1, "cell_axis floors", type);
+
+  expect(add_self_contact(zero, e, R(5), R(6), R(1)) == e * R(0.2), "add_self_contact", type);
+  expect(self_contact_scale(2u, true, R(4)) == R(0.5) && self_contact_scale(2u, false, R(4)) == R(0.125),
+         "self_contact_scale", type);
+  expect(unit_or_up(zero) == up && unit_or_up(e) == e * R(0.2), "unit_or_up", type);
+  expect(near_sphere(e, zero, R(4.5), R(0.75)) && !near_plane(e, zero, up, R(1), R(3)), "near_sphere, near_plane", type);
 }
 
 }  // namespace

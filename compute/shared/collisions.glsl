@@ -116,10 +116,7 @@ SHARED_FN void keep_in_front_of_plane(VEC3 p, VEC3 n, REAL front, INOUT(VEC3) x,
 // The outward normal of a sphere at the point x + t_minus_x (up at the centre).
 SHARED_FN VEC3 sphere_normal(VEC3 o, VEC3 x, VEC3 t_minus_x) {
   PRECISE VEC3 e = (x + t_minus_x) - o;
-  REAL len = length3(e);
-  PRECISE REAL inv = REAL(1) / len;
-  PRECISE VEC3 unit = e * inv;
-  return len > REAL(0) ? unit : VEC3(REAL(0), REAL(1), REAL(0));
+  return unit_or_up(e);
 }
 
 // One sphere contact's response: xpbd's Coulomb friction when `coulomb`, else the CS184 blend
@@ -165,6 +162,19 @@ SHARED_FN void respond_to_plane(bool coulomb, VEC3 n, REAL front, REAL keep, REA
 SHARED_FN REAL plane_side(bool crossed, REAL dist_prev, REAL front) {
   if (!crossed) return front;
   return dist_prev > REAL(0) ? REAL(1) : (dist_prev < REAL(0) ? REAL(-1) : REAL(0));
+}
+
+// Whether a mass at x is within `reach` of a sphere's surface or inside it (the multigrid
+// solver's touches_colliders).
+SHARED_FN bool near_sphere(VEC3 x, VEC3 o, REAL r, REAL reach) {
+  PRECISE REAL within = r + reach;
+  return length3(x - o) < within;
+}
+
+// Whether a mass at x is behind a plane's front or within `reach` in front of it.
+SHARED_FN bool near_plane(VEC3 x, VEC3 p, VEC3 n, REAL front, REAL reach) {
+  PRECISE REAL ahead = dot3(x - p, n) * front;
+  return ahead < reach;
 }
 
 SHARED_END

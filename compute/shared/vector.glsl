@@ -25,6 +25,14 @@ SHARED_FN VEC3 cross3(VEC3 u, VEC3 v) {
   return c;
 }
 
+// v / |v|, or up where v is 0 (a normal with no direction).
+SHARED_FN VEC3 unit_or_up(VEC3 v) {
+  REAL len = length3(v);
+  PRECISE REAL inv = REAL(1) / len;
+  PRECISE VEC3 unit = v * inv;
+  return len > REAL(0) ? unit : VEC3(REAL(0), REAL(1), REAL(0));
+}
+
 SHARED_END
 
 #endif

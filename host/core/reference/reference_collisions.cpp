@@ -2,6 +2,7 @@
 // grid and the spheres and planes, with the friction blend written on small differences.
 #include "reference/reference.hpp"
 #include "reference/reference_detail.hpp"
+#include "../../../compute/shared/self_contact.glsl"
 
 namespace clothsim {
 
@@ -23,7 +24,7 @@ template <class R> void resolve_self_contacts(const Constants<R>& c, State<R>& s
       // i itself, and coincident masses, have no direction to separate along: skipped.
       if (d >= c.contact_distance || d == R(0)) return;
       if (!c.bounded_contact) {
-        sum += e3 * ((c.contact_distance - d) * (R(1) / d));
+        sum = shared::add_self_contact(sum, e3, d, c.contact_distance, R(1));
         ++hits;
         return;
       }
@@ -32,14 +33,13 @@ template <class R> void resolve_self_contacts(const Constants<R>& c, State<R>& s
       const R rest = length3(c.rest[i] - c.rest[j]);
       const R keep = std::min(c.contact_distance, rest);
       if (!(d < keep)) return;
-      sum += e3 * ((keep - d) * (R(0.5) / d));
+      sum = shared::add_self_contact(sum, e3, d, keep, R(0.5));
       ++hits;
     });
     if (hits > 0) {
       // Classic: the average over the contacts, spread over the substeps (docs/design.md §1.3).
       // Bounded: the average, whole, every substep.
-      const R scale = c.bounded_contact ? R(1) / R(hits) : R(1) / (R(hits) * c.steps);
-      const Vec3<R> corr = sum * scale;
+      const Vec3<R> corr = sum * shared::self_contact_scale(hits, c.bounded_contact, c.steps);
       s.pos_out[i] = Vec4<R>(xi + corr, s.pos[i].w);
       s.disp[i] = Vec4<R>(Vec3<R>(s.disp[i]) + corr, R(0));  // x_prev stays where it was
     }

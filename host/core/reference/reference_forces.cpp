@@ -141,12 +141,10 @@ template <class R> void compute_normals(const ClothModel& m, State<R>& s) {
     Vec3<R> sum(0);
     for_each_triangle_around(m, i, [&](const int (&t)[3]) {
       const Vec3<R> p0(s.pos[t[0]]), p1(s.pos[t[1]]), p2(s.pos[t[2]]);
-      const Vec3<R> u = p1 - p0, v = p2 - p0;
       // Unnormalised cross product: its length is twice the area, so this is area-weighted.
-      sum += Vec3<R>(u.y * v.z - u.z * v.y, u.z * v.x - u.x * v.z, u.x * v.y - u.y * v.x);
+      sum += shared::cross3(p1 - p0, p2 - p0);
     });
-    const R len = length3(sum);
-    s.normal[i] = len > R(0) ? Vec4<R>(sum * (R(1) / len), R(0)) : Vec4<R>(0, 1, 0, 0);
+    s.normal[i] = Vec4<R>(shared::unit_or_up(sum), R(0));
   }
 }
 

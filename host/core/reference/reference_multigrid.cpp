@@ -7,6 +7,7 @@
 // solve the same energy, so a rest state of the step is the static equilibrium of the springs.
 #include "reference/reference.hpp"
 #include "reference/reference_detail.hpp"
+#include "../../../compute/shared/collisions.glsl"
 #include "../../../compute/shared/springs.glsl"
 
 #include <algorithm>
@@ -63,9 +64,9 @@ Vec3<R> coarse_residual(const Hierarchy& h, const Constants<R>& c, const State<R
 template <class R> bool touches_colliders(const Constants<R>& c, const Vec3<R>& x) {
   const R reach = R(kContactReach);
   for (const SphereC<R>& sp : c.spheres)
-    if (length3(x - sp.origin) < sp.radius + reach) return true;
+    if (shared::near_sphere(x, sp.origin, sp.radius, reach)) return true;
   for (const PlaneC<R>& pl : c.planes)
-    if (dot3(x - pl.point, pl.normal) * pl.front < reach) return true;
+    if (shared::near_plane(x, pl.point, pl.normal, pl.front, reach)) return true;
   for (const MeshC<R>& m : c.meshes) {
     R phi;
     Vec3<R> grad;
