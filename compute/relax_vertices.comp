@@ -42,8 +42,7 @@ void main() {
     bool taut = spring_terms(x, position_of(int(entry.x & 0x3FFFFFFFu)).xyz, rest, k, n, len, sa, sd);
     headroom = min(headroom, 0.99 * params.stretch_limit * rest - len);
     if (!taut) continue;
-    precise float magnitude = k * (len - rest);
-    f = f + n * magnitude;
+    f = add_spring_pull(f, n, len, rest, k);
     add_spring_hessian(hess, n, sa, sd);
   }
   vec3 step;

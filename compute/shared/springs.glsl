@@ -40,6 +40,13 @@ SHARED_FN VEC3 add_spring_force(VEC3 f, VEC3 e, REAL rest, REAL k) {
   return sum;
 }
 
+// f plus the pull k (len - rest) n of a spring along its unit direction n (spring_terms's).
+SHARED_FN VEC3 add_spring_pull(VEC3 f, VEC3 n, REAL len, REAL rest, REAL k) {
+  PRECISE REAL magnitude = k * (len - rest);
+  PRECISE VEC3 sum = f + n * magnitude;
+  return sum;
+}
+
 // Provot's projection: a spring from xi to xj longer than `limit` is shortened to it, both ends
 // moving by their share of the inverse mass (wsum = wi + wj > 0), the displacements with them
 // (the ends' x_prev stay; a pinned end, w = 0, gets a zero correction). False, and nothing

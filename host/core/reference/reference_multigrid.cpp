@@ -109,8 +109,7 @@ template <class R> void compute_residuals(const ClothModel& m, const Constants<R
       if (!c.enabled(sp)) continue;
       const uint32_t j = sp.i == i ? sp.j : sp.i;
       const Vec3<R> e = (Vec3<R>(s.pos[j]) + Vec3<R>(s.offset[j])) - xi;
-      const R len = length3(e);
-      if (len > R(0)) f += e * (c.materials[sp.material].stiffness(sp.type) * (len - R(sp.rest)) * (R(1) / len));
+      f = shared::add_spring_force(f, e, R(sp.rest), c.materials[sp.material].stiffness(sp.type));
     }
     s.residual[i] = Vec4<R>(f, c.mass[i]);
   }
@@ -196,7 +195,7 @@ template <class R> void relax_vertices(const ClothModel& m, const Constants<R>& 
       R len, sa, sd;
       const R k_s = c.materials[sp.material].stiffness(sp.type);
       if (!spring_terms(x, Vec3<R>(s.pos[j]), R(sp.rest), k_s, n, len, sa, sd)) continue;
-      f = f + n * (k_s * (len - R(sp.rest)));
+      f = shared::add_spring_pull(f, n, len, R(sp.rest), k_s);
       add_spring_hessian(hess, n, sa, sd);
     }
     Vec3<R> step;
