@@ -1,7 +1,7 @@
 // One particle against every sphere in file order, then every plane (docs/design.md §1.4), then
 // every mesh collider (docs/model.md); the formulas are compute/shared/collisions.glsl's, the
-// loops and the reads of the colliders' parameters this file's. x is its position, d its displacement of this
-// substep (x_prev = x - d); both change. Shared by collide_objects.comp and the passes it is
+// loops and the reads of the colliders' parameters this file's. x is its position, d its
+// displacement of this substep (x_prev = x - d); both change. Shared by collide_objects.comp and the passes it is
 // fused into (advance, resolve_self_contacts).
 #ifndef CLOTHSIM_COLLIDE_OBJECTS_GLSL
 #define CLOTHSIM_COLLIDE_OBJECTS_GLSL
@@ -37,7 +37,8 @@ void collide_with_objects_friction(inout vec3 x, inout vec3 d, bool friction) {
       frame_motion = vec3(0.0);
       t_minus_x = static_sphere_push(e, dist, r, d);
     }
-    respond_to_sphere(friction && COULOMB_FRICTION, origin_radius.xyz, keep, keep_mu.y, frame_motion, t_minus_x, x, d);
+    respond_to_sphere(friction && COULOMB_FRICTION, origin_radius.xyz, keep, keep_mu.y, frame_motion, t_minus_x, x,
+                      d);
     keep_out_of_sphere(origin_radius.xyz, r, x, d);
   }
   for (int k = 0; k < plane_count(); ++k) {

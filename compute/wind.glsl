@@ -1,8 +1,8 @@
 // The aerodynamic force of the air on the cloth (docs/model.md, "Wind"), per particle as a
-// gather over the up to six triangles around it; the formulas are compute/shared/wind.glsl's. Reads positions and displacements of the
-// particle and its neighbours through the views, so it runs in its own pass
-// (compute_wind_forces.comp) before the one that writes them (advance, or XPBD's predict),
-// which adds wind_force_of(i) to its force.
+// gather over the up to six triangles around it; the formulas are compute/shared/wind.glsl's.
+// Reads positions and displacements of the particle and its neighbours through the views, so it
+// runs in its own pass (compute_wind_forces.comp) before the one that writes them (advance, or
+// XPBD's predict), which adds wind_force_of(i) to its force.
 #ifndef CLOTHSIM_WIND_GLSL
 #define CLOTHSIM_WIND_GLSL
 
