@@ -1,11 +1,12 @@
-// Mesh colliders (docs/model.md, "Mesh colliders"; reference_mesh_collisions.cpp): a mass
-// against a mesh's signed distance field, trilinear interpolation written out (no sampler
-// filtering) so that both backends compute the same bits. Included by collide_objects.glsl
-// after the contact response it shares (respond_to_contact).
+// Mesh colliders (docs/model.md, "Mesh colliders"): a mass against a mesh's signed distance
+// field. The formulas are compute/shared/mesh_field.glsl's; this file reads the field's
+// parameters and nodes and walks a path. Included by collide_objects.glsl after the contact
+// response it shares (respond_to_contact).
 #ifndef CLOTHSIM_COLLIDE_MESHES_GLSL
 #define CLOTHSIM_COLLIDE_MESHES_GLSL
 
 #include "particle_views.glsl"
+#include "shared/mesh_field.glsl"
 
 struct MeshField {
   vec3 rows[3];
@@ -42,18 +43,11 @@ MeshField mesh_field(int k) {
   return m;
 }
 
-vec3 mesh_local(MeshField m, vec3 v) { return vec3(dot3(m.rows[0], v), dot3(m.rows[1], v), dot3(m.rows[2], v)); }
-vec3 mesh_world(MeshField m, vec3 v) {
-  precise vec3 w = (m.rows[0] * v.x + m.rows[1] * v.y) + m.rows[2] * v.z;
-  return w;
-}
+vec3 mesh_local(MeshField m, vec3 v) { return to_local(m.rows[0], m.rows[1], m.rows[2], v); }
 
 // Whether local point p is inside the field's grid, and its grid coordinates g.
 bool inside_mesh_grid(MeshField m, vec3 p, out vec3 g) {
-  precise vec3 at = (p - m.grid_min) * m.inv_voxel;
-  g = at;
-  return at.x >= 0.0 && at.y >= 0.0 && at.z >= 0.0 && at.x < float(m.dims.x - 1) && at.y < float(m.dims.y - 1) &&
-         at.z < float(m.dims.z - 1);
+  return inside_grid(p, m.grid_min, m.inv_voxel, vec3(m.dims.xyz - 1), g);
 }
 
 // The field at local point p, and whether p is inside the grid. Outside, the value at the
@@ -75,20 +69,11 @@ bool sample_mesh_field_clamped(MeshField m, vec3 p, out float phi, out vec3 grad
   vec4 lower = texelFetch(sdf_view, base), upper = texelFetch(sdf_view, base + nxy);
   float c000 = lower.x, c100 = lower.y, c010 = lower.z, c110 = lower.w;
   float c001 = upper.x, c101 = upper.y, c011 = upper.z, c111 = upper.w;
-  precise float x00 = c100 - c000, x10 = c110 - c010, x01 = c101 - c001, x11 = c111 - c011;
-  precise float c00 = c000 + x00 * f.x, c10 = c010 + x10 * f.x, c01 = c001 + x01 * f.x, c11 = c011 + x11 * f.x;
-  precise float y0 = c10 - c00, y1 = c11 - c01;
-  precise float c0 = c00 + y0 * f.y, c1 = c01 + y1 * f.y;
-  precise float z = c1 - c0;
-  precise float value = c0 + z * f.z;
-  precise float gx0 = x00 + (x10 - x00) * f.y, gx1 = x01 + (x11 - x01) * f.y;
-  precise vec3 gradient = vec3(gx0 + (gx1 - gx0) * f.z, y0 + (y1 - y0) * f.z, z);
-  phi = value;
-  grad = gradient;
+  phi = trilinear(c000, c100, c010, c110, c001, c101, c011, c111, f, grad);
   return inside;
 }
 
-// The field at local point p: false outside the grid (sample_mesh_field in the reference).
+// The field at local point p: false outside the grid.
 bool sample_mesh_field(MeshField m, vec3 p, out float phi, out vec3 grad) {
   bool inside = sample_mesh_field_clamped(m, p, phi, grad);
   if (!inside) {
@@ -99,34 +84,18 @@ bool sample_mesh_field(MeshField m, vec3 p, out float phi, out vec3 grad) {
 }
 
 // The outward unit normal in the world; false where the field is flat.
-bool mesh_normal(MeshField m, vec3 grad, out vec3 n) {
-  n = vec3(0.0);
-  float len = length3(grad);
-  if (!(len > 0.0)) return false;
-  precise vec3 unit = grad * (1.0 / len);
-  n = mesh_world(m, unit);
-  return true;
-}
-
-// A mass phi from the surface, thickness its offset, that moved `moved` relative to the mesh:
-// true if it cannot have reached the offset surface (passed_through_mesh's first test, and
-// may_collide's on the same values).
-bool stays_clear_of_mesh(float moved, float phi, float thickness) {
-  precise float clearance = phi - thickness;
-  return !(moved > clearance);
-}
+bool mesh_normal(MeshField m, vec3 grad, out vec3 n) { return world_normal(m.rows[0], m.rows[1], m.rows[2], grad, n); }
 
 // A mass outside the offset surface that moved by rel further than its clearance: true if its
 // path (sampled every half node spacing, at most 8 samples) went through a closed mesh's wall
 // or an open mesh's shell, with t - x the way back to the sample before (passed_through_mesh
-// in the reference says how).
+// in host/core/reference/reference_mesh_collisions.cpp says how).
 bool passed_through_mesh(MeshField m, vec3 p, float phi, vec3 rel, out vec3 t_minus_x) {
   t_minus_x = vec3(0.0);
   float moved = length3(rel);
   if (stays_clear_of_mesh(moved, phi, m.thickness)) return false;
   vec3 step_all = mesh_local(m, rel);
-  precise float halves = ceil(moved * m.inv_voxel * 2.0);
-  int samples = int(min(8.0, halves));
+  int samples = path_samples(moved, m.inv_voxel);
   precise float spacing = moved * (1.0 / float(samples));
   precise vec3 start = p - step_all;
   float prev_phi = 0.0, prev_slope = 0.0;
@@ -145,23 +114,21 @@ bool passed_through_mesh(MeshField m, vec3 p, float phi, vec3 rel, out vec3 t_mi
       crossed = in_grid && phi_q < 0.0;
     } else if (in_grid) {
       float slope = dot3(grad, step_all);
-      precise float both = prev_phi + phi_q;
-      precise float reach = spacing + 2.0 * m.crossing;
-      crossed = prev_in_grid && prev_slope < 0.0 && slope > 0.0 && both < reach;
+      crossed = crossed_shell(prev_in_grid, prev_slope, slope, prev_phi, phi_q, spacing, m.crossing);
       prev_phi = phi_q;
       prev_slope = slope;
     }
     prev_in_grid = in_grid;
     if (!crossed) continue;
     precise vec3 back = start + step_all * (float(k - 1) / float(samples));
-    t_minus_x = mesh_world(m, back - p);
+    t_minus_x = to_world(m.rows[0], m.rows[1], m.rows[2], back - p);
     return true;
   }
   return false;
 }
 
 // A mass deeper than 0.1 mm inside the offset surface goes out along the gradient, without
-// friction (keep_out_of_mesh in the reference).
+// friction.
 void keep_out_of_mesh(MeshField m, inout vec3 x, inout vec3 d) {
   vec3 p = mesh_local(m, x - m.origin);
   float phi;
@@ -169,10 +136,7 @@ void keep_out_of_mesh(MeshField m, inout vec3 x, inout vec3 d) {
   if (!sample_mesh_field(m, p, phi, grad)) return;
   precise float depth = m.thickness - phi;
   if (!(depth > 1e-4) || !mesh_normal(m, grad, n)) return;
-  precise vec3 out_along_n = n * depth;
-  precise vec3 nx = x + out_along_n, nd = d + out_along_n;
-  x = nx;
-  d = nd;
+  push_out_of_mesh(n, depth, x, d);
 }
 
 // Whether collide_with_mesh leaves a mass at x, moved by d, unchanged at its first tests: outside
@@ -213,7 +177,7 @@ bool mesh_leaves_alone_after(MeshField m, vec3 x, vec3 d, float clearance) {
   return room > length3(d - m.motion);
 }
 
-// One mesh collider (collide_with_mesh in the reference).
+// One mesh collider.
 void collide_with_mesh(int k, bool friction, inout vec3 x, inout vec3 d) {
   MeshField m = mesh_field(k);
   vec3 p = mesh_local(m, x - m.origin);

@@ -1,7 +1,7 @@
 // One particle against every sphere in file order, then every plane (docs/design.md §1.4), then
-// every mesh collider (docs/model.md), as
-// collide_objects in host/core/reference/reference.cpp. x is its position, d its displacement of this
-// substep (x_prev = x - d); both change. Shared by collide_objects.comp and the passes it is
+// every mesh collider (docs/model.md); the formulas are compute/shared/collisions.glsl's, the
+// loops and the reads of the colliders' parameters this file's. x is its position, d its
+// displacement of this substep (x_prev = x - d); both change. Shared by collide_objects.comp and the passes it is
 // fused into (advance, resolve_self_contacts).
 #ifndef CLOTHSIM_COLLIDE_OBJECTS_GLSL
 #define CLOTHSIM_COLLIDE_OBJECTS_GLSL
@@ -9,178 +9,7 @@
 #include "particle_views.glsl"
 #include "features.glsl"
 
-// The friction blend x' = x_prev + keep (t - x_prev), as d' = keep ((t - x) + d),
-// x' = x + (d' - d): only small differences are rounded.
-void blend_to(vec3 t_minus_x, float keep, inout vec3 x, inout vec3 d) {
-  precise vec3 next_d = (t_minus_x + d) * keep;
-  precise vec3 next_x = x + (next_d - d);
-  x = next_x;
-  d = next_d;
-}
-
-// The blend relative to a collider that moved by m this substep (docs/model.md): in its frame
-// x_prev is x_prev + m, so d' = keep ((t - x) + d - m) + m.
-void blend_to_moving(vec3 t_minus_x, float keep, vec3 m, inout vec3 x, inout vec3 d) {
-  precise vec3 next_d = ((t_minus_x + d) - m) * keep + m;
-  precise vec3 next_x = x + (next_d - d);
-  x = next_x;
-  d = next_d;
-}
-
-// A moving sphere's push-out: along e = x - o, unless the motion relative to the sphere
-// carried the mass past the centre this substep (e . e_prev < 0, e_prev = e - d + m): then back
-// out on the side it came from, along e_prev, so that a fast sphere cannot pass through.
-vec3 moving_sphere_push(vec3 e, float dist, float r, vec3 d, vec3 m) {
-  precise vec3 e_prev = (e - d) + m;
-  float prev_dist = length3(e_prev);
-  if (dot3(e, e_prev) < 0.0 && prev_dist > 0.0) {
-    precise float inv_prev = 1.0 / prev_dist;
-    precise vec3 back = e_prev * (r * inv_prev) - e;
-    return back;
-  }
-  if (!(dist > 0.0)) return vec3(0.0, r, 0.0);
-  precise float scale = (r - dist) * (1.0 / dist);
-  precise vec3 out_along_e = e * scale;
-  return out_along_e;
-}
-
-// The first test of passed_through_sphere: a path of length |rel| that ends `dist - r` outside
-// the sphere cannot have entered it. Also may_collide's, on the same values: the same decision.
-bool path_stays_outside(float dist, float r, vec3 rel) {
-  precise float gap = dist - r;
-  float a = dot3(rel, rel);
-  precise float gap2 = gap * gap;
-  return !(a > gap2);
-}
-
-// A mass outside a sphere at the end of the substep (e = x - o, dist = |e| > r) that moved by
-// rel = d - m relative to it: true if its path went into the sphere deeper than 0.1 mm, with
-// t - x the push back to where the path entered the surface (passed_through_sphere in
-// host/core/reference/reference_collisions.cpp).
-bool passed_through_sphere(vec3 e, float dist, float r, vec3 rel, out vec3 t_minus_x) {
-  t_minus_x = vec3(0.0);
-  if (path_stays_outside(dist, r, rel)) return false;
-  float a = dot3(rel, rel);
-  precise vec3 e_prev = e - rel;
-  float b = dot3(e_prev, rel);
-  if (!(b < 0.0)) return false;
-  precise float inv_a = 1.0 / a;
-  precise float s_closest = min(1.0, -b * inv_a);
-  precise vec3 closest = e_prev + rel * s_closest;
-  precise float depth = r - length3(closest);
-  if (!(depth > 1e-4)) return false;
-  precise float c = dot3(e_prev, e_prev) - r * r;
-  if (c > 0.0) {
-    precise float disc = b * b - a * c;
-    precise float s_in = (-b - sqrt(disc)) * inv_a;
-    precise vec3 entry = (e_prev + rel * s_in) - e;
-    t_minus_x = entry;
-  } else {
-    float prev_dist = length3(e_prev);
-    precise float inv_prev = 1.0 / prev_dist;
-    precise vec3 back = e_prev * (r * inv_prev) - e;
-    precise vec3 up = vec3(0.0, r, 0.0) - e;
-    t_minus_x = prev_dist > 0.0 ? back : up;
-  }
-  return true;
-}
-
-// After the friction blend (whose chord from x_prev can run inside the sphere), a mass deeper
-// than 0.1 mm goes back to the surface along e, without friction (keep_out_of_sphere in
-// host/core/reference/reference_collisions.cpp).
-void keep_out_of_sphere(vec3 o, float r, inout vec3 x, inout vec3 d) {
-  vec3 e = x - o;
-  float dist = length3(e);
-  precise float depth = r - dist;
-  if (!(depth > 1e-4) || !(dist > 0.0)) return;
-  precise float scale = depth * (1.0 / dist);
-  precise vec3 out_along_e = e * scale;
-  precise vec3 nx = x + out_along_e, nd = d + out_along_e;
-  x = nx;
-  d = nd;
-}
-
-// A mass deeper than 0.1 mm behind a plane's front goes to its surface offset on the front,
-// along n, without friction (keep_in_front_of_plane in host/core/reference/reference_collisions.cpp).
-void keep_in_front_of_plane(vec3 p, vec3 n, float front, inout vec3 x, inout vec3 d) {
-  float dist = dot3(x - p, n);
-  precise float behind = dist * front;
-  if (!(behind < -1e-4)) return;
-  precise float along = 1e-4 * front - dist;
-  precise vec3 out_along_n = n * along;
-  precise vec3 nx = x + out_along_n, nd = d + out_along_n;
-  x = nx;
-  d = nd;
-}
-
-// xpbd's contact response (coulomb_respond in host/core/reference/reference_collisions.cpp): the push
-// along the outward contact normal n, then Coulomb friction on the substep's displacement
-// relative to the collider: its tangential part cancelled up to mu times the push's depth along n.
-void coulomb_respond(vec3 t_minus_x, vec3 n, float mu, vec3 m, inout vec3 x, inout vec3 d) {
-  precise vec3 pushed = d + t_minus_x;
-  float depth = dot3(t_minus_x, n);
-  vec3 cancel = vec3(0.0);
-  if (depth > 0.0 && mu > 0.0) {
-    precise vec3 rel = pushed - m;
-    precise vec3 tangential = rel - n * dot3(rel, n);
-    float slide = length3(tangential);
-    precise float limit = mu * depth;
-    precise float inv_slide = 1.0 / slide;
-    precise vec3 part = tangential * (limit * inv_slide);
-    if (slide > 0.0) cancel = slide <= limit ? tangential : part;
-  }
-  precise vec3 next_x = x + (t_minus_x - cancel), next_d = pushed - cancel;
-  x = next_x;
-  d = next_d;
-}
-
-// The outward normal of a sphere at the point x + t_minus_x (up at the centre).
-vec3 sphere_normal(vec3 o, vec3 x, vec3 t_minus_x) {
-  precise vec3 e = (x + t_minus_x) - o;
-  float len = length3(e);
-  precise float inv = 1.0 / len;
-  precise vec3 unit = e * inv;
-  return len > 0.0 ? unit : vec3(0.0, 1.0, 0.0);
-}
-
-// A contact's response along the outward normal n (respond_to_contact in the reference):
-// xpbd's Coulomb friction when `coulomb`, else the CS184 blend keeping `keep` (1: none), in the
-// collider's frame when it moves by m.
-void respond_to_contact(bool coulomb, vec3 t_minus_x, vec3 n, float keep, float mu, vec3 m, inout vec3 x,
-                        inout vec3 d) {
-  if (coulomb) coulomb_respond(t_minus_x, n, mu, m, x, d);
-  else if (any(notEqual(m, vec3(0.0)))) blend_to_moving(t_minus_x, keep, m, x, d);
-  else blend_to(t_minus_x, keep, x, d);
-}
-
-// One sphere contact's response (respond_to_sphere in the reference): xpbd's Coulomb friction
-// (COULOMB_FRICTION, with friction on), else the CS184 blend, in the sphere's frame when
-// it moves.
-void respond_to_sphere(bool friction, vec3 o, float keep, float mu, vec3 m, vec3 t_minus_x, inout vec3 x,
-                       inout vec3 d) {
-  if (friction && COULOMB_FRICTION) coulomb_respond(t_minus_x, sphere_normal(o, x, t_minus_x), mu, m, x, d);
-  else if (any(notEqual(m, vec3(0.0)))) blend_to_moving(t_minus_x, keep, m, x, d);
-  else blend_to(t_minus_x, keep, x, d);
-}
-
-// The plane's crossing test in its frame (x_prev - p_prev = (x - p) - (d - m)): the signed
-// distances of the substep's end and start, and whether they differ in sign (or one is 0).
-bool plane_sides(vec3 x, vec3 d, vec4 point_front, vec3 n, vec3 m, out float dist, out float dist_prev) {
-  dist = dot3(x - point_front.xyz, n);
-  precise vec3 rel_d = d - m;
-  precise float prev = dist - dot3(rel_d, n);
-  dist_prev = prev;
-  precise float crossing = dist * dist_prev;
-  return !(crossing > 0.0);
-}
-
-// A mass that did not cross: untouched while it ends in front by more than the contact offset
-// (1e-4 with Coulomb friction: resting contact) or, without, anywhere in front.
-bool stays_in_front(float dist, float front, bool coulomb) {
-  precise float ahead = dist * front;
-  return !(ahead < (coulomb ? 1e-4 : 0.0));
-}
-
+#include "shared/collisions.glsl"
 #include "collide_meshes.glsl"
 
 // With `friction` false every contact keeps all of its tangential motion (keep = 1): the pure
@@ -202,25 +31,14 @@ void collide_with_objects_friction(inout vec3 x, inout vec3 d, bool friction) {
     if (dist > r) {
       // Outside at the end: caught if it went through the sphere during the substep.
       if (!passed_through_sphere(e, dist, r, d - m, t_minus_x)) continue;
-    } else if (any(notEqual(m, vec3(0.0)))) {
+    } else if (nonzero3(m)) {
       t_minus_x = moving_sphere_push(e, dist, r, d, m);
     } else {
-      // The push out along e, unless the mass passed the centre this substep: then back out on
-      // its own side, along e_prev = e - d (a mass exactly at the centre goes up).
       frame_motion = vec3(0.0);
-      precise vec3 e_prev = e - d;
-      float prev_dist = length3(e_prev);
-      if (dot3(e, e_prev) < 0.0 && prev_dist > 0.0) {
-        precise float inv_prev = 1.0 / prev_dist;
-        t_minus_x = e_prev * (r * inv_prev) - e;
-      } else if (dist > 0.0) {
-        precise float scale = (r - dist) * (1.0 / dist);
-        t_minus_x = e * scale;
-      } else {
-        t_minus_x = vec3(0.0, r, 0.0);
-      }
+      t_minus_x = static_sphere_push(e, dist, r, d);
     }
-    respond_to_sphere(friction, origin_radius.xyz, keep, keep_mu.y, frame_motion, t_minus_x, x, d);
+    respond_to_sphere(friction && COULOMB_FRICTION, origin_radius.xyz, keep, keep_mu.y, frame_motion, t_minus_x, x,
+                      d);
     keep_out_of_sphere(origin_radius.xyz, r, x, d);
   }
   for (int k = 0; k < plane_count(); ++k) {
@@ -237,18 +55,10 @@ void collide_with_objects_friction(inout vec3 x, inout vec3 d, bool friction) {
     // substep is lifted to the front (docs/model.md); with Coulomb friction a mass within the
     // surface offset in front is in contact too (resting contact).
     float dist, dist_prev;
-    bool crossed = plane_sides(x, d, point_front, n, m, dist, dist_prev);
-    float side;
-    if (!crossed) {
-      if (stays_in_front(dist, front, coulomb)) continue;
-      side = front;
-    } else {
-      side = dist_prev > 0.0 ? 1.0 : (dist_prev < 0.0 ? -1.0 : 0.0);
-    }
-    precise float along = 1e-4 * side - dist;
-    precise vec3 t_minus_x = n * along;
-    precise vec3 outward = n * (side != 0.0 ? side : front);
-    respond_to_contact(coulomb, t_minus_x, outward, normal_keep.w, motion_mu.w, m, x, d);
+    bool crossed = plane_sides(x, d, point_front.xyz, n, m, dist, dist_prev);
+    if (!crossed && stays_in_front(dist, front, coulomb)) continue;
+    float side = plane_side(crossed, dist_prev, front);
+    respond_to_plane(coulomb, n, front, normal_keep.w, motion_mu.w, m, dist, side, x, d);
     // The blend of a mass found behind starts from x_prev, behind too: it can end behind.
     if (side == front) keep_in_front_of_plane(point_front.xyz, n, front, x, d);
   }
@@ -268,7 +78,7 @@ bool sphere_may_move(vec4 origin_radius, vec3 m, vec3 x, vec3 d) {
 }
 bool plane_may_move(vec4 point_front, vec3 n, vec3 m, vec3 x, vec3 d, bool friction) {
   float dist, dist_prev;
-  return plane_sides(x, d, point_front, n, m, dist, dist_prev) ||
+  return plane_sides(x, d, point_front.xyz, n, m, dist, dist_prev) ||
          !stays_in_front(dist, point_front.w, friction && COULOMB_FRICTION);
 }
 bvec2 or_each(bvec2 may, bool i, bool j) { return bvec2(may.x || i, may.y || j); }
@@ -332,7 +142,7 @@ bvec2 may_collide_pair_after(vec3 xi, vec3 di, float ci, vec3 xj, vec3 dj, float
 }
 
 // A mass deeper than 0.1 mm inside a sphere, or behind a plane's front, goes back to the
-// surface without friction (keep_out_of_colliders in host/core/reference/reference_collisions.cpp).
+// surface without friction.
 void keep_out_of_colliders(inout vec3 x, inout vec3 d) {
   for (int s = 0; s < sphere_count(); ++s) {
     vec4 origin_radius = texelFetch(spheres_view, SPHERE_TEXELS * s);

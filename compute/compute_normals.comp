@@ -9,13 +9,8 @@ layout(local_size_x = WORKGROUP_SIZE) in;
 layout(std430, binding = BINDING_POSITIONS) readonly buffer Positions { vec4 pos[]; };
 layout(std430, binding = BINDING_NORMALS) writeonly buffer Normals { vec4 normal[]; };
 
-vec3 triangle_normal(int a, int b, int c) {
-  vec3 u = pos[b].xyz - pos[a].xyz;
-  vec3 v = pos[c].xyz - pos[a].xyz;
-  // Unnormalised: its length is twice the area, which is the weight we want.
-  precise vec3 n = vec3(u.y * v.z - u.z * v.y, u.z * v.x - u.x * v.z, u.x * v.y - u.y * v.x);
-  return n;
-}
+// Unnormalised: its length is twice the area, which is the weight we want.
+vec3 triangle_normal(int a, int b, int c) { return cross3(pos[b].xyz - pos[a].xyz, pos[c].xyz - pos[a].xyz); }
 
 void main() {
   int i = int(gl_GlobalInvocationID.x);
@@ -27,7 +22,5 @@ void main() {
     ivec3 t = corner_triangle(k);
     sum = sum + triangle_normal(t.x, t.y, t.z);
   }
-  float len = length3(sum);
-  precise float inv = 1.0 / len;
-  normal[i] = len > 0.0 ? vec4(sum * inv, 0.0) : vec4(0.0, 1.0, 0.0, 0.0);
+  normal[i] = vec4(unit_or_up(sum), 0.0);
 }

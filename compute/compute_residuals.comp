@@ -39,11 +39,7 @@ void main() {
     if (!type_enabled(mat, type)) continue;
     int j = int(entry.x & 0x3FFFFFFFu);
     precise vec3 e = (position_of(j).xyz + offset_of(j)) - xi;
-    float len = length3(e);
-    if (len > 0.0) {
-      precise float magnitude = stiffness(mat, type) * (len - uintBitsToFloat(entry.y)) * (1.0 / len);
-      f = f + e * magnitude;
-    }
+    f = add_spring_force(f, e, uintBitsToFloat(entry.y), stiffness(mat, type));
   }
   residual[i] = vec4(f, mass);
 }

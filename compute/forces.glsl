@@ -1,20 +1,15 @@
 // The force on one particle (docs/design.md §1.1): gravity plus its springs, summed in the model's
 // gather order (ClothModel::gather: on a grid kGatherOrder, per direction the spring stored
-// here, then the one stored at the neighbour behind), exactly as accumulate_forces in
-// host/core/reference/reference_forces.cpp.
+// here, then the one stored at the neighbour behind); the spring's term is
+// compute/shared/springs.glsl's.
 #ifndef CLOTHSIM_FORCES_GLSL
 #define CLOTHSIM_FORCES_GLSL
 
 #include "particle_views.glsl"
+#include "shared/springs.glsl"
 
 vec3 add_spring(vec3 f, vec3 xi, int j, float rest, float k_spring) {
-  vec3 e = position_of(j).xyz - xi;
-  float len = length3(e);
-  if (!(len > 0.0)) return f;
-  precise float inv = 1.0 / len;
-  precise float magnitude = k_spring * (len - rest) * inv;
-  precise vec3 sum = f + e * magnitude;
-  return sum;
+  return add_spring_force(f, position_of(j).xyz - xi, rest, k_spring);
 }
 
 // Springs never join two cloths, so every spring of particle i has i's material.

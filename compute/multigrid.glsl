@@ -1,10 +1,11 @@
 // What the multigrid solver's passes share (docs/model.md, "One substep (multigrid solver)"):
-// the hierarchy's views, a symmetric 3x3 block, a spring's Hessian terms and the coarse
-// residual. The CPU twins are in host/core/reference/reference_multigrid.cpp, in the same operation order.
+// the hierarchy's views and the coarse residual (a spring's Hessian terms and the 3x3 block's
+// solve are compute/shared/springs.glsl's).
 #ifndef CLOTHSIM_MULTIGRID_GLSL
 #define CLOTHSIM_MULTIGRID_GLSL
 
 #include "particle_views.glsl"
+#include "shared/springs.glsl"
 
 layout(binding = TEXTURE_MG_VERTICES) uniform usamplerBuffer mg_vertices_view;
 layout(binding = TEXTURE_MG_LISTS) uniform usamplerBuffer mg_lists_view;
@@ -36,64 +37,6 @@ vec3 offset_of(int i) { return texelFetch(mg_offset_view, i).xyz; }
 uniform uint u_first;
 uniform uint u_count;
 
-// A symmetric 3x3 matrix: (xx, xy, xz) and (yy, yz, zz).
-struct Sym3 {
-  vec3 a;  // xx, xy, xz
-  vec3 b;  // yy, yz, zz
-};
-
-Sym3 sym3_diagonal(float v) { return Sym3(vec3(v, 0.0, 0.0), vec3(v, 0.0, v)); }
-
-// h + s n n^T + d I (add_spring_hessian).
-Sym3 add_spring_hessian(Sym3 h, vec3 n, float s, float d) {
-  precise float xx = h.a.x + (s * n.x * n.x + d);
-  precise float xy = h.a.y + s * n.x * n.y;
-  precise float xz = h.a.z + s * n.x * n.z;
-  precise float yy = h.b.x + (s * n.y * n.y + d);
-  precise float yz = h.b.y + s * n.y * n.z;
-  precise float zz = h.b.z + (s * n.z * n.z + d);
-  return Sym3(vec3(xx, xy, xz), vec3(yy, yz, zz));
-}
-
-// The spring from p to q: its unit direction, its length and the Hessian's coefficients
-// s = k (1 - t) along n and d = k t across, t = max(0, 1 - rest / len) (spring_terms).
-bool spring_terms(vec3 p, vec3 q, float rest, float k, out vec3 n, out float len, out float s, out float d) {
-  n = vec3(0.0);
-  s = 0.0;
-  d = 0.0;
-  precise vec3 e = q - p;
-  len = length3(e);
-  if (!(len > 0.0)) return false;
-  precise float inv = 1.0 / len;
-  precise vec3 unit = e * inv;
-  n = unit;
-  precise float t = max(0.0, 1.0 - rest * inv);
-  precise float across = k * t;
-  precise float along = k - across;
-  d = across;
-  s = along;
-  return true;
-}
-
-// h^-1 f by cofactors (solve3); false if h is not positive definite in floating point.
-bool solve3(Sym3 h, vec3 f, out vec3 x) {
-  x = vec3(0.0);
-  float xx = h.a.x, xy = h.a.y, xz = h.a.z, yy = h.b.x, yz = h.b.y, zz = h.b.z;
-  precise float c00 = yy * zz - yz * yz;
-  precise float c01 = xz * yz - xy * zz;
-  precise float c02 = xy * yz - xz * yy;
-  precise float det = (xx * c00 + xy * c01) + xz * c02;
-  if (!(det > 0.0)) return false;
-  precise float c11 = xx * zz - xz * xz;
-  precise float c12 = xy * xz - xx * yz;
-  precise float c22 = xx * yy - xy * xy;
-  precise float inv = 1.0 / det;
-  precise vec3 r = vec3(((c00 * f.x + c01 * f.y) + c02 * f.z) * inv, ((c01 * f.x + c11 * f.y) + c12 * f.z) * inv,
-                        ((c02 * f.x + c12 * f.y) + c22 * f.z) * inv);
-  x = r;
-  return true;
-}
-
 // A mass at x within CONTACT_REACH of a collider's surface, which holds it with a force the
 // coarse problem does not know (touches_colliders in host/core/reference/reference_multigrid.cpp). The
 // pass includes collide_objects.glsl first (spheres, planes, meshes).
@@ -102,14 +45,12 @@ bool touches_colliders(vec3 x) {
   float reach = CONTACT_REACH;
   for (int s = 0; s < sphere_count(); ++s) {
     vec4 origin_radius = texelFetch(spheres_view, SPHERE_TEXELS * s);
-    precise float within = origin_radius.w + reach;
-    if (length3(x - origin_radius.xyz) < within) return true;
+    if (near_sphere(x, origin_radius.xyz, origin_radius.w, reach)) return true;
   }
   for (int k = 0; k < plane_count(); ++k) {
     vec4 point_front = texelFetch(planes_view, PLANE_TEXELS * k);
     vec3 n = texelFetch(planes_view, PLANE_TEXELS * k + 1).xyz;
-    precise float ahead = dot3(x - point_front.xyz, n) * point_front.w;
-    if (ahead < reach) return true;
+    if (near_plane(x, point_front.xyz, n, point_front.w, reach)) return true;
   }
   for (int k = 0; k < mesh_count(); ++k) {
     MeshField m = mesh_field(k);
@@ -144,9 +85,9 @@ vec3 coarse_residual(uint g, uvec4 v, vec4 b, out Sym3 diag) {
                       sd))
       continue;
     precise vec3 dv = e - MG_CORR_OF(s.x).xyz;
-    precise vec3 hv = n * (sa * dot3(n, dv)) + dv * sd;
+    precise vec3 hv = spring_hessian_times(n, sa, sd, dv);
     r = r - hv;
-    diag = add_spring_hessian(diag, n, sa, sd);
+    add_spring_hessian(diag, n, sa, sd);
   }
   return r;
 }

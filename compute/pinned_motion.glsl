@@ -1,11 +1,12 @@
 // Pinned masses that follow cloth.pinned_motion: at the end of every substep a pinned mass is
 // at its start position plus the offset of the substep's end, and its displacement is that
-// move, exactly as integrate in host/core/reference/reference.cpp. Held particles (the viewer's grab,
+// move (the formulas are compute/shared/integration.glsl's). Held particles (the viewer's grab,
 // also w = 0) have anchor w 0 and stay where they are held.
 #ifndef CLOTHSIM_PINNED_MOTION_GLSL
 #define CLOTHSIM_PINNED_MOTION_GLSL
 
 #include "features.glsl"
+#include "shared/integration.glsl"
 
 layout(std430, binding = BINDING_ANCHORS) readonly buffer Anchors { vec4 anchor[]; };
 
@@ -15,8 +16,7 @@ bool moving_pin_position(int k, out vec3 x) {
   if (!PINS_MOVE) return false;
   vec4 a = anchor[k];
   if (a.w == 0.0) return false;
-  precise vec3 moved_to = a.xyz + params.pin_offset;
-  x = moved_to;
+  x = pin_target(a.xyz, params.pin_offset);
   return true;
 }
 

@@ -56,14 +56,8 @@ void main() {
       warm = entry.w != 0u ? minus : plus;
     }
   }
-  precise vec3 d = displacement_of(i).xyz * material_of(i).keep.x + acc * params.dt2 + warm * p.w;
-  if (params.max_step > 0.0) {
-    // The bounded contact's speed limit (docs/model.md, "Self-contact that holds").
-    float len = length3(d);
-    precise float scale = params.max_step * (1.0 / len);
-    precise vec3 limited = d * scale;
-    if (len > params.max_step) d = limited;
-  }
+  precise vec3 d = predicted_move(displacement_of(i).xyz, material_of(i).keep.x, acc, params.dt2, warm, p.w);
+  if (params.max_step > 0.0) d = limit_step(d, params.max_step);  // the bounded contact's speed limit
   precise vec3 next = p.xyz + d;
   // The multigrid solve's offset: the external forces' share, which it applies with the
   // springs (predict in host/core/reference/reference_forces.cpp).
@@ -76,14 +70,8 @@ void main() {
   vec4 tether = MULTIGRID_SOLVER ? vec4(-1.0) : texelFetch(tethers_view, i);
   if (tether.x >= 0.0) {
     precise vec3 e = next - pin_position(int(tether.x));
-    float len = length3(e);
     precise float limit = params.tether_limit * tether.y;
-    if (len > limit) {
-      precise float scale = (limit - len) * (1.0 / len);
-      precise vec3 corr = e * scale;
-      next = next + corr;
-      d = d + corr;
-    }
+    tether_to(e, limit, next, d);
   }
   // w: the mass's clearance bound from the meshes, which the sweep's contact list reads
   // (mesh_leaves_alone_after) and every pass up to it keeps; 0 is no bound.

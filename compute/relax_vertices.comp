@@ -42,9 +42,8 @@ void main() {
     bool taut = spring_terms(x, position_of(int(entry.x & 0x3FFFFFFFu)).xyz, rest, k, n, len, sa, sd);
     headroom = min(headroom, 0.99 * params.stretch_limit * rest - len);
     if (!taut) continue;
-    precise float magnitude = k * (len - rest);
-    f = f + n * magnitude;
-    hess = add_spring_hessian(hess, n, sa, sd);
+    f = add_spring_pull(f, n, len, rest, k);
+    add_spring_hessian(hess, n, sa, sd);
   }
   vec3 step;
   uint limit_last = first;
@@ -71,8 +70,7 @@ void main() {
     float len = length3(e);
     precise float limit = params.stretch_limit * uintBitsToFloat(entry.y);
     if (!(len > limit)) continue;
-    precise float scale = (len - limit) * (1.0 / len) * (wi * (1.0 / (wi + q.w)));
-    precise vec3 corr = e * scale;
+    vec3 corr = one_end_stretch_pull(e, len, limit, wi, q.w);
     x = x + corr;
     d = d + corr;
   }

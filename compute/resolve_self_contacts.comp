@@ -8,6 +8,7 @@
 #include "layout.glsl"
 #include "common.glsl"
 #include "spatial_hash.glsl"
+#include "shared/self_contact.glsl"
 #include "collide_objects.glsl"
 
 layout(local_size_x = WORKGROUP_SIZE) in;
@@ -39,9 +40,7 @@ Contacts visit_entries(Contacts acc, vec3 xi, vec3 rest_i, ivec3 row, uint first
     float d = length3(e3);
     if (d >= contact || d == 0.0) continue;
     if (params.bounded_contact == 0u) {
-      precise float push = (contact - d) * (1.0 / d);
-      precise vec3 sum = acc.sum + e3 * push;
-      acc.sum = sum;
+      acc.sum = add_self_contact(acc.sum, e3, d, contact, 1.0);
       ++acc.hits;
       continue;
     }
@@ -51,9 +50,7 @@ Contacts visit_entries(Contacts acc, vec3 xi, vec3 rest_i, ivec3 row, uint first
     precise vec3 rest_e = rest_i - texelFetch(rest_positions_view, int(entries[e])).xyz;
     float keep = min(contact, length3(rest_e));
     if (!(d < keep)) continue;
-    precise float half_push = (keep - d) * (0.5 / d);
-    precise vec3 sum = acc.sum + e3 * half_push;
-    acc.sum = sum;
+    acc.sum = add_self_contact(acc.sum, e3, d, keep, 0.5);
     ++acc.hits;
   }
   return acc;
@@ -106,9 +103,7 @@ void main() {
   if (hits > 0u) {
     // Classic: the average over the contacts, spread over the substeps (docs/design.md §1.3).
     // Bounded: the average, whole, every substep.
-    precise float classic_scale = 1.0 / (float(hits) * params.steps);
-    precise float bounded_scale = 1.0 / float(hits);
-    float scale = params.bounded_contact != 0u ? bounded_scale : classic_scale;
+    float scale = self_contact_scale(hits, params.bounded_contact != 0u, params.steps);
     precise vec3 corr = sum * scale;
     xi = xi + corr;
     d = d + corr;  // x_prev stays where it was

@@ -33,26 +33,11 @@ void main() {
   precise vec3 e = xj - xi;
   float len = length3(e);
   if (len > 0.0) {
-    // From the multiplier the spring ended the last substep with (predict applied it):
-    // dlambda = (-C - alpha~ lambda) / (w_i + w_j + alpha~), C = len - rest; i moves by
-    // -w_i n dlambda, j by +w_j n dlambda.
+    // From the multiplier the spring ended the last substep with (predict applied it).
     uint k = u_first + gl_GlobalInvocationID.x;
     float lambda = texelFetch(multipliers_view, int(k)).w;
-    precise vec3 n = e * (1.0 / len);
-    // (A spring of ks 0, alpha~ = +inf, never pulls: its lambda stays 0, and inf * 0 is not taken.)
-    precise float held = lambda != 0.0 ? alpha * lambda : 0.0;
-    precise float dlambda = (-(len - rest) - held) * (1.0 / (wsum + alpha));
-    precise vec3 corr = n * dlambda;
-    precise vec3 ci = corr * pi.w;
-    precise vec3 cj = corr * pj.w;
-    xi = xi - ci;
-    xj = xj + cj;
-    di = di - ci;
-    dj = dj + cj;
-    // Carried into the next substep scaled by beta = 1 / (1 + (w_i + w_j) / (4 alpha~))
-    // (solve_distance_constraint_colour says why).
-    precise float beta = 1.0 / (1.0 + wsum * (0.25 / alpha));
-    precise float carried = (lambda + dlambda) * beta;
+    vec3 n;
+    float carried = xpbd_distance_step(e, len, rest, alpha, lambda, pi.w, pj.w, wsum, xi, xj, di, dj, n);
     multiplier[k] = vec4(n, carried);
   }
   // max_stretch stays a hard limit, in the same visit.

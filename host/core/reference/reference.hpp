@@ -18,15 +18,16 @@
 #include "scene/scene.hpp"
 #include "reference/spatial_hash.hpp"
 #include "../../../compute/layout.glsl"
+#include "../../../compute/shared/vector.glsl"
 
 namespace clothsim {
 
 template <class R> using Vec3 = glm::vec<3, R>;
 template <class R> using Vec4 = glm::vec<4, R>;
 
-// |v| summed as (x*x + y*y) + z*z, the order the shaders use (compute/common.glsl).
-template <class R> R length3(const Vec3<R>& v) { return std::sqrt(v.x * v.x + v.y * v.y + v.z * v.z); }
-template <class R> R dot3(const Vec3<R>& a, const Vec3<R>& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+// |v| and a . b summed as (x*x + y*y) + z*z, written once for both backends.
+using shared::dot3;
+using shared::length3;
 
 // The colliders as the passes read them, on both sides: the structs of compute/layout.glsl, on
 // the scalar R (layout::SphereCollider is SphereColliderT<float>). keep = 1 - friction; motion =

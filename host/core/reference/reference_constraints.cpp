@@ -4,6 +4,7 @@
 
 #include "reference/reference.hpp"
 #include "reference/reference_detail.hpp"
+#include "../../../compute/shared/springs.glsl"
 
 namespace clothsim {
 
@@ -18,24 +19,7 @@ void for_each_spring_of_colour(const ClothModel& m, const Constants<R>& c, int c
     if (c.enabled(m.springs[k])) visit(m.springs[k]);
 }
 
-// Provot's projection: a spring from xi to xj longer than `limit` is shortened to it, both ends
-// moving by their share of the inverse mass (wsum = wi + wj > 0), the displacements with them
-// (the ends' x_prev stay; a pinned end, w = 0, gets a zero correction). False, and nothing
-// moves, if it is not longer. The GLSL twin is limit_stretch in constraint_colour.glsl.
-template <class R>
-bool limit_stretch(Vec3<R>& xi, Vec3<R>& xj, Vec3<R>& di, Vec3<R>& dj, R wi, R wj, R wsum, R limit) {
-  const Vec3<R> e = xj - xi;
-  const R len = length3(e);
-  if (!(len > limit)) return false;
-  const Vec3<R> corr = e * ((len - limit) * (R(1) / len));
-  const R inv_wsum = R(1) / wsum;
-  const Vec3<R> ci = corr * (wi * inv_wsum), cj = corr * (wj * inv_wsum);
-  xi = xi + ci;
-  xj = xj - cj;
-  di = di + ci;
-  dj = dj - cj;
-  return true;
-}
+using shared::limit_stretch;  // Provot's projection (compute/shared/springs.glsl)
 
 // One colour of the length constraint; with `over`, a watched pass's (enforce_stretch_limit):
 // set when a spring is longer than kStretchSettled times its limit as its colour is solved.
@@ -111,27 +95,11 @@ void solve_distance_constraint_colour(const ClothModel& m, const Constants<R>& c
     const Vec3<R> e = xj - xi;
     const R len = length3(e);
     if (len > R(0)) {
-      // XPBD from the multiplier the spring ended the last substep with (predict applied it):
-      // dlambda = (-C - alpha~ lambda) / (wi + wj + alpha~), C = len - rest, moving i by
-      // -wi n dlambda and j by +wj n dlambda along n = e / len.
+      // XPBD from the multiplier the spring ended the last substep with (predict applied it).
       const size_t k = size_t(&sp - m.springs.data());
-      const R lambda = s.lambda[k].w;
-      const Vec3<R> n = e * (R(1) / len);
-      // (A spring of ks 0, alpha~ = +inf, never pulls: its lambda stays 0, and inf * 0 is not taken.)
-      const R held = lambda != R(0) ? alpha * lambda : R(0);
-      const R dlambda = (-(len - rest) - held) * (R(1) / (wsum + alpha));
-      const Vec3<R> corr = n * dlambda;
-      const Vec3<R> ci = corr * wi, cj = corr * wj;
-      xi = xi - ci;
-      xj = xj + cj;
-      di = di - ci;
-      dj = dj + cj;
-      // Carried into the next substep scaled by beta = 1 / (1 + (wi + wj) / (4 alpha~)): whole
-      // for a spring soft against its masses' substep inertia, where the carried force makes
-      // the rest state exact, fading for a stiff one, where applying it ahead would be
-      // explicit and unstable (docs/model.md, "Warm-started multipliers").
-      const R beta = R(1) / (R(1) + wsum * (R(0.25) / alpha));
-      s.lambda[k] = Vec4<R>(n, (lambda + dlambda) * beta);
+      Vec3<R> n;
+      const R carried = shared::xpbd_distance_step(e, len, rest, alpha, s.lambda[k].w, wi, wj, wsum, xi, xj, di, dj, n);
+      s.lambda[k] = Vec4<R>(n, carried);
     }
     // max_stretch stays a hard limit, in the same visit.
     limit_stretch(xi, xj, di, dj, wi, wj, wsum, c.stretch_limit * rest);

@@ -1,42 +1,20 @@
 // The reference's force, integration and normal passes (docs/design.md §1 steps 1-2, the wind, xpbd's
 // predict): one function per pass, each the twin of the compute shader of the same name.
 #include "reference/reference.hpp"
+#include "../../../compute/shared/integration.glsl"
+#include "../../../compute/shared/springs.glsl"
+#include "../../../compute/shared/wind.glsl"
 
 namespace clothsim {
 
-// The parabolic stand-in for sin(2 pi phase) of the gusts: + - * and floor only, which both
-// backends round alike (a shader's sin does not match std::sin); within 0.056 of the sine.
-template <class R> R gust_wave(R phase) {
-  const R w = phase - std::floor(phase);
-  const R h = w < R(0.5) ? w : w - R(0.5);
-  const R bump = R(16) * h * (R(0.5) - h);
-  return w < R(0.5) ? bump : -bump;
-}
-
 // The share of one corner in the aerodynamic force on triangle (a, b, c), from its corners'
-// positions and displacements (docs/model.md, "Wind"; wind.glsl is the twin).
+// positions and displacements (docs/model.md, "Wind"; the formulas are compute/shared/wind.glsl's).
 template <class R>
 Vec3<R> triangle_wind_share(const layout::StepParamsT<R>& w, const Vec3<R>& pa, const Vec3<R>& pb, const Vec3<R>& pc,
                             const Vec3<R>& da, const Vec3<R>& db, const Vec3<R>& dc) {
-  const Vec3<R> u = pb - pa, v = pc - pa;
-  const Vec3<R> twice_area_n(u.y * v.z - u.z * v.y, u.z * v.x - u.x * v.z, u.x * v.y - u.y * v.x);
-  const R len = length3(twice_area_n);
-  if (!(len > R(0))) return Vec3<R>(0);  // a degenerate triangle catches no air
-  const Vec3<R> n = twice_area_n * (R(1) / len);
-  Vec3<R> air = w.wind_velocity;
-  if (w.gust_enabled) {
-    const R phase = w.gust_phase - dot3((pa + pb) + pc, w.wind_direction) * w.gust_inv_length3;
-    air = w.wind_velocity + w.gust_velocity * gust_wave(phase);
-  }
-  const Vec3<R> rel = ((da + db) + dc) * w.wind_inv_3dt - air;  // the triangle's velocity relative to the air
-  const R speed = length3(rel);
-  if (!(speed > R(0))) return Vec3<R>(0);
-  const R normal_speed = dot3(rel, n);
-  // Drag -1/2 rho C_d A |v| (v.n) n; lift -1/2 rho C_l A (v.n) (|v| n - (v.n)/|v| v), where
-  // |v| n - (v.n)/|v| v is |v| times the part of n across v.
-  const Vec3<R> drag = n * (w.wind_drag * len * speed * normal_speed);
-  const Vec3<R> across = n * speed - rel * (normal_speed * (R(1) / speed));
-  return drag + across * (w.wind_lift * len * normal_speed);
+  const Vec3<R> air = shared::air_velocity(w.gust_enabled != 0u, w.wind_velocity, w.gust_velocity, w.gust_phase,
+                                           w.wind_direction, w.gust_inv_length3, pa, pb, pc);
+  return shared::triangle_wind_share(pa, pb, pc, (da + db) + dc, air, w.wind_inv_3dt, w.wind_drag, w.wind_lift);
 }
 
 // Calls visit(t) for each triangle that has particle i as a corner, in ascending order (on a
@@ -73,13 +51,7 @@ template <class R> void accumulate_forces(const ClothModel& m, const Constants<R
       const uint32_t j = sp.i == i ? sp.j : sp.i;
       const R rest = R(sp.rest);
       const R k = c.materials[sp.material].stiffness(sp.type);
-      const Vec3<R> e = Vec3<R>(s.pos[j]) - xi;
-      const R len = length3(e);
-      if (len > R(0)) {
-        // Divisions are written as x * (1 / y): the GLSL compiler lowers a / b that way.
-        const R inv = R(1) / len;
-        f += e * (k * (len - rest) * inv);
-      }
+      f = shared::add_spring_force(f, Vec3<R>(s.pos[j]) - xi, rest, k);
     }
     if (c.wind_enabled) f += Vec3<R>(s.wind[i]);  // after the springs, as advance.comp adds it
     s.force[i] = Vec4<R>(f, R(0));
@@ -88,12 +60,11 @@ template <class R> void accumulate_forces(const ClothModel& m, const Constants<R
 
 // A pinned mass keeps its position, or with pinned_motion goes to its anchor + the offset at
 // the substep's end, and its displacement is that move (its velocity, for the springs'
-// constraints, friction and the wind). The GLSL twin is move_pinned in pinned_motion.glsl.
-// Where pinned mass k is at the end of this substep, if it follows pinned_motion (the GLSL
-// twin is moving_pin_position in pinned_motion.glsl).
+// constraints, friction and the wind), as move_pinned in compute/pinned_motion.glsl.
+// Where pinned mass k is at the end of this substep, if it follows pinned_motion.
 template <class R> bool moving_pin_position(const Constants<R>& c, size_t k, Vec3<R>& x) {
   if (!c.moving_pins() || c.anchors[k].w == R(0)) return false;
-  x = Vec3<R>(c.anchors[k]) + c.pin_offset;
+  x = shared::pin_target(Vec3<R>(c.anchors[k]), c.pin_offset);
   return true;
 }
 
@@ -112,9 +83,8 @@ template <class R> void integrate(const ClothModel& m, const Constants<R>& c, St
       move_pinned(c, i, s);
       continue;
     }
-    const Vec3<R> a = Vec3<R>(s.force[i]) * w;
     // x' = x + (1 - damping) (x - x_prev) + a dt^2, with d = x - x_prev kept as its own vector.
-    const Vec3<R> d = Vec3<R>(s.disp[i]) * keep + a * c.dt2;
+    const Vec3<R> d = shared::verlet_move(Vec3<R>(s.disp[i]), keep, Vec3<R>(s.force[i]), w, c.dt2);
     s.disp[i] = Vec4<R>(d, R(0));
     s.pos[i] = Vec4<R>(Vec3<R>(s.pos[i]) + d, w);
   }
@@ -148,12 +118,8 @@ template <class R> void predict(const ClothModel& m, const Constants<R>& c, Stat
       const Vec3<R> f = Vec3<R>(l) * l.w;
       warm = m.springs[sk].i == uint32_t(i) ? warm - f : warm + f;
     }
-    Vec3<R> d = Vec3<R>(s.disp[i]) * c.materials[m.material[i]].keep_velocity + acc * c.dt2 + warm * w;
-    if (c.max_step > R(0)) {
-      // The bounded contact's speed limit (docs/model.md, "Self-contact that holds").
-      const R len = length3(d);
-      if (len > c.max_step) d = d * (c.max_step * (R(1) / len));
-    }
+    Vec3<R> d = shared::predicted_move(Vec3<R>(s.disp[i]), c.materials[m.material[i]].keep_velocity, acc, c.dt2, warm, w);
+    if (c.max_step > R(0)) d = shared::limit_step(d, c.max_step);  // the bounded contact's speed limit
     Vec3<R> x = Vec3<R>(s.pos[i]) + d;
     // The multigrid solve starts from the inertial position without the external forces' share
     // and applies it with the springs, so a cloth at rest starts where it rests and stays
@@ -163,14 +129,7 @@ template <class R> void predict(const ClothModel& m, const Constants<R>& c, Stat
     // The tether to the nearest pin: xpbd's, whose sweep alone cannot carry the pins' pull
     // across a fine cloth; the multigrid solve does (docs/solvers.md), and takes none.
     if (const int pin = c.multigrid ? -1 : m.tether_pin[i]; pin >= 0) {
-      const Vec3<R> e = x - pin_position(pin);
-      const R len = length3(e);
-      const R limit = c.tether_limit * R(m.tether_rest[i]);
-      if (len > limit) {
-        const Vec3<R> corr = e * ((limit - len) * (R(1) / len));
-        x = x + corr;
-        d = d + corr;
-      }
+      shared::tether_to(x - pin_position(pin), c.tether_limit * R(m.tether_rest[i]), x, d);
     }
     s.disp[i] = Vec4<R>(d, R(0));
     s.pos[i] = Vec4<R>(x, w);
@@ -182,12 +141,10 @@ template <class R> void compute_normals(const ClothModel& m, State<R>& s) {
     Vec3<R> sum(0);
     for_each_triangle_around(m, i, [&](const int (&t)[3]) {
       const Vec3<R> p0(s.pos[t[0]]), p1(s.pos[t[1]]), p2(s.pos[t[2]]);
-      const Vec3<R> u = p1 - p0, v = p2 - p0;
       // Unnormalised cross product: its length is twice the area, so this is area-weighted.
-      sum += Vec3<R>(u.y * v.z - u.z * v.y, u.z * v.x - u.x * v.z, u.x * v.y - u.y * v.x);
+      sum += shared::cross3(p1 - p0, p2 - p0);
     });
-    const R len = length3(sum);
-    s.normal[i] = len > R(0) ? Vec4<R>(sum * (R(1) / len), R(0)) : Vec4<R>(0, 1, 0, 0);
+    s.normal[i] = Vec4<R>(shared::unit_or_up(sum), R(0));
   }
 }
 

@@ -1,31 +1,29 @@
 // The reference's mesh colliders (docs/model.md, "Mesh colliders"): a mass against a mesh's
-// signed distance field, sampled by trilinear interpolation written out so that
-// compute/collide_meshes.glsl computes the same bits.
+// signed distance field. The formulas are compute/shared/mesh_field.glsl's; reading the nodes
+// and walking a path stay here (compute/collide_meshes.glsl does the same on the GPU).
 #include <algorithm>
 #include <cmath>
 
 #include "colliders/mesh_collider.hpp"
 #include "reference/reference.hpp"
 #include "reference/reference_detail.hpp"
+#include "../../../compute/shared/mesh_field.glsl"
 
 namespace clothsim {
 namespace {
 
 template <class R> Vec3<R> to_local(const MeshColliderT<R>& m, const Vec3<R>& v) {
-  return Vec3<R>(dot3(Vec3<R>(m.row0), v), dot3(Vec3<R>(m.row1), v), dot3(Vec3<R>(m.row2), v));
+  return shared::to_local(Vec3<R>(m.row0), Vec3<R>(m.row1), Vec3<R>(m.row2), v);
 }
 template <class R> Vec3<R> to_world(const MeshColliderT<R>& m, const Vec3<R>& v) {
-  return (Vec3<R>(m.row0) * v.x + Vec3<R>(m.row1) * v.y) + Vec3<R>(m.row2) * v.z;
+  return shared::to_world(Vec3<R>(m.row0), Vec3<R>(m.row1), Vec3<R>(m.row2), v);
 }
 
 }  // namespace
 
 template <class R> bool sample_mesh_field(const MeshColliderT<R>& m, const float* sdf, const Vec3<R>& p, R& phi, Vec3<R>& grad) {
-  const Vec3<R> g = (p - Vec3<R>(m.grid)) * m.grid.w;
-  // Outside the grid the mesh is further than its band: no contact (and no read out of it).
-  if (!(g.x >= R(0) && g.y >= R(0) && g.z >= R(0) && g.x < R(m.dims.x - 1) && g.y < R(m.dims.y - 1) &&
-        g.z < R(m.dims.z - 1)))
-    return false;
+  Vec3<R> g;
+  if (!shared::inside_grid(p, Vec3<R>(m.grid), m.grid.w, Vec3<R>(glm::ivec3(m.dims) - 1), g)) return false;
   const Vec3<R> cell(std::floor(g.x), std::floor(g.y), std::floor(g.z));
   const Vec3<R> f = g - cell;
   const int nx = m.dims.x, nxy = m.dims.x * m.dims.y;
@@ -33,16 +31,7 @@ template <class R> bool sample_mesh_field(const MeshColliderT<R>& m, const float
   const R c000 = R(sdf[base]), c100 = R(sdf[base + 1]), c010 = R(sdf[base + nx]), c110 = R(sdf[base + nx + 1]);
   const R c001 = R(sdf[base + nxy]), c101 = R(sdf[base + nxy + 1]), c011 = R(sdf[base + nxy + nx]),
           c111 = R(sdf[base + nxy + nx + 1]);
-  // Along x, then y, then z; the gradient is the trilinear's own (per cell, up to 1 / voxel,
-  // which the normalisation drops).
-  const R x00 = c100 - c000, x10 = c110 - c010, x01 = c101 - c001, x11 = c111 - c011;
-  const R c00 = c000 + x00 * f.x, c10 = c010 + x10 * f.x, c01 = c001 + x01 * f.x, c11 = c011 + x11 * f.x;
-  const R y0 = c10 - c00, y1 = c11 - c01;
-  const R c0 = c00 + y0 * f.y, c1 = c01 + y1 * f.y;
-  const R z = c1 - c0;
-  phi = c0 + z * f.z;
-  const R gx0 = x00 + (x10 - x00) * f.y, gx1 = x01 + (x11 - x01) * f.y;
-  grad = Vec3<R>(gx0 + (gx1 - gx0) * f.z, y0 + (y1 - y0) * f.z, z);
+  phi = shared::trilinear(c000, c100, c010, c110, c001, c101, c011, c111, f, grad);
   return true;
 }
 
@@ -67,13 +56,8 @@ template <class R> MeshColliderT<R> make_mesh_collider(const MeshColliderParams&
 
 namespace {
 
-// The outward unit normal in the world for a field gradient; false where the field is flat
-// (beyond the band on both sides of a cell: no direction to push along).
 template <class R> bool world_normal(const MeshColliderT<R>& m, const Vec3<R>& grad, Vec3<R>& n) {
-  const R len = length3(grad);
-  if (!(len > R(0))) return false;
-  n = to_world(m, grad * (R(1) / len));
-  return true;
+  return shared::world_normal(Vec3<R>(m.row0), Vec3<R>(m.row1), Vec3<R>(m.row2), grad, n);
 }
 
 // A mass outside the offset surface at the end of the substep that moved by rel (relative to
@@ -87,12 +71,10 @@ template <class R>
 bool passed_through_mesh(const MeshColliderT<R>& m, const float* sdf, const Vec3<R>& p, R phi, const Vec3<R>& rel,
                          Vec3<R>& t_minus_x) {
   const R moved = length3(rel);
-  const R clearance = phi - m.material.y;  // thickness
+  if (shared::stays_clear_of_mesh(moved, phi, m.material.y)) return false;  // y: thickness
   const bool closed = m.material.w != R(0);
-  if (!(moved > clearance)) return false;
   const Vec3<R> step_all = to_local(m, rel);
-  const R halves = std::ceil(moved * m.grid.w * R(2));
-  const int samples = int(std::min(R(8), halves));
+  const int samples = shared::path_samples(moved, m.grid.w);
   const R spacing = moved * (R(1) / R(samples));
   const Vec3<R> start = p - step_all;
   R prev_phi = R(0), prev_slope = R(0);
@@ -109,7 +91,7 @@ bool passed_through_mesh(const MeshColliderT<R>& m, const float* sdf, const Vec3
       crossed = in_grid && phi_q < R(0);
     } else if (in_grid) {
       const R slope = dot3(grad, step_all);
-      crossed = prev_in_grid && prev_slope < R(0) && slope > R(0) && prev_phi + phi_q < spacing + R(2) * m.material.z;  // crossing
+      crossed = shared::crossed_shell(prev_in_grid, prev_slope, slope, prev_phi, phi_q, spacing, m.material.z);
       prev_phi = phi_q;
       prev_slope = slope;
     }
@@ -130,9 +112,7 @@ template <class R> void keep_out_of_mesh(const Constants<R>& c, const MeshCollid
   if (!sample_mesh_at(m, c.sdf->data(), x, phi, grad)) return;
   const R depth = m.material.y - phi;  // below the thickness
   if (!(depth > R(1e-4)) || !world_normal(m, grad, n)) return;
-  const Vec3<R> out = n * depth;
-  x = x + out;
-  d = d + out;
+  shared::push_out_of_mesh(n, depth, x, d);
 }
 
 template <class R> void collide_with_mesh(const Constants<R>& c, const MeshColliderT<R>& m, bool friction, Vec3<R>& x, Vec3<R>& d) {

@@ -7,6 +7,8 @@
 // solve the same energy, so a rest state of the step is the static equilibrium of the springs.
 #include "reference/reference.hpp"
 #include "reference/reference_detail.hpp"
+#include "../../../compute/shared/collisions.glsl"
+#include "../../../compute/shared/springs.glsl"
 
 #include <algorithm>
 
@@ -14,48 +16,11 @@ namespace clothsim {
 
 namespace {
 
-// A symmetric 3x3 matrix, filled and solved in one operation order on both backends
-// (compute/multigrid.glsl is the twin).
-template <class R> struct Sym3 {
-  R xx = 0, xy = 0, xz = 0, yy = 0, yz = 0, zz = 0;
-};
-
-// k (n n^T (1 - t) + t I), t = max(0, 1 - rest/len): a spring's Hessian with its compressive
-// part dropped (positive semi-definite), added to h as s n n^T + d I (spring_terms gives s, d).
-template <class R> void add_spring_hessian(Sym3<R>& h, const Vec3<R>& n, R s, R d) {
-  h.xx = h.xx + (s * n.x * n.x + d);
-  h.xy = h.xy + s * n.x * n.y;
-  h.xz = h.xz + s * n.x * n.z;
-  h.yy = h.yy + (s * n.y * n.y + d);
-  h.yz = h.yz + s * n.y * n.z;
-  h.zz = h.zz + (s * n.z * n.z + d);
-}
-
-// The spring from p to q (rest `rest`, stiffness k): its unit direction n and the Hessian's two
-// coefficients s = k (1 - t) along n and d = k t across. False for coincident ends.
-template <class R> bool spring_terms(const Vec3<R>& p, const Vec3<R>& q, R rest, R k, Vec3<R>& n, R& len, R& s, R& d) {
-  const Vec3<R> e = q - p;
-  len = length3(e);
-  if (!(len > R(0))) return false;
-  const R inv = R(1) / len;
-  n = e * inv;
-  const R t = std::max(R(0), R(1) - rest * inv);
-  d = k * t;
-  s = k - d;
-  return true;
-}
-
-// h^-1 f by cofactors; false (and nothing) if h is not positive definite in floating point.
-template <class R> bool solve3(const Sym3<R>& h, const Vec3<R>& f, Vec3<R>& x) {
-  const R c00 = h.yy * h.zz - h.yz * h.yz, c01 = h.xz * h.yz - h.xy * h.zz, c02 = h.xy * h.yz - h.xz * h.yy;
-  const R det = (h.xx * c00 + h.xy * c01) + h.xz * c02;
-  if (!(det > R(0))) return false;
-  const R c11 = h.xx * h.zz - h.xz * h.xz, c12 = h.xy * h.xz - h.xx * h.yz, c22 = h.xx * h.yy - h.xy * h.xy;
-  const R inv = R(1) / det;
-  x = Vec3<R>(((c00 * f.x + c01 * f.y) + c02 * f.z) * inv, ((c01 * f.x + c11 * f.y) + c12 * f.z) * inv,
-              ((c02 * f.x + c12 * f.y) + c22 * f.z) * inv);
-  return true;
-}
+// A spring's Newton terms and the 3x3 block's solve, written once for both backends.
+template <class R> using Sym3 = shared::Sym3<R>;
+using shared::add_spring_hessian;
+using shared::solve3;
+using shared::spring_terms;
 
 template <class R> void ensure_sized(const ClothModel& m, const Hierarchy& h, State<R>& s) {
   const size_t n = size_t(m.count()), coarse = h.coarse_count();
@@ -77,14 +42,14 @@ Vec3<R> coarse_residual(const Hierarchy& h, const Constants<R>& c, const State<R
   const Vec3<R> e(s.coarse_corr[g]);
   const Vec3<R> p(s.pos[h.particle[g]]);
   Vec3<R> r = Vec3<R>(b) - e * inertia;
-  diag = Sym3<R>{inertia, R(0), R(0), inertia, R(0), inertia};
+  diag = shared::sym3_diagonal(inertia);
   for (uint32_t k = h.spring_start[g]; k < h.spring_start[g + 1]; ++k) {
     const uint32_t o = h.spring_other[k];
     Vec3<R> n;
     R len, sa, sd;
     if (!spring_terms(p, Vec3<R>(s.pos[h.particle[o]]), R(h.spring_rest[k]), R(h.spring_k[k]), n, len, sa, sd)) continue;
     const Vec3<R> v = e - Vec3<R>(s.coarse_corr[o]);
-    r = r - (n * (sa * dot3(n, v)) + v * sd);
+    r = r - shared::spring_hessian_times(n, sa, sd, v);
     add_spring_hessian(diag, n, sa, sd);
   }
   return r;
@@ -99,9 +64,9 @@ Vec3<R> coarse_residual(const Hierarchy& h, const Constants<R>& c, const State<R
 template <class R> bool touches_colliders(const Constants<R>& c, const Vec3<R>& x) {
   const R reach = R(kContactReach);
   for (const SphereColliderT<R>& sp : c.spheres)
-    if (length3(x - Vec3<R>(sp.origin_radius)) < sp.origin_radius.w + reach) return true;
+    if (shared::near_sphere(x, Vec3<R>(sp.origin_radius), sp.origin_radius.w, reach)) return true;
   for (const PlaneColliderT<R>& pl : c.planes)
-    if (dot3(x - Vec3<R>(pl.point), Vec3<R>(pl.normal)) * pl.point.w < reach) return true;  // w: front
+    if (shared::near_plane(x, Vec3<R>(pl.point), Vec3<R>(pl.normal), pl.point.w, reach)) return true;  // w: front
   for (const MeshColliderT<R>& m : c.meshes) {
     R phi;
     Vec3<R> grad;
@@ -144,8 +109,7 @@ template <class R> void compute_residuals(const ClothModel& m, const Constants<R
       if (!c.enabled(sp)) continue;
       const uint32_t j = sp.i == i ? sp.j : sp.i;
       const Vec3<R> e = (Vec3<R>(s.pos[j]) + Vec3<R>(s.offset[j])) - xi;
-      const R len = length3(e);
-      if (len > R(0)) f += e * (c.materials[sp.material].stiffness(sp.type) * (len - R(sp.rest)) * (R(1) / len));
+      f = shared::add_spring_force(f, e, R(sp.rest), c.materials[sp.material].stiffness(sp.type));
     }
     s.residual[i] = Vec4<R>(f, c.mass[i]);
   }
@@ -222,7 +186,7 @@ template <class R> void relax_vertices(const ClothModel& m, const Constants<R>& 
     const R inertia = c.mass[i] * c.inv_dt2;
     // Newton on this mass's block: f = -m/dt^2 (x - y) + the springs' forces, H = m/dt^2 I + their Hessians.
     Vec3<R> f = off * -inertia;
-    Sym3<R> hess{inertia, R(0), R(0), inertia, R(0), inertia};
+    Sym3<R> hess = shared::sym3_diagonal(inertia);
     for (uint32_t g = m.gather_start[i]; g < m.gather_start[i + 1]; ++g) {
       const Spring& sp = m.springs[m.gather[g]];
       if (!c.enabled(sp)) continue;
@@ -231,7 +195,7 @@ template <class R> void relax_vertices(const ClothModel& m, const Constants<R>& 
       R len, sa, sd;
       const R k_s = c.materials[sp.material].stiffness(sp.type);
       if (!spring_terms(x, Vec3<R>(s.pos[j]), R(sp.rest), k_s, n, len, sa, sd)) continue;
-      f = f + n * (k_s * (len - R(sp.rest)));
+      f = shared::add_spring_pull(f, n, len, R(sp.rest), k_s);
       add_spring_hessian(hess, n, sa, sd);
     }
     Vec3<R> step;
@@ -251,7 +215,7 @@ template <class R> void relax_vertices(const ClothModel& m, const Constants<R>& 
       const R len = length3(e);
       const R limit = c.stretch_limit * R(sp.rest);
       if (!(len > limit)) continue;
-      const Vec3<R> corr = e * ((len - limit) * (R(1) / len) * (wi * (R(1) / (wi + wj))));
+      const Vec3<R> corr = shared::one_end_stretch_pull(e, len, limit, wi, wj);
       x = x + corr;
       d = d + corr;
     }

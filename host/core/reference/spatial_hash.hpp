@@ -29,13 +29,8 @@ SpatialHash make_spatial_hash(uint32_t particles);
 
 // Integer cell of a coordinate: floor(x * inv_cell), a multiplication so both sides round
 // alike, clamped to +-CELL_LIMIT (NaN to -CELL_LIMIT) so the conversion is always defined.
-// The GLSL twin is cell_axis in compute/spatial_hash.glsl.
-template <class R> int32_t cell_coord(R x, R inv_cell) {
-  R f = std::floor(x * inv_cell);
-  if (!(f >= R(-CELL_LIMIT))) f = R(-CELL_LIMIT);
-  if (f > R(CELL_LIMIT)) f = R(CELL_LIMIT);
-  return int32_t(f);
-}
+// (shared::cell_axis, compute/spatial_hash.glsl).
+template <class R> int32_t cell_coord(R x, R inv_cell) { return shared::cell_axis(x * inv_cell); }
 template <class V, class R> glm::ivec3 cell_of(const V& p, R inv_cell) {
   return {cell_coord(p.x, inv_cell), cell_coord(p.y, inv_cell), cell_coord(p.z, inv_cell)};
 }

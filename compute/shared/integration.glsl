@@ -1,0 +1,58 @@
+// A mass's move over one substep (docs/design.md §1 step 2, docs/model.md): Verlet's, xpbd's
+// prediction with its speed limit and tether, and a moving pin's. Included by
+// compute/pinned_motion.glsl, advance.comp, integrate.comp, predict.comp and by
+// host/core/reference/reference_forces.cpp; reading and writing the particles stay with each
+// backend.
+#ifndef CLOTHSIM_SHARED_INTEGRATION_GLSL
+#define CLOTHSIM_SHARED_INTEGRATION_GLSL
+
+#include "vector.glsl"
+
+SHARED_BEGIN
+
+// d' = (1 - damping) d + a dt^2 with a = f w (keep = 1 - damping, w the inverse mass), the
+// substep's displacement (d = x - x_prev kept as its own vector); then x' = x + d'.
+SHARED_FN VEC3 verlet_move(VEC3 d, REAL keep, VEC3 f, REAL w, REAL dt2) {
+  PRECISE VEC3 a = f * w;
+  PRECISE VEC3 next_d = d * keep + a * dt2;
+  return next_d;
+}
+
+// xpbd's prediction: the kept motion, the external acceleration acc, and the springs'
+// multipliers of the last substep as forces (warm, times the inverse mass w).
+SHARED_FN VEC3 predicted_move(VEC3 d, REAL keep, VEC3 acc, REAL dt2, VEC3 warm, REAL w) {
+  PRECISE VEC3 next_d = d * keep + acc * dt2 + warm * w;
+  return next_d;
+}
+
+// The bounded contact's speed limit (docs/model.md, "Self-contact that holds"): d shortened to
+// max_step where it is longer.
+SHARED_FN VEC3 limit_step(VEC3 d, REAL max_step) {
+  REAL len = length3(d);
+  PRECISE REAL scale = max_step * (REAL(1) / len);
+  PRECISE VEC3 limited = d * scale;
+  return len > max_step ? limited : d;
+}
+
+// A tether (e = x - the pin's position) longer than `limit` pulls x, and d with it, back to it.
+SHARED_FN void tether_to(VEC3 e, REAL limit, INOUT(VEC3) x, INOUT(VEC3) d) {
+  REAL len = length3(e);
+  if (!(len > limit)) return;
+  PRECISE REAL scale = (limit - len) * (REAL(1) / len);
+  PRECISE VEC3 corr = e * scale;
+  PRECISE VEC3 nx = x + corr;
+  PRECISE VEC3 nd = d + corr;
+  x = nx;
+  d = nd;
+}
+
+// Where a pin that follows pinned_motion is at the end of the substep: its anchor plus the
+// motion's offset then.
+SHARED_FN VEC3 pin_target(VEC3 anchor, VEC3 offset) {
+  PRECISE VEC3 x = anchor + offset;
+  return x;
+}
+
+SHARED_END
+
+#endif

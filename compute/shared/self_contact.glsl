@@ -1,0 +1,31 @@
+// Self-collision's push-out (docs/design.md §1.3, docs/model.md "Self-contact that holds"): one
+// neighbour's share and the average over them. Included by compute/resolve_self_contacts.comp and
+// host/core/reference/reference_collisions.cpp; the walk over the hashed grid stays with each
+// backend.
+#ifndef CLOTHSIM_SHARED_SELF_CONTACT_GLSL
+#define CLOTHSIM_SHARED_SELF_CONTACT_GLSL
+
+#include "vector.glsl"
+
+SHARED_BEGIN
+
+// sum plus the push of mass i away from a neighbour at e = xi - xj, d = |e| < keep: out to
+// `keep`, the contact distance (share 1: the classic contact) or, bounded, the lesser of it and
+// the pair's rest distance, each of the pair moving half the gap (share 0.5).
+SHARED_FN VEC3 add_self_contact(VEC3 sum, VEC3 e, REAL d, REAL keep, REAL share) {
+  PRECISE REAL push = (keep - d) * (share / d);
+  PRECISE VEC3 next = sum + e * push;
+  return next;
+}
+
+// The scale of the summed push-outs of `hits` contacts: their average, spread over the substeps
+// (classic), or whole every substep (bounded).
+SHARED_FN REAL self_contact_scale(uint hits, bool bounded, REAL steps) {
+  PRECISE REAL classic_scale = REAL(1) / (REAL(hits) * steps);
+  PRECISE REAL bounded_scale = REAL(1) / REAL(hits);
+  return bounded ? bounded_scale : classic_scale;
+}
+
+SHARED_END
+
+#endif
