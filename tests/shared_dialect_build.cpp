@@ -15,6 +15,11 @@ using namespace clothsim::shared;
 
 int failures = 0;
 
+// The ordered bits keep the float order, through zero and infinity, and decode exactly.
+static_assert(ordered_bits(-1.0f) < ordered_bits(-0.5f) && ordered_bits(-0.5f) < ordered_bits(0.0f) &&
+              ordered_bits(0.0f) < ordered_bits(2.0f) && ordered_bits(2.0f) < ordered_bits(INFINITY));
+static_assert(from_ordered_bits(ordered_bits(-3.25f)) == -3.25f && from_ordered_bits(ordered_bits(7.5f)) == 7.5f);
+
 void expect(bool ok, const char* what, const char* type) {
   if (ok) return;
   std::printf("FAILED (%s): %s\n", type, what);
@@ -25,6 +30,7 @@ template <class R> void exercise(const char* type) {
   using V = glm::vec<3, R>;
   const V e(R(3), R(4), R(0)), zero(R(0)), up(R(0), R(1), R(0));
   expect(length3(e) == R(5), "length3 (3, 4, 0) is 5", type);
+  expect(bounds_within(-e, e, zero, R(4)) && !bounds_within(-e, e, zero, R(3)), "bounds_within its limit per axis", type);
   expect(dot3(e, up) == R(4), "dot3", type);
   expect(cross3(V(R(1), R(0), R(0)), up) == V(R(0), R(0), R(1)), "cross3 x y = z", type);
 

@@ -16,6 +16,7 @@
 
 #ifdef __cplusplus
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 
@@ -30,6 +31,11 @@ using std::ceil;
 using std::floor;
 using std::sqrt;
 template <class T> inline T min(T a, T b) { return std::min(a, b); }
+// A float's bits and back (the divergence guard's ordered bits); F32 is float in both languages,
+// for the few formulas on a float's bits that no double version can mean.
+using F32 = float;
+inline constexpr uint floatBitsToUint(F32 f) { return std::bit_cast<uint>(f); }
+inline constexpr F32 uintBitsToFloat(uint u) { return std::bit_cast<F32>(u); }
 template <class T> inline T max(T a, T b) { return std::max(a, b); }
 // Whether any component is not zero (GLSL: any(notEqual(v, vec3(0.0)))).
 template <class REAL> inline bool nonzero3(const glm::vec<3, REAL>& v) { return v != glm::vec<3, REAL>(0); }
@@ -55,6 +61,7 @@ template <class REAL> inline bool nonzero3(const glm::vec<3, REAL>& v) { return 
 #define INOUT(T) inout T
 #define OUT(T) out T
 #define PRECISE precise
+#define F32 float
 bool nonzero3(vec3 v) { return any(notEqual(v, vec3(0.0))); }
 #endif
 

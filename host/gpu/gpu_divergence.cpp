@@ -8,23 +8,13 @@
 
 #include "debug_output.hpp"
 #include "../../compute/layout.glsl"
+#include "../../compute/shared/divergence.glsl"
 
 namespace clothsim {
 namespace {
 
-// C++ twins of ordered_bits / from_ordered_bits in compute/divergence.glsl.
-uint32_t ordered_bits(float f) {
-  uint32_t u;
-  std::memcpy(&u, &f, sizeof u);
-  return (u & 0x80000000u) != 0 ? ~u : u | 0x80000000u;
-}
-
-float from_ordered_bits(uint32_t u) {
-  const uint32_t bits = (u & 0x80000000u) != 0 ? u & 0x7fffffffu : ~u;
-  float f;
-  std::memcpy(&f, &bits, sizeof f);
-  return f;
-}
+using shared::from_ordered_bits;
+using shared::ordered_bits;
 
 static_assert(sizeof(layout::LastGoodHeader) == sizeof(glm::vec4), "the kept positions start one vec4 in");
 

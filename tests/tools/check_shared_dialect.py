@@ -13,7 +13,7 @@ out). Each file is compiled as GLSL by the shaders and as C++ by the CPU referen
   - switch, arrays, swizzles of two or more components (.xyz), or % (undefined for negative
     operands in GLSL);
   - a call to anything but the built-ins the dialect brings into C++ (sqrt, floor, ceil, abs,
-    min, max), the dialect's own (nonzero3, the type constructors) and the functions the
+    min, max, floatBitsToUint, uintBitsToFloat), the dialect's own (nonzero3, F32, the type constructors) and the functions the
     shared files define;
   - a function without SHARED_FN (or SHARED for integer ones) in front.
 With --calls CPP, also that every SHARED_FN function is called in the C++ file CPP (the test
@@ -25,8 +25,8 @@ import pathlib
 import re
 import sys
 
-BUILTINS = {"sqrt", "floor", "ceil", "abs", "min", "max"}
-DIALECT = {"nonzero3", "REAL", "VEC3", "VEC4", "SYM3", "INOUT", "OUT", "int", "uint", "bool"}
+BUILTINS = {"sqrt", "floor", "ceil", "abs", "min", "max", "floatBitsToUint", "uintBitsToFloat"}
+DIALECT = {"nonzero3", "F32", "REAL", "VEC3", "VEC4", "SYM3", "INOUT", "OUT", "int", "uint", "bool"}
 KEYWORDS = {"if", "for", "while", "return", "defined", "sizeof", "switch", "case", "else", "do"}
 FORBIDDEN_WORDS = [
     "float", "double", "vec2", "vec3", "vec4", "ivec2", "ivec3", "ivec4", "uvec2", "uvec3", "uvec4",

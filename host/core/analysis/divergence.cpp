@@ -9,6 +9,7 @@
 #include <glm/common.hpp>
 
 #include "scene/scene_table.hpp"
+#include "../../../compute/shared/divergence.glsl"
 
 namespace clothsim {
 namespace {
@@ -45,12 +46,7 @@ DivergenceLimits divergence_limits(const Scene&, const ClothModel& model) {
 }
 
 bool within_limits(const ClothBounds& b, const DivergenceLimits& l) {
-  if (!b.finite) return false;
-  for (int k = 0; k < 3; ++k) {
-    const float above = b.hi[k] - l.centre[k], below = l.centre[k] - b.lo[k];
-    if (above > l.limit || below > l.limit) return false;
-  }
-  return true;
+  return b.finite && shared::bounds_within(b.lo, b.hi, l.centre, l.limit);
 }
 
 std::optional<std::string> divergence_message(const Scene& scene, const ClothModel& model, const FrameCheck& check) {
