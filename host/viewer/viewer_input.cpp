@@ -103,7 +103,7 @@ void Viewer::on_mouse_button(int button, int action, int mods) {
     int w = 0, h = 0;
     glfwGetWindowSize(window_->handle(), &w, &h);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    const auto pos = gl::download_vector<glm::vec4>(session_.sim->positions());
+    const auto pos = gl::download_vector<glm::vec4>(session_.sim->state().positions());
     const Ray ray = pick_ray(st_.camera, glm::vec2(cursor_), glm::vec2(w, h));
     if (auto i = pick_particle(ray, pos, *session_.model)) {
       grab_ = begin_grab(*i, glm::vec3(pos[*i]), st_.camera);
