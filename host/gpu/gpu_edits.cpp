@@ -9,9 +9,8 @@
 namespace clothsim {
 
 void GpuSimulator::apply_substep_time() {
-  set_substep_time(constants_, time_);  // the Control part and the block's pin_offset, gust_phase
-  state_.step_params_.upload(0, sizeof(layout::StepParams), &constants_.params());
-  state_.upload_colliders(constants_);
+  set_substep_time(constants_, time_);  // constants_.control, nothing else
+  state_.upload_control(constants_);  // its block and the colliders; the parameter block stays
 }
 
 void GpuSimulator::set_time(double t) {
@@ -42,7 +41,7 @@ void GpuSimulator::set_parameters(const Scene& scene) {
   // Something compiled into the passes changed (a solver, the collider kinds, wind, moving
   // colliders or pins: shader_features.hpp): they are compiled again.
   if (const ShaderFeatures features = ShaderFeatures::of(constants_); features != passes_.features_) passes_.load_passes(features);
-  state_.upload_colliders(constants_);
+  state_.upload_control(constants_);
   state_.upload_materials(constants_);  // stiffness, damping, enabled springs and masses, all cheap
   if (constants_.mass != old_mass) {
     // Density changed: every free particle's inverse mass follows (an edit-time read-back).

@@ -19,7 +19,7 @@ GpuSimulator::GpuSimulator(const Scene& scene, const ClothModel& model, const st
       dt_(scene.dt()) {
   state_.upload_model();
   state_.upload_rest_positions(constants_);
-  state_.upload_colliders(constants_);
+  state_.upload_control(constants_);  // the block and the colliders
   state_.upload_anchors(constants_);
   state_.upload_materials(constants_);
   state_.step_params_.allocate(sizeof(layout::StepParams), &constants_.params(), GL_DYNAMIC_DRAW);  // as it is
@@ -49,7 +49,7 @@ struct ScopedFlag {
 }  // namespace
 
 void GpuSimulator::step() {
-  // Moving colliders, pins and gusts: the small parameter upload of this substep's time.
+  // Moving colliders, pins and gusts: the substep's control for its time (not the parameter block).
   if (constants_.timeline.moves()) apply_substep_time();
   passes_.ensure_multigrid();  // (after a live edit rebuilt the hierarchy) before the bindings
   state_.bind_all();  // once: nothing in the step binds over these (swap_positions rebinds its two)

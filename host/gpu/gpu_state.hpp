@@ -41,6 +41,8 @@ class GpuState {
   // (the mesh colliders' slope bounds written into c.meshes), the moving pins' anchors, the rest
   // positions (the bounded contact) and the materials.
   void allocate_scratch(const Constants<float>& c);
+  // The substep's control, c.control: its block (BINDING_SUBSTEP_CONTROL) and the colliders.
+  void upload_control(Constants<float>& c);
   void upload_colliders(Constants<float>& c);
   void upload_anchors(const Constants<float>& c);  // one dummy element without pinned_motion
   void upload_rest_positions(const Constants<float>& c);  // Constants::rest, or one dummy texel
@@ -62,6 +64,7 @@ class GpuState {
   uint32_t table_size_ = 0;
   gl::Buffer positions_{"positions"}, displacement_{"displacement"}, forces_{"forces"}, normals_{"normals"};
   gl::Buffer springs_{"springs"}, spheres_{"spheres"}, planes_{"planes"}, step_params_{"step params"};
+  gl::Buffer substep_control_{"substep control"};  // Control<float>'s block (layout::SubstepControl)
   gl::Buffer positions_out_{"positions out"}, cell_count_{"cell count"}, cell_start_{"cell start"};
   gl::Buffer cell_entries_{"cell entries"}, sorted_positions_{"sorted positions"}, tethers_{"tethers"};
   gl::Buffer wind_forces_{"wind forces"}, anchors_{"anchors"};

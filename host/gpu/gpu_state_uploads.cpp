@@ -45,6 +45,13 @@ void GpuState::allocate_scratch(const Constants<float>& c) {
   no_offsets_.allocate(sizeof(glm::vec4));
 }
 
+void GpuState::upload_control(Constants<float>& c) {
+  const layout::SubstepControl& block = c.control.block();
+  if (substep_control_.size() == sizeof block) substep_control_.upload(0, sizeof block, &block);
+  else substep_control_.allocate(sizeof block, &block, GL_DYNAMIC_DRAW);
+  upload_colliders(c);
+}
+
 void GpuState::upload_colliders(Constants<float>& c) {
   // The fields never change during a run: uploaded when the constants bring another set.
   const std::vector<float>* sdf = c.sdf.get();
@@ -55,7 +62,7 @@ void GpuState::upload_colliders(Constants<float>& c) {
       throw SceneError(fmt::format("the mesh colliders' fields have {} nodes in all, more than this GPU's texel buffers "
                                    "hold ({}): set a larger mesh.voxel_size",
                                    sdf->size(), limit));
-    const std::vector<glm::vec4> texels = sdf != nullptr && !sdf->empty() ? sdf_cell_texels(*sdf, c.meshes)
+    const std::vector<glm::vec4> texels = sdf != nullptr && !sdf->empty() ? sdf_cell_texels(*sdf, c.control.meshes)
                                                                          : std::vector<glm::vec4>(1, glm::vec4(0.f));
     gl::upload_vector(sdf_, texels, GL_STATIC_DRAW);
     sdf_view_.attach(sdf_, GL_RGBA32F);
@@ -64,16 +71,16 @@ void GpuState::upload_colliders(Constants<float>& c) {
   }
   // Each field's slope bound, measured once per set of fields (the contact list's bound, which
   // the reference does not read): kept in the colliders' own bound.x.
-  if (sdf_slopes_.size() != c.meshes.size())
-    sdf_slopes_ = sdf != nullptr ? sdf_slopes(*sdf, c.meshes) : std::vector<float>(c.meshes.size(), 1e30f);
-  for (size_t k = 0; k < c.meshes.size(); ++k) c.meshes[k].bound.x = sdf_slopes_[k];
+  if (sdf_slopes_.size() != c.control.meshes.size())
+    sdf_slopes_ = sdf != nullptr ? sdf_slopes(*sdf, c.control.meshes) : std::vector<float>(c.control.meshes.size(), 1e30f);
+  for (size_t k = 0; k < c.control.meshes.size(); ++k) c.control.meshes[k].bound.x = sdf_slopes_[k];
   // Control<float>'s arrays are the GPU's structs: uploaded as they are.
-  if (upload_array(meshes_, c.meshes)) {
+  if (upload_array(meshes_, c.control.meshes)) {
     meshes_view_.attach(meshes_, GL_RGBA32F);
     meshes_int_view_.attach(meshes_, GL_RGBA32I);
   }
-  if (upload_array(spheres_, c.spheres)) spheres_view_.attach(spheres_, GL_RGBA32F);
-  if (upload_array(planes_, c.planes)) planes_view_.attach(planes_, GL_RGBA32F);
+  if (upload_array(spheres_, c.control.spheres)) spheres_view_.attach(spheres_, GL_RGBA32F);
+  if (upload_array(planes_, c.control.planes)) planes_view_.attach(planes_, GL_RGBA32F);
 }
 
 void GpuState::upload_anchors(const Constants<float>& c) {
