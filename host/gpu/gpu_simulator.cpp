@@ -104,7 +104,7 @@ void GpuSimulator::step_frame() {
 
 GpuBackend::GpuBackend(std::unique_ptr<gl::GlContext> context, const Scene& scene, const ClothModel& model,
                        const std::filesystem::path& compute_dir)
-    : context_(std::move(context)), state_.model_(model),
+    : context_(std::move(context)), model_(model),
       sim_(std::make_unique<GpuSimulator>(scene, model, compute_dir)) {}
 
 ClothSnapshot GpuBackend::snapshot() {

@@ -38,7 +38,7 @@ class GpuState {
   friend class GpuSimulator;  // owns this state: transfers and edits
 
   // From the constants (gpu_state_uploads.cpp): the scratch and the hash table, once; the colliders
-  // (the mesh colliders' slope bounds written into c.meshes), the moving pins' anchors, the rest
+  // (the mesh colliders' slope bounds written into c.control.meshes), the moving pins' anchors, the rest
   // positions (the bounded contact) and the materials.
   void allocate_scratch(const Constants<float>& c);
   // The substep's control, c.control: its block (BINDING_SUBSTEP_CONTROL) and the colliders.
