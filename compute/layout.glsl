@@ -133,8 +133,10 @@ using uint = uint32_t;
 #define SPHERE_TEXELS 3
 #define PLANE_TEXELS 3
 #define MESH_TEXELS 8
-// Uniform block binding.
+// Uniform block bindings: the parameter block (uploaded at construction and on live edits) and
+// the substep's control (uploaded every substep when something moves).
 #define BINDING_STEP_PARAMS 0
+#define BINDING_SUBSTEP_CONTROL 1
 
 // Threads per workgroup for every per-particle pass (a 1-D dispatch over the particle index).
 #ifndef WORKGROUP_SIZE
@@ -238,8 +240,6 @@ struct ShadowFrame {
   F(VEC3, gust_velocity)       /* m/s, strength * wind_velocity */                         \
   F(REAL, wind_lift)           /* -rho C_l / 12 */                                         \
   F(VEC3, wind_direction)      /* unit wind_velocity (gusts travel along it) */            \
-  F(REAL, gust_phase)          /* fract(t / period) at the substep's start */              \
-  F(VEC3, pin_offset)          /* m, pinned_motion at the substep's end */                 \
   F(REAL, wind_inv_3dt)        /* 1/s, 1 / (3 dt) */                                       \
   F(REAL, stretch_limit)       /* 1 + max_stretch */                                       \
   F(REAL, contact_distance)    /* m, 2 thickness: self-collision keeps masses this far */  \
@@ -264,6 +264,16 @@ struct ShadowFrame {
 // std140 rounds the block's size up to 16 bytes; alignas makes sizeof agree (for REAL = float:
 // StepParamsT<double> is the double reference's, never uploaded).
 SCALAR_STRUCT(StepParams) { STEP_PARAMS_FIELDS(STEP_PARAMS_DECLARE) };
+
+// The substep's control (issue 42, item 4): the two scalars of the per-substep control that the
+// passes read from a uniform block (Control<R> in host/core/reference/reference.hpp is built on
+// SubstepControlT<R>, with the colliders' arrays, which have buffers of their own). Set for the
+// substep's time by set_substep_time and uploaded on its own, every substep when something moves;
+// its own field list so that tests/test_gpu_layout.cpp checks it as it does StepParams.
+#define SUBSTEP_CONTROL_FIELDS(F)                                                           \
+  F(VEC3, pin_offset)          /* m, pinned_motion at the substep's end */                 \
+  F(REAL, gust_phase)          /* fract(t / period) at the substep's start */
+SCALAR_STRUCT(SubstepControl) { SUBSTEP_CONTROL_FIELDS(STEP_PARAMS_DECLARE) };
 
 // The divergence guard's reduction of one frame. Coordinates are stored as ordered bits
 // (compute/divergence.glsl): uints whose unsigned order is the float order, so that
@@ -296,6 +306,8 @@ using SphereCollider = SphereColliderT<float>;
 using PlaneCollider = PlaneColliderT<float>;
 using MeshCollider = MeshColliderT<float>;
 using StepParams = StepParamsT<float>;
+using SubstepControl = SubstepControlT<float>;
+static_assert(sizeof(SubstepControl) == 16, "SubstepControl is one vec4");
 static_assert(sizeof(MaterialTexels) == MATERIAL_TEXELS * sizeof(vec4), "MaterialTexels texels");
 static_assert(sizeof(SphereCollider) == SPHERE_TEXELS * sizeof(vec4), "SphereCollider texels");
 static_assert(sizeof(PlaneCollider) == PLANE_TEXELS * sizeof(vec4), "PlaneCollider texels");

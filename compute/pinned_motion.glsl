@@ -16,7 +16,7 @@ bool moving_pin_position(int k, out vec3 x) {
   if (!PINS_MOVE) return false;
   vec4 a = anchor[k];
   if (a.w == 0.0) return false;
-  x = pin_target(a.xyz, params.pin_offset);
+  x = pin_target(a.xyz, control.pin_offset);
   return true;
 }
 

@@ -15,7 +15,7 @@ layout(local_size_x = WORKGROUP_SIZE) in;
 layout(std430, binding = BINDING_POSITIONS) writeonly buffer Positions { vec4 pos[]; };
 layout(std430, binding = BINDING_DISPLACEMENT) writeonly buffer Displacements { vec4 disp[]; };
 #ifdef STRETCH_SETTLED
-layout(std430, binding = BINDING_STRETCH_CONTROL) buffer Control { StretchControl control; };
+layout(std430, binding = BINDING_STRETCH_CONTROL) buffer Stretch { StretchControl stretch; };
 #endif
 
 void main() {
@@ -33,7 +33,7 @@ void main() {
 #ifdef STRETCH_SETTLED
   // Every invocation that raises the flag writes the same 1 (no atomic needed).
   precise float settled = limit * STRETCH_SETTLED;
-  if (length3(xj - xi) > settled) control.state.x = 1u;
+  if (length3(xj - xi) > settled) stretch.state.x = 1u;
 #endif
   if (!limit_stretch(xi, xj, di, dj, pi.w, pj.w, wsum, limit)) return;
   // Provot's pull may not leave a mass deeper than 0.1 mm inside a collider or behind a

@@ -13,7 +13,7 @@
 // displacements.
 vec3 triangle_wind_share(int a, int b, int c) {
   vec3 pa = position_of(a).xyz, pb = position_of(b).xyz, pc = position_of(c).xyz;
-  vec3 air = air_velocity(params.gust_enabled != 0u, params.wind_velocity, params.gust_velocity, params.gust_phase,
+  vec3 air = air_velocity(params.gust_enabled != 0u, params.wind_velocity, params.gust_velocity, control.gust_phase,
                           params.wind_direction, params.gust_inv_length3, pa, pb, pc);
   precise vec3 moved = (displacement_of(a).xyz + displacement_of(b).xyz) + displacement_of(c).xyz;
   return triangle_wind_share(pa, pb, pc, moved, air, params.wind_inv_3dt, params.wind_drag, params.wind_lift);

@@ -126,16 +126,16 @@ inline Exercised exercised(const Scene& scene, const ClothModel& model, int fram
     return moved(before, s.pos);
   };
   Exercised e;
-  for (const auto& sphere : c.spheres) {
+  for (const auto& sphere : c.control.spheres) {
     Constants<float> one = c;
-    one.spheres = {sphere};
-    one.planes.clear();
+    one.control.spheres = {sphere};
+    one.control.planes.clear();
     e.by_sphere.push_back(apply(one));
   }
-  for (const auto& plane : c.planes) {
+  for (const auto& plane : c.control.planes) {
     Constants<float> one = c;
-    one.spheres.clear();
-    one.planes = {plane};
+    one.control.spheres.clear();
+    one.control.planes = {plane};
     e.by_plane.push_back(apply(one));
   }
   const Vec4s before = s.pos;

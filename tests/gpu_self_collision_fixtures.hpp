@@ -67,7 +67,7 @@ struct Placed {
     s.disp.assign(s.pos.size(), Vec4<float>(0));  // placed at rest
     GpuSimulator gpu(scene, model, compute_dir());
     gpu.upload(s);
-    gpu.collide_self();
+    gpu.passes().collide_self();
     State<float> g;
     gpu.download(g);
     collide_self(c, s);

@@ -66,7 +66,7 @@ struct Stage {
   Image draw(const Appearance& look) {
     target.bind();
     renderer.place_colliders(gpu.constants());  // as render and the viewer do
-    renderer.draw(gpu.positions(), gpu.normals(), camera, look);
+    renderer.draw(gpu.state().positions(), gpu.state().normals(), camera, look);
     return {target.width(), target.height(), target.read_rgba()};
   }
   Image draw(ShaderKind shader) {

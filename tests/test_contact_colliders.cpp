@@ -17,7 +17,7 @@ TEST_CASE("a mass found behind a plane is lifted to the side the cloth started o
   const ClothModel m = build_cloth(s);
   auto c = make_constants<double>(s, m);
   set_substep_time(c, 0.0);
-  CHECK(c.planes[0].point.w == 1.0);
+  CHECK(c.control.planes[0].point.w == 1.0);
   auto st = initial_state<double>(m);
   test::set_contact_state(st);
   collide_objects(c, st);
@@ -40,7 +40,7 @@ TEST_CASE("a mass that went through a sphere within the substep is caught where 
   CHECK(st.pos[1].x == Approx(0.5).margin(1e-12));
   // Particle 2 stood still while the sphere swept 0.3 m over it along -z: in the sphere's frame
   // its path entered the sphere's front (-z) side, and there it is put, carried along ahead.
-  const glm::dvec3 o(c.spheres[1].origin_radius), e = glm::dvec3(st.pos[2]) - o;
+  const glm::dvec3 o(c.control.spheres[1].origin_radius), e = glm::dvec3(st.pos[2]) - o;
   CHECK(o.z == Approx(0.2));
   CHECK(glm::length(e) == Approx(0.05).margin(1e-9));
   CHECK(e.z == Approx(-0.04).margin(1e-9));
@@ -66,7 +66,7 @@ TEST_CASE("a cloth falling fast onto a small sphere never passes through it, nor
       step(m, c, st);
       for (size_t i = 0; i < st.pos.size(); ++i) {
         const glm::dvec3 x(st.pos[i]);
-        worst = std::max(worst, 0.1 - glm::length(x - glm::dvec3(c.spheres[0].origin_radius)));
+        worst = std::max(worst, 0.1 - glm::length(x - glm::dvec3(c.control.spheres[0].origin_radius)));
         // While it lands (before the constraints can wrap it round the sides) all of it is on
         // top; the classic springs, forces under this gravity, bend its rim down at once.
         if (k < 6 && std::string(solver) == "xpbd") CHECK(x.y > 0.59);
@@ -86,7 +86,7 @@ TEST_CASE("the classic sphere scene: no mass ends a substep more than 0.1 mm ins
   double worst = -1;
   for (int k = 0; k < 100 * s.simulation.simulation_steps; ++k) {
     step(m, c, st);
-    for (auto& p : st.pos) worst = std::max(worst, c.spheres[0].origin_radius.w - glm::length(glm::dvec3(p) - glm::dvec3(c.spheres[0].origin_radius)));
+    for (auto& p : st.pos) worst = std::max(worst, c.control.spheres[0].origin_radius.w - glm::length(glm::dvec3(p) - glm::dvec3(c.control.spheres[0].origin_radius)));
   }
   INFO("deepest inside at the end of a substep over 100 frames: " << worst << " m");
   CHECK(worst <= 1e-4 + 1e-12);
@@ -118,14 +118,14 @@ TEST_CASE("a mass pulled towards a pin behind a plane ends no substep more than 
   const ClothModel m = build_cloth(s);
   auto c = make_constants<double>(s, m);
   auto st = initial_state<double>(m);
-  REQUIRE(c.planes[0].point.w == 1.0);  // the cloth's side, the pin behind
+  REQUIRE(c.control.planes[0].point.w == 1.0);  // the cloth's side, the pin behind
   double worst = -1;
   int at_surface = 0;  // masses the keep-out put on the surface offset at the end of a substep
   for (int k = 0; k < 30 * s.simulation.simulation_steps; ++k) {
     step(m, c, st);
     for (auto& p : st.pos) {
       if (p.w == 0) continue;
-      const double behind = -glm::dot(glm::dvec3(p) - glm::dvec3(c.planes[0].point), glm::dvec3(c.planes[0].normal));
+      const double behind = -glm::dot(glm::dvec3(p) - glm::dvec3(c.control.planes[0].point), glm::dvec3(c.control.planes[0].normal));
       worst = std::max(worst, behind);
       at_surface += std::abs(behind + 1e-4) < 1e-9;
     }

@@ -85,7 +85,7 @@ void check_contact_list(const Scene& s, int warmup_frames, const std::string& so
   gpu.download(without);
   first_pass(true);
   gpu.download(with);
-  const std::vector<uint32_t> listed = gpu.contact_list();
+  const std::vector<uint32_t> listed = gpu.state().contact_list();
   auto c = make_constants<float>(s, m);
   State<float> expected = without;
   collide_objects(c, expected);
@@ -159,14 +159,14 @@ TEST_CASE("the contact list holds every mass a mesh collider moves, and only mas
         if (!bound) {
           State<float> predicted;
           gpu.download(predicted);
-          if (multigrid) gpu.download_multigrid(predicted);
+          if (multigrid) gpu.passes().download_multigrid(predicted);
           gpu.upload(predicted);
-          if (multigrid) gpu.upload_multigrid(predicted);
+          if (multigrid) gpu.passes().upload_multigrid(predicted);
         }
-        if (multigrid) gpu.solve_multigrid();
+        if (multigrid) gpu.passes().solve_multigrid();
         else gpu.run(PassId::solve_distance_constraints);
         gpu.download(out);
-        return gpu.contact_list().size();  // by the sweep's last colour
+        return gpu.state().contact_list().size();  // by the sweep's last colour
       };
       State<float> with_bound, without;
       const size_t listed = sweep(true, with_bound), listed_without = sweep(false, without);

@@ -119,30 +119,30 @@ TEST_CASE("the GPU keeps the frame before the first failure, and nothing after i
     sim.step_frame();
     cpu.step_frame();
   }
-  CHECK(sim.divergence().take(true).size() == 2);  // frames 2 and 3: the first was dropped untaken
+  CHECK(sim.passes().divergence().take(true).size() == 2);  // frames 2 and 3: the first was dropped untaken
   // A NaN put into frame 4 makes it fail; the NaN stays in the cloth from then on.
   sim.hold_particle(m.index(3, 2), glm::vec3(std::numeric_limits<float>::quiet_NaN()));
   for (int f = 4; f <= 6; ++f) sim.step_frame();
-  const auto checks = sim.divergence().take(true);
+  const auto checks = sim.passes().divergence().take(true);
   REQUIRE(checks.size() == 2);
   CHECK(checks[0].frame == 5);
   CHECK_FALSE(checks[1].bounds.finite);
   int frame = -1;
-  const std::vector<glm::vec4> kept = sim.divergence().last_good(&frame);
+  const std::vector<glm::vec4> kept = sim.passes().divergence().last_good(&frame);
   CHECK(frame == 3);
   const ClothSnapshot reference = cpu.snapshot();
   const double tolerance = gl::gl_renderer_is_llvmpipe() ? 0.0 : 1e-5;  // llvmpipe matches bit for bit
   for (int i = 0; i < m.count(); ++i) CHECK(glm::length(glm::dvec3(kept[i]) - glm::dvec3(reference.pos[i])) <= tolerance);
 
   sim.reset();
-  CHECK(sim.divergence().last_good(&frame) == initial_state<float>(m).pos);
+  CHECK(sim.passes().divergence().last_good(&frame) == initial_state<float>(m).pos);
   CHECK(frame == 0);
   sim.step_frame();
-  const auto after = sim.divergence().take(true);
+  const auto after = sim.passes().divergence().take(true);
   REQUIRE(after.size() == 1);
   CHECK(after[0].frame == 1);
   CHECK(within_limits(after[0].bounds, divergence_limits(s, m)));
-  sim.divergence().last_good(&frame);
+  sim.passes().divergence().last_good(&frame);
   CHECK(frame == 1);
   CHECK_NO_GL_ERRORS();
 }
@@ -155,12 +155,12 @@ TEST_CASE("each GPU frame's check is handed over once, in order, at most one fra
   int taken = 0;
   for (int f = 1; f <= 20; ++f) {
     sim.step_frame();
-    for (const FrameCheck& c : sim.divergence().take(false)) CHECK(c.frame == ++taken);
+    for (const FrameCheck& c : sim.passes().divergence().take(false)) CHECK(c.frame == ++taken);
     CHECK(taken >= f - 1);
   }
-  for (const FrameCheck& c : sim.divergence().take(true)) CHECK(c.frame == ++taken);
+  for (const FrameCheck& c : sim.passes().divergence().take(true)) CHECK(c.frame == ++taken);
   CHECK(taken == 20);
-  CHECK(sim.divergence().take(true).empty());
+  CHECK(sim.passes().divergence().take(true).empty());
   CHECK_NO_GL_ERRORS();
 }
 
@@ -204,7 +204,7 @@ TEST_CASE("a GL_OUT_OF_MEMORY during a run stops it at the next per-frame check"
   const ClothModel m = build_cloth(s);
   GpuSimulator sim(s, m, compute_dir());
   sim.step_frame();
-  CHECK_NOTHROW(sim.divergence().take(false));
+  CHECK_NOTHROW(sim.passes().divergence().take(false));
   // Found by the next frame's check of glGetError (before its passes), as OutOfMemoryError
   // (exit 2, like any input too large for the GPU), naming the frame.
   fail_a_raw_allocation();
@@ -217,10 +217,10 @@ TEST_CASE("a GL_OUT_OF_MEMORY during a run stops it at the next per-frame check"
   // Between a frame and its read-back: the divergence guard's take finds it, and reports it
   // once: the next frame does not throw for it again.
   fail_a_raw_allocation();
-  CHECK_THROWS_WITH(sim.divergence().take(false), Catch::Contains("GL_OUT_OF_MEMORY") && Catch::Contains("frame 2"));
+  CHECK_THROWS_WITH(sim.passes().divergence().take(false), Catch::Contains("GL_OUT_OF_MEMORY") && Catch::Contains("frame 2"));
   CHECK_NOTHROW(sim.step_frame());
   test::take_gl_errors();
-  CHECK_NOTHROW(sim.divergence().take(true));
+  CHECK_NOTHROW(sim.passes().divergence().take(true));
   CHECK_NO_GL_ERRORS();
 }
 

@@ -43,7 +43,7 @@ TEST_CASE("a run of frames with every pass raises no GL error and step_frame thr
     GpuSimulator sim(s, m, compute_dir());
     for (int f = 0; f < 5; ++f) {
       CHECK_NOTHROW(sim.step_frame());
-      CHECK_NOTHROW(sim.divergence().take(false));
+      CHECK_NOTHROW(sim.passes().divergence().take(false));
     }
     CHECK_FALSE(gl::gl_errors_pending());
   }
@@ -72,7 +72,7 @@ TEST_CASE("a GL error raised between frames stops the next step_frame with its n
   CHECK_THAT(test::take_gl_errors(), Catch::Contains("error"));
   // Raised once: the frame not run then runs now.
   CHECK_NOTHROW(sim.step_frame());
-  CHECK(sim.divergence().frame() == 3);
+  CHECK(sim.passes().divergence().frame() == 3);
 
   glUseProgram(0xFFFFFFF0u);  // not a program name: GL_INVALID_VALUE
   CHECK_THROWS_WITH(sim.step_frame(), Catch::StartsWith("GL_INVALID_VALUE (0x0501) before frame 4"));
@@ -81,7 +81,7 @@ TEST_CASE("a GL error raised between frames stops the next step_frame with its n
   // An error the divergence guard's read-back drained (it throws only for GL_OUT_OF_MEMORY) is
   // not lost: the next frame raises it.
   glBindBuffer(0xDEAD, 0);
-  CHECK_NOTHROW(sim.divergence().take(true));
+  CHECK_NOTHROW(sim.passes().divergence().take(true));
   CHECK_THROWS_AS(sim.step_frame(), gl::GlError);
   test::take_gl_errors();
   CHECK_NOTHROW(sim.step_frame());

@@ -41,7 +41,7 @@ TEST_CASE("the GPU hash holds every particle once, in its own bucket, ascending,
   for (PassId stage : {PassId::count_cells, PassId::scan_cells, PassId::fill_cells, PassId::sort_cells})
     gpu.run(stage);
   SpatialHash g;
-  gpu.download_hash(g);
+  gpu.state().download_hash(g);
   SpatialHash& h = t.s.hash;
   std::vector<uint32_t> buckets, ids(t.s.pos.size());
   for (auto& p : t.s.pos) buckets.push_back(bucket_of(cell_of(p, t.c), h.table_size));

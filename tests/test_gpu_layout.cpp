@@ -20,7 +20,8 @@ using namespace clothsim;
 namespace {
 
 static_assert(std::is_standard_layout_v<layout::MaterialTexels> && std::is_standard_layout_v<layout::SphereCollider> &&
-                  std::is_standard_layout_v<layout::PlaneCollider> && std::is_standard_layout_v<layout::StepParams>,
+                  std::is_standard_layout_v<layout::PlaneCollider> && std::is_standard_layout_v<layout::StepParams> &&
+                  std::is_standard_layout_v<layout::SubstepControl>,
               "offsetof needs standard-layout structs");
 
 constexpr GLuint kBindingProbeUints = 21;  // BINDING_PROBE_UINTS in the fixture
@@ -73,6 +74,20 @@ void check_storage_array(const gl::Program& program, const std::string& block, G
   CHECK(resource_property(program, GL_SHADER_STORAGE_BLOCK, block, GL_BUFFER_BINDING) == binding);
 }
 
+// Every member of a std140 uniform block: offset and type as C++, the block's size and binding.
+void check_uniform_block(const gl::Program& program, const std::string& block, GLint binding, GLint size,
+                         const std::vector<Member>& members) {
+  for (const Member& m : members) {
+    INFO("uniform " << m.name);
+    CHECK(m.type != GLenum(GL_NONE));
+    CHECK(resource_property(program, GL_UNIFORM, m.name, GL_OFFSET) == m.offset);
+    CHECK(resource_property(program, GL_UNIFORM, m.name, GL_TYPE) == GLint(m.type));
+  }
+  INFO("uniform block " << block);
+  CHECK(resource_property(program, GL_UNIFORM_BLOCK, block, GL_BUFFER_DATA_SIZE) == size);
+  CHECK(resource_property(program, GL_UNIFORM_BLOCK, block, GL_BUFFER_BINDING) == binding);
+}
+
 template <class T> std::vector<T> two_of(const T& first, const T& second) { return {first, second}; }
 
 }  // namespace
@@ -100,15 +115,21 @@ TEST_CASE("every step parameter has the C++ offset and type, and the block the C
   STEP_PARAMS_FIELDS(STEP_PARAMS_MEMBER)
 #undef STEP_PARAMS_MEMBER
   REQUIRE(members.size() >= 19);
-  for (const Member& m : members) {
-    INFO("uniform " << m.name);
-    CHECK(m.type != GLenum(GL_NONE));
-    CHECK(resource_property(program, GL_UNIFORM, m.name, GL_OFFSET) == m.offset);
-    CHECK(resource_property(program, GL_UNIFORM, m.name, GL_TYPE) == GLint(m.type));
-  }
-  CHECK(resource_property(program, GL_UNIFORM_BLOCK, "StepParamsBlock", GL_BUFFER_DATA_SIZE) ==
-        GLint(sizeof(layout::StepParams)));
-  CHECK(resource_property(program, GL_UNIFORM_BLOCK, "StepParamsBlock", GL_BUFFER_BINDING) == BINDING_STEP_PARAMS);
+  check_uniform_block(program, "StepParamsBlock", BINDING_STEP_PARAMS, GLint(sizeof(layout::StepParams)), members);
+  CHECK_NO_GL_ERRORS();
+}
+
+TEST_CASE("every field of the substep's control has the C++ offset and type, and its block the C++ size, in std140",
+          "[gpu]") {
+  REQUIRE_GL_CONTEXT();
+  const gl::Program program = probe_program();
+  std::vector<Member> members;
+#define SUBSTEP_CONTROL_MEMBER(type, name) members.push_back(MEMBER(SubstepControl, "control.", name));
+  SUBSTEP_CONTROL_FIELDS(SUBSTEP_CONTROL_MEMBER)
+#undef SUBSTEP_CONTROL_MEMBER
+  REQUIRE(members.size() == 2);
+  check_uniform_block(program, "SubstepControlBlock", BINDING_SUBSTEP_CONTROL, GLint(sizeof(layout::SubstepControl)),
+                      members);
   CHECK_NO_GL_ERRORS();
 }
 
@@ -166,6 +187,10 @@ TEST_CASE("values written through the C++ layout structs are the values the shad
 #define STEP_PARAMS_FILL(type, name) fill(params.name);
   STEP_PARAMS_FIELDS(STEP_PARAMS_FILL)
 #undef STEP_PARAMS_FILL
+  layout::SubstepControl control{};  // after the parameters, as the probe writes them
+#define SUBSTEP_CONTROL_FILL(type, name) fill(control.name);
+  SUBSTEP_CONTROL_FIELDS(SUBSTEP_CONTROL_FILL)
+#undef SUBSTEP_CONTROL_FILL
   const auto materials = two_of<layout::MaterialTexels>({{-1, -2, -3, -4}, {-5, -6, -7, -8}}, {{1, 2, 3, 4}, {5, 6, 7, 8}});
   const auto spheres =
       two_of<layout::SphereCollider>({{-1, -1, -1, -1}, {-1, -1, -1, -1}, {-1, -1, -1, -1}},
@@ -174,15 +199,17 @@ TEST_CASE("values written through the C++ layout structs are the values the shad
       two_of<layout::PlaneCollider>({{-1, -1, -1, -1}, {-1, -1, -1, -1}, {-1, -1, -1, -1}},
                                     {{21, 22, 23, 24}, {25, 26, 27, 28}, {29, 30, 31, 32}});
 
-  gl::Buffer params_buffer("probe params"), materials_buffer("probe materials"), spheres_buffer("probe spheres"),
+  gl::Buffer params_buffer("probe params"), control_buffer("probe control"), materials_buffer("probe materials"), spheres_buffer("probe spheres"),
       planes_buffer("probe planes"), floats("probe floats"), uints("probe uints");
   params_buffer.allocate(sizeof(params), &params, GL_STATIC_DRAW);
+  control_buffer.allocate(sizeof(control), &control, GL_STATIC_DRAW);
   gl::upload_vector(materials_buffer, materials);
   gl::upload_vector(spheres_buffer, spheres);
   gl::upload_vector(planes_buffer, planes);
   floats.allocate(8 * sizeof(glm::vec4));
   uints.allocate(want_uints.size() * sizeof(uint32_t));
   params_buffer.bind_base(GL_UNIFORM_BUFFER, BINDING_STEP_PARAMS);
+  control_buffer.bind_base(GL_UNIFORM_BUFFER, BINDING_SUBSTEP_CONTROL);
   materials_buffer.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_MATERIALS);
   spheres_buffer.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_SPHERES);
   planes_buffer.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_PLANES);
@@ -204,7 +231,7 @@ TEST_CASE("values written through the C++ layout structs are the values the shad
     CHECK(std::memcmp(&got_floats[k], &want_floats[k], sizeof(glm::vec4)) == 0);
   }
   for (size_t k = 0; k < want_uints.size(); ++k) {
-    INFO("step parameter word " << k);
+    INFO("step parameter (then substep control) word " << k);
     CHECK(got_uints[k] == want_uints[k]);
   }
   CHECK_NO_GL_ERRORS();

@@ -47,7 +47,7 @@ TEST_CASE("mesh colliders on the GPU: every pass and a whole drop as the referen
         gpu.step_frame();
         cpu.step_frame();
         gpu.download(out);
-        const glm::dvec3 at = glm::dvec3(mesh_origin(cpu.constants().meshes[0]));
+        const glm::dvec3 at = glm::dvec3(mesh_origin(cpu.constants().control.meshes[0]));
         for (const auto& p : out.pos) deepest = std::max(deepest, shape.depth(glm::dvec3(p.x, p.y, p.z) - at));
       }
       INFO("deepest inside " << deepest << " m");
@@ -79,7 +79,7 @@ TEST_CASE("a drop onto two mesh colliders on the GPU is the reference's", "[gpu]
     const ClothModel model = build_cloth(s);
     GpuSimulator gpu(s, model, pass_fixtures::compute_dir());
     CpuBackend<float> cpu(s, model);
-    REQUIRE(cpu.constants().meshes.size() == 2);
+    REQUIRE(cpu.constants().control.meshes.size() == 2);
     for (int f = 0; f < 40; ++f) {
       gpu.step_frame();
       cpu.step_frame();
@@ -139,10 +139,10 @@ TEST_CASE("a field's slope bound holds between any two points of its grid", "[me
     test::write_obj(shape.mesh, obj);
     const Scene s = test::drop_onto_mesh(obj, "xpbd");
     const auto c = make_constants<float>(s, build_cloth(s));
-    REQUIRE(c.meshes.size() == 1);
-    const layout::MeshCollider& m = c.meshes[0];
+    REQUIRE(c.control.meshes.size() == 1);
+    const layout::MeshCollider& m = c.control.meshes[0];
     CHECK((m.material.w == 1.f) == (shape.name != "open box"));  // w: closed
-    const float slope = sdf_slopes(*c.sdf, c.meshes).at(0);
+    const float slope = sdf_slopes(*c.sdf, c.control.meshes).at(0);
     INFO("slope bound " << slope);
     // A distance field's neighbours differ by at most a spacing: at most sqrt(3).
     CHECK(slope >= 0.9f);

@@ -59,16 +59,16 @@ TEST_CASE("a multigrid run on the GPU follows the reference frame by frame, and 
   const ClothModel model = build_cloth(scene);
   GpuSimulator gpu(scene, model, compute_dir());
   CpuBackend<float> cpu(scene, model);
-  const GpuCounters before = gpu.counters();
+  const GpuCounters before = gpu.passes().counters();
   gpu.step_frame();
-  const GpuCounters after = gpu.counters();
+  const GpuCounters after = gpu.passes().counters();
   // Its two coarse levels are both small (kSmallLevelVertices): the whole V-cycle is one
   // dispatch, with compute_residuals, prolong_to_cloth and a dispatch per colour of the sweep,
   // each followed by its push-out over the contact list (spheres and planes, no mesh).
-  CHECK(gpu.multigrid_dispatches() == 3 + 2 * gpu.constants().hierarchy->fine_colours());
+  CHECK(gpu.passes().multigrid_dispatches() == 3 + 2 * gpu.constants().hierarchy->fine_colours());
   // The substeps' dispatches, then the frame's own: normals and the divergence guard's two.
   CHECK(uint64_t(after.dispatches - before.dispatches) ==
-        uint64_t(scene.simulation.simulation_steps * gpu.dispatches_per_substep() + 3));
+        uint64_t(scene.simulation.simulation_steps * gpu.passes().dispatches_per_substep() + 3));
   cpu.step_frame();
   for (int f = 1; f < 4; ++f) {
     gpu.step_frame();

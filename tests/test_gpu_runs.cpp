@@ -81,9 +81,9 @@ TEST_CASE("a second sphere and a second plane act on the GPU as on the CPU", "[g
   for (int k = 0; k < 4; ++k) {
     CpuCloth without(scene, warmup);
     if (k < 2)
-      without.c.spheres.erase(without.c.spheres.begin() + k);
+      without.c.control.spheres.erase(without.c.control.spheres.begin() + k);
     else
-      without.c.planes.erase(without.c.planes.begin() + (k - 2));
+      without.c.control.planes.erase(without.c.control.planes.begin() + (k - 2));
     without.run(substeps);
     INFO((k < 2 ? "sphere " : "plane ") << k % 2);
     CHECK(moved(all.s.pos, without.s.pos).all > 0);

@@ -24,7 +24,7 @@ State<float> run_both(const Scene& s, const ClothModel& m, int frames, bool* div
   for (int f = 0; f < frames; ++f) {
     gpu.step_frame();
     if (exact) cpu.step_frame();
-    for (const FrameCheck& check : gpu.divergence().take(f + 1 == frames))
+    for (const FrameCheck& check : gpu.passes().divergence().take(f + 1 == frames))
       *diverged = *diverged || divergence_message(s, m, check).has_value();
   }
   State<float> g;
@@ -82,10 +82,10 @@ TEST_CASE("an xpbd substep takes no more dispatches than a classic one", "[gpu][
       s.simulation.self_collision = self_collision;
       const ClothModel m = build_cloth(s);
       GpuSimulator gpu(s, m, test::source_path("compute"));
-      const GpuCounters before = gpu.counters();
+      const GpuCounters before = gpu.passes().counters();
       gpu.step();
-      per_substep[solver] = int(gpu.counters().dispatches - before.dispatches);
-      CHECK(per_substep[solver] == gpu.dispatches_per_substep());
+      per_substep[solver] = int(gpu.passes().counters().dispatches - before.dispatches);
+      CHECK(per_substep[solver] == gpu.passes().dispatches_per_substep());
     }
     INFO("self-collision " << self_collision << ": classic " << per_substep[0] << ", xpbd " << per_substep[1]);
     CHECK(per_substep[1] <= per_substep[0]);
@@ -109,12 +109,12 @@ TEST_CASE("a substep with settling passes issues the dispatches dispatches_per_s
     GpuSimulator fixed(s, m, test::source_path("compute"));
     s.simulation.stretch_passes_max = 7;
     GpuSimulator gpu(s, m, test::source_path("compute"));
-    const GpuCounters before = gpu.counters();
+    const GpuCounters before = gpu.passes().counters();
     gpu.step();
     INFO("solver " << int(solver));
-    CHECK(int(gpu.counters().dispatches - before.dispatches) == gpu.dispatches_per_substep());
+    CHECK(int(gpu.passes().counters().dispatches - before.dispatches) == gpu.passes().dispatches_per_substep());
     const int colours = m.colours();
-    CHECK(gpu.dispatches_per_substep() - fixed.dispatches_per_substep() == 2 * colours + 5 * (colours + 1) - 3 * colours);
+    CHECK(gpu.passes().dispatches_per_substep() - fixed.passes().dispatches_per_substep() == 2 * colours + 5 * (colours + 1) - 3 * colours);
   }
   CHECK_NO_GL_ERRORS();
 }

@@ -227,7 +227,7 @@ TEST_CASE("the vertex stage reads the simulation's positions buffer in place", "
   gl::Program move = gl::Program::compute(test::source_path("tests/shaders/move_particle.comp"));
   move.set("u_particle", k);
   move.set("u_offset", new_p - old_p);
-  stage.gpu.positions().bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_POSITIONS);
+  stage.gpu.state().positions().bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_POSITIONS);
   move.dispatch(1);
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);  // the vertex shader reads it next
   const Image after = stage.draw(ShaderKind::Normal);

@@ -23,10 +23,10 @@ TEST_CASE("a keyframed sphere is drawn where the simulation has it at a later fr
   stage.camera.look_from({0.2f, 0.2f, 2.5f}, {0.2f, 0.2f, 0.5f});
 
   stage.run(1);
-  const glm::vec3 start = glm::vec3(stage.gpu.constants().spheres[0].origin_radius);
+  const glm::vec3 start = glm::vec3(stage.gpu.constants().control.spheres[0].origin_radius);
   const Image before = stage.draw(ShaderKind::Diffuse);
   stage.run(17);  // frame 18, 0.2 s: past the last key
-  const glm::vec3 now = glm::vec3(stage.gpu.constants().spheres[0].origin_radius);
+  const glm::vec3 now = glm::vec3(stage.gpu.constants().control.spheres[0].origin_radius);
   REQUIRE(now.x == Approx(-0.1f));
   REQUIRE(start.x > 0.4f);  // 1/90 s in, it has moved 0.067 m of its 0.6 m
   const Image after = stage.draw(ShaderKind::Diffuse);
@@ -65,7 +65,7 @@ TEST_CASE("a mesh collider is drawn, with every shader, and moves where its keyf
   Stage stage("flag_pole", kWidth, kHeight, o);
   stage.camera.look_from({-0.3f, 0.3f, 2.0f}, {-0.3f, 0.3f, 0.f});
   const glm::ivec2 at(stage.pixel_of({-0.03f, 0.3f, 0.f})), later(stage.pixel_of({-0.53f, 0.3f, 0.f}));
-  REQUIRE(stage.gpu.constants().meshes.size() == 1);
+  REQUIRE(stage.gpu.constants().control.meshes.size() == 1);
   for (int k = 0; k < 8; ++k) {
     INFO(kShaderNames[size_t(k)]);
     Appearance look = Appearance::classic();

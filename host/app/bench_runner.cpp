@@ -100,13 +100,13 @@ BenchResult BenchRunner::run_gpu(const Scene& scene) {
   GpuSimulator sim(scene, model, compute_dir_);
   for (int f = 0; f < kWarmupFrames; ++f) sim.step_frame();
   glFinish();
-  const GpuCounters before = sim.counters();
+  const GpuCounters before = sim.passes().counters();
   const auto t = Clock::now();
   for (int f = 0; f < frames_; ++f) sim.step_frame();
   glFinish();
   BenchResult r;
   r.ms_per_frame = ms_since(t) / frames_;
-  const GpuCounters after = sim.counters();
+  const GpuCounters after = sim.passes().counters();
   r.dispatches_per_frame = double(after.dispatches - before.dispatches) / frames_;
   r.barriers_per_frame = double(after.barriers - before.barriers) / frames_;
   r.gpu_memory_bytes = sim.memory_bytes();
@@ -115,7 +115,7 @@ BenchResult BenchRunner::run_gpu(const Scene& scene) {
   // the first pass or resolve_self_contacts, the V-cycle as cycle_levels, the limit as
   // enforce_stretch_limit; then the frame's (compute_normals) and the divergence guard.
   PassList passes;
-  const uint16_t f = sim.shape().features;
+  const uint16_t f = sim.passes().shape().features;
   for (const PassRow& row : kPasses) {
     if (!row.stage) continue;
     const char* name = stage_name(row);
@@ -124,7 +124,7 @@ BenchResult BenchRunner::run_gpu(const Scene& scene) {
     else if (runs(row, f | kPerFrame) && (row.need & kPerFrame)) passes.frame.push_back({name, [&sim, id] { sim.run(id); }});
   }
   // The divergence guard: its reduction and the copy of a passing frame.
-  passes.frame.push_back({"check_divergence", [&] { sim.divergence().check(sim.positions()); }});
+  passes.frame.push_back({"check_divergence", [&] { sim.passes().divergence().check(sim.state().positions()); }});
   // Per-pass times come from a separate frame (stalls or queries would distort the run above):
   // GPU timer queries where the driver has them, else (llvmpipe) glFinish around each pass.
   const int substeps = scene.simulation.simulation_steps;

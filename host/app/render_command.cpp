@@ -57,8 +57,8 @@ struct FrameSource {
   std::vector<FrameCheck> take_checks() { return gpu ? gpu->take_checks(true) : cpu->take_checks(true); }
   // Keyframed colliders move with the simulated time: draw them where this frame left them.
   void place_colliders(Renderer& r) const { gpu ? r.place_colliders(gpu->simulator().constants()) : r.place_colliders(cpu->constants()); }
-  const gl::Buffer& positions() const { return gpu ? gpu->simulator().positions() : cpu_positions; }
-  const gl::Buffer& normals() const { return gpu ? gpu->simulator().normals() : cpu_normals; }
+  const gl::Buffer& positions() const { return gpu ? gpu->simulator().state().positions() : cpu_positions; }
+  const gl::Buffer& normals() const { return gpu ? gpu->simulator().state().normals() : cpu_normals; }
   Backend& backend() { return gpu ? static_cast<Backend&>(*gpu) : *cpu; }
 };
 

@@ -19,13 +19,13 @@ uint32_t bits(double v) { return std::bit_cast<uint32_t>(float(v)); }
 void GpuPasses::ensure_multigrid() {
   if (!constants_.multigrid) return;
   const Hierarchy& h = *constants_.hierarchy;
-  if (multigrid_ && multigrid_->hierarchy == constants_.hierarchy) return;
-  if (!multigrid_) {
-    multigrid_ = std::make_unique<GpuMultigrid>();
+  if (state_.multigrid_ && state_.multigrid_->hierarchy == constants_.hierarchy) return;
+  if (!state_.multigrid_) {
+    state_.multigrid_ = std::make_unique<GpuMultigrid>();
     load_rows(Build::multigrid);
   }
-  GpuMultigrid& g = *multigrid_;
-  const uint32_t n = uint32_t(model_.count()), coarse = h.coarse_count();
+  GpuMultigrid& g = *state_.multigrid_;
+  const uint32_t n = uint32_t(state_.model_.count()), coarse = h.coarse_count();
   // The lists: every coarse vertex's children, then parents, then springs, then the particles' parents.
   std::vector<glm::uvec4> lists;
   const uint32_t parents_at = uint32_t(h.child.size()), springs_at = parents_at + uint32_t(h.parent.size());
@@ -85,7 +85,7 @@ void GpuPasses::ensure_multigrid() {
   g.rhs_view.attach(g.rhs, GL_RGBA32F);
   programs_[size_t(PassId::cycle_small_levels)].set("u_first", table_at);  // where its table starts, fixed with the hierarchy
   g.hierarchy = constants_.hierarchy;
-  bind_multigrid();
+  state_.bind_multigrid();
 }
 
 // restrict_residuals and prolong_corrections over a level's vertices, smooth_corrections over
@@ -105,7 +105,7 @@ void GpuPasses::level_pass(PassId pass, const PassArgs& a) {
     const bool listed = fine && uses_contact_list() && last > first;
     if (listed) start_contact_list();
     // The coarse vertices follow the particles in the multigrid's buffers.
-    dispatch_row(pass, {(fine ? 0u : uint32_t(model_.count())) + first, last - first}, listed);
+    dispatch_row(pass, {(fine ? 0u : uint32_t(state_.model_.count())) + first, last - first}, listed);
     if (listed) dispatch_row(PassId::collide_listed_frictionless);
     return;
   }
@@ -134,7 +134,7 @@ void GpuPasses::solve_multigrid() {
 void GpuPasses::download_multigrid(State<float>& s) {
   ensure_multigrid();
   glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-  const GpuMultigrid& g = *multigrid_;
+  const GpuMultigrid& g = *state_.multigrid_;
   const size_t coarse = constants_.hierarchy->coarse_count();
   s.residual = gl::download_vector<Vec4<float>>(g.residuals);
   s.offset = gl::download_vector<Vec4<float>>(g.offset);
@@ -144,10 +144,10 @@ void GpuPasses::download_multigrid(State<float>& s) {
 
 void GpuPasses::upload_multigrid(const State<float>& s) {
   ensure_multigrid();
-  GpuMultigrid& g = *multigrid_;
+  GpuMultigrid& g = *state_.multigrid_;
   const size_t coarse = constants_.hierarchy->coarse_count();
-  if (s.residual.size() == model_.count() + coarse) g.residuals.upload(0, s.residual.size() * sizeof(glm::vec4), s.residual.data());
-  if (s.offset.size() == size_t(model_.count())) g.offset.upload(0, s.offset.size() * sizeof(glm::vec4), s.offset.data());
+  if (s.residual.size() == state_.model_.count() + coarse) g.residuals.upload(0, s.residual.size() * sizeof(glm::vec4), s.residual.data());
+  if (s.offset.size() == size_t(state_.model_.count())) g.offset.upload(0, s.offset.size() * sizeof(glm::vec4), s.offset.data());
   if (s.coarse_rhs.size() == coarse && coarse > 0) g.rhs.upload(0, coarse * sizeof(glm::vec4), s.coarse_rhs.data());
   if (s.coarse_corr.size() == coarse && coarse > 0) g.corr.upload(0, coarse * sizeof(glm::vec4), s.coarse_corr.data());
 }

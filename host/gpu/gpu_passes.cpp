@@ -29,10 +29,11 @@ gl::Defines defines_for(Build build) {
 
 }  // namespace
 
-GpuPasses::GpuPasses(const Scene& scene, const ClothModel& model, const std::filesystem::path& dir)
-    : GpuState(scene, model),
+GpuPasses::GpuPasses(GpuState& state, const Constants<float>& constants, const Scene& scene, const ClothModel& model,
+                     const std::filesystem::path& dir)
+    : state_(state),
+      constants_(constants),
       dir_(dir),
-      constants_(make_constants<float>(scene, model)),
       groups_(gl::workgroups_for(model.count(), WORKGROUP_SIZE)),
       scan_(dir, hash_table_size(uint32_t(model.count()))),
       guard_(scene, model, dir) {
@@ -44,7 +45,7 @@ GpuPasses::~GpuPasses() = default;
 void GpuPasses::load_passes(const ShaderFeatures& features) {
   features_ = features;
   for (Build build : {Build::always, Build::listed, Build::frictionless}) load_rows(build);
-  multigrid_.reset();         // its rows too, on first use (ensure_multigrid)
+  state_.multigrid_.reset();         // its rows too, on first use (ensure_multigrid)
   settling_loaded_ = false;   // and enforce_stretch_limit's watched pass (settling_passes)
 }
 
@@ -67,7 +68,7 @@ void GpuPasses::dispatch_row(PassId pass, PassSpan span, bool listed, GLintptr i
   gl::Program& p = programs_[i];
   switch (r.domain) {
     case Domain::particles: p.dispatch(groups_); break;
-    case Domain::hash_table: p.dispatch(gl::workgroups_for(table_size_, WORKGROUP_SIZE)); break;
+    case Domain::hash_table: p.dispatch(gl::workgroups_for(state_.table_size_, WORKGROUP_SIZE)); break;
     case Domain::colour:
       if (span.count == 0) return;  // a grid too narrow for this colour: nothing, not even the barrier
       [[fallthrough]];
@@ -79,8 +80,8 @@ void GpuPasses::dispatch_row(PassId pass, PassSpan span, bool listed, GLintptr i
       }
       break;
     case Domain::contact_list:
-      contacts_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_CONTACT_LIST);
-      contacts_.bind(GL_DISPATCH_INDIRECT_BUFFER);
+      state_.contacts_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_CONTACT_LIST);
+      state_.contacts_.bind(GL_DISPATCH_INDIRECT_BUFFER);
       p.dispatch_indirect(0);
       break;
     case Domain::stretch_control:
@@ -126,9 +127,9 @@ SubstepShape GpuPasses::shape() const {
                         (c.self_collision ? kSelf : 0) | (listed ? kListed : 0) |
                         (c.stretch_passes_max > 0 ? kStretch : 0) |
                         (c.stretch_passes_max > c.stretch_passes ? kSettling : 0));
-  for (int colour = 0; colour < model_.colours(); ++colour) s.enabled_colours += enabled_colour(colour);
+  for (int colour = 0; colour < state_.model_.colours(); ++colour) s.enabled_colours += enabled_colour(colour);
   s.iterations = c.iterations;
-  s.scan_dispatches = c.self_collision ? scan_.dispatches(table_size_) : 0;
+  s.scan_dispatches = c.self_collision ? scan_.dispatches(state_.table_size_) : 0;
   s.stretch_passes = c.stretch_passes;
   s.stretch_passes_max = c.stretch_passes_max;
   s.listed_sweep_colours = listed && !c.multigrid ? s.enabled_colours : 0;

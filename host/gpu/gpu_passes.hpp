@@ -30,10 +30,13 @@ struct PassSpan {
   uint32_t first = 0, count = 0;
 };
 
-class GpuPasses : public GpuState {
+// Runs on a GpuState it does not own, for the constants it is given (both GpuSimulator's,
+// which outlive it).
+class GpuPasses {
  public:
   // Needs a current GL 4.3 context. `compute_dir` holds the .comp files.
-  GpuPasses(const Scene& scene, const ClothModel& model, const std::filesystem::path& compute_dir);
+  GpuPasses(GpuState& state, const Constants<float>& constants, const Scene& scene, const ClothModel& model,
+            const std::filesystem::path& compute_dir);
   ~GpuPasses();
 
   // One pass of the table, named like its .comp file and its CPU twin (host/core/reference),
@@ -52,31 +55,29 @@ class GpuPasses : public GpuState {
   int multigrid_dispatches() const;    // of one solve_multigrid
   GpuCounters counters() const;        // dispatches and barriers issued so far
   SubstepShape shape() const;          // the scene's features and what the table's counts need
-  // With stretch_passes_max above stretch_passes: the settling passes run so far (a read-back).
-  uint64_t stretch_settling_passes() const;
-  // The masses the last advance or predict listed for collide_objects (a read-back).
-  std::vector<uint32_t> contact_list() const;
   // The multigrid scratch (State::residual, offset, coarse_rhs, coarse_corr), for the pass checks.
   void download_multigrid(State<float>& state);
   void upload_multigrid(const State<float>& state);
   PrefixScan& prefix_scan() { return scan_; }  // for tests of arbitrary lengths
   GpuDivergenceGuard& divergence() { return guard_; }
-  const Constants<float>& constants() const { return constants_; }
   const ShaderFeatures& shader_features() const { return features_; }  // what the passes are compiled for
 
- protected:
   // Compiles every row built always for `features` (at construction, and when a live edit
   // changes them); the multigrid and settling rows wait for their first use.
   void load_passes(const ShaderFeatures& features);
-  void load_rows(Build build);
   void ensure_multigrid();  // the multigrid rows and buffers (again after an edit rebuilt the hierarchy)
-  void bind_for_pass() const { if (!in_step_) bind_all(); }
+  std::string pass_list() const { return clothsim::pass_list(shape()); }
+
+ private:
+  friend class GpuSimulator;  // its step sets in_step_, in_frame_ and substep_
+
+  void bind_for_pass() const { if (!in_step_) state_.bind_all(); }
+  void load_rows(Build build);  // the rows of one Build
   // One dispatch of `pass`'s program sized by its row's domain over `span` (u_first, u_count),
   // then the row's barrier, with its listed_barrier where `listed`.
   void dispatch_row(PassId pass, PassSpan span = {}, bool listed = false, GLintptr indirect = 0);
   void dispatched(const gl::Program& program);  // counts a dispatch; debug builds check GL errors
   void barrier(GLbitfield bits);  // glMemoryBarrier, counted
-  std::string pass_list() const { return clothsim::pass_list(shape()); }
   void first_pass(PassId pass, bool then_collide_objects);  // advance or predict
   void colour_pass(PassId pass, int colour);  // one colour of a constraint sweep
   void level_pass(PassId pass, const PassArgs& args);  // a multigrid pass over a level or colour
@@ -88,8 +89,9 @@ class GpuPasses : public GpuState {
   bool uses_contact_list() const;
   void start_contact_list();
 
+  GpuState& state_;
+  const Constants<float>& constants_;
   const std::filesystem::path dir_;
-  Constants<float> constants_;
   GpuCounters counters_;
   GLuint groups_ = 0;  // of a dispatch over every particle
   bool in_step_ = false;

@@ -1,8 +1,9 @@
 // The model of docs/design.md §1 as compute passes over shader-storage buffers. The passes have
 // the names of the CPU reference functions they mirror; step() is the same pass list.
 // Positions stay on the GPU: the only read-backs are download() and snapshot(), on request.
-// Three layers: GpuState (gpu_state.hpp: the buffers and views), GpuPasses (gpu_passes.hpp:
-// the pass table's programs and run(PassId)), and GpuSimulator here, the orchestrator:
+// Composed of three parts that GpuSimulator owns: a GpuState (gpu_state.hpp: the buffers and
+// views), the Constants (the model and its per-substep Control) and a GpuPasses (gpu_passes.hpp:
+// the pass table's programs and run(PassId), on that state); GpuSimulator is the orchestrator:
 // gpu_simulator.cpp (construction, the step), gpu_simulator_io.cpp (transfers), gpu_edits.cpp
 // (live edits and the grab).
 #pragma once
@@ -17,7 +18,7 @@
 
 namespace clothsim {
 
-class GpuSimulator : public GpuPasses {
+class GpuSimulator {
  public:
   // Needs a current GL 4.3 context. `compute_dir` holds the .comp files.
   GpuSimulator(const Scene& scene, const ClothModel& model, const std::filesystem::path& compute_dir);
@@ -54,14 +55,21 @@ class GpuSimulator : public GpuPasses {
   void reset();                  // back to the initial state
   size_t memory_bytes() const;    // GPU buffer memory this simulator owns
 
+  // One pass, as GpuPasses::run (tests, pass checks, a checkpoint's normals).
+  void run(PassId pass, PassArgs args = {}) { passes_.run(pass, args); }
+  GpuState& state() { return state_; }
+  const GpuState& state() const { return state_; }
+  GpuPasses& passes() { return passes_; }
+  const GpuPasses& passes() const { return passes_; }
+  const Constants<float>& constants() const { return constants_; }
+
  private:
-  void upload_colliders();  // from constants_
-  void upload_anchors();    // from constants_ (one dummy element without pinned_motion)
-  void upload_rest_positions();  // Constants::rest (the bounded contact), or one dummy texel
-  void upload_materials();  // from constants_: the materials and every particle's mass and material
   std::vector<float> inverse_masses() const;  // of every particle for the current densities
   void apply_substep_time();  // the moving parts of constants_ for the substep at time_, uploaded
 
+  GpuState state_;  // first: its constructor checks the GPU's limits before anything is made
+  Constants<float> constants_;
+  GpuPasses passes_;  // runs on state_ for constants_
   std::vector<double> masses_;  // kg, for the current densities (particle_masses)
   double dt_;  // the substep length the displacements are per
   double time_ = 0;  // simulated seconds at the start of the next substep
@@ -74,16 +82,16 @@ class GpuBackend final : public Backend {
              const std::filesystem::path& compute_dir);
   void step_frame() override { sim_->step_frame(); }
   ClothSnapshot snapshot() override;
-  std::vector<FrameCheck> take_checks(bool all) override { return sim_->divergence().take(all); }
+  std::vector<FrameCheck> take_checks(bool all) override { return sim_->passes().divergence().take(all); }
   ClothSnapshot last_good(int* frame) override {
-    return snapshot_of_positions(model_, sim_->divergence().last_good(frame));
+    return snapshot_of_positions(model_, sim_->passes().divergence().last_good(frame));
   }
   std::string name() const override;
   SavedState save_state() override;
   void load_state(const SavedState& saved) override;
   int scalar_bytes() const override { return int(sizeof(float)); }
   double time() const override { return sim_->time(); }
-  uint64_t stretch_settling_passes() const override { return sim_->stretch_settling_passes(); }
+  uint64_t stretch_settling_passes() const override { return sim_->state().stretch_settling_passes(); }
   GpuSimulator& simulator() { return *sim_; }
   const GpuSimulator& simulator() const { return *sim_; }
 

@@ -5,33 +5,33 @@
 namespace clothsim {
 
 void GpuSimulator::upload(const State<float>& s) {
-  gl::upload_vector(positions_, s.pos);
-  gl::upload_vector(displacement_, s.disp);
-  if (s.force.size() == s.pos.size()) gl::upload_vector(forces_, s.force);
-  if (constants_.wind_enabled && s.wind.size() == s.pos.size()) gl::upload_vector(wind_forces_, s.wind);
-  upload_multipliers(s.lambda);  // zero for a state without them
+  gl::upload_vector(state_.positions_, s.pos);
+  gl::upload_vector(state_.displacement_, s.disp);
+  if (s.force.size() == s.pos.size()) gl::upload_vector(state_.forces_, s.force);
+  if (constants_.wind_enabled && s.wind.size() == s.pos.size()) gl::upload_vector(state_.wind_forces_, s.wind);
+  state_.upload_multipliers(s.lambda);  // zero for a state without them
   // The Jacobi/ping-pong output matches the buffer it stands in for.
-  positions_out_.allocate(positions_.size());
-  attach_views();
+  state_.positions_out_.allocate(state_.positions_.size());
+  state_.attach_views();
 }
 
 void GpuSimulator::download(State<float>& s) {
   // Shader writes must be visible to glGetBufferSubData.
   glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-  s.pos = gl::download_vector<Vec4<float>>(positions_);
-  s.disp = download_displacement();
-  s.force = gl::download_vector<Vec4<float>>(forces_);
-  s.normal = gl::download_vector<Vec4<float>>(normals_);
-  if (constants_.wind_enabled) s.wind = gl::download_vector<Vec4<float>>(wind_forces_);
-  s.lambda = gl::download_vector<Vec4<float>>(multipliers_);
-  s.lambda.resize(model_.springs.size());  // less the dummy of a cloth without springs
+  s.pos = gl::download_vector<Vec4<float>>(state_.positions_);
+  s.disp = state_.download_displacement();
+  s.force = gl::download_vector<Vec4<float>>(state_.forces_);
+  s.normal = gl::download_vector<Vec4<float>>(state_.normals_);
+  if (constants_.wind_enabled) s.wind = gl::download_vector<Vec4<float>>(state_.wind_forces_);
+  s.lambda = gl::download_vector<Vec4<float>>(state_.multipliers_);
+  s.lambda.resize(state_.model_.springs.size());  // less the dummy of a cloth without springs
 }
 
 // A checkpoint is the two state buffers as they are, read back and uploaded bit for bit.
 SavedState GpuBackend::save_state() {
   State<float> s;
   sim_->download(s);
-  return save_streams(s, sim_->divergence().frame(), sim_->time(), sim_->constants().timeline.dt);
+  return save_streams(s, sim_->passes().divergence().frame(), sim_->time(), sim_->constants().timeline.dt);
 }
 
 void GpuBackend::load_state(const SavedState& saved) {
@@ -42,7 +42,7 @@ void GpuBackend::load_state(const SavedState& saved) {
   load_streams(saved, s, sim_->constants().timeline.dt);
   sim_->upload(s);
   sim_->run(PassId::compute_normals);
-  sim_->divergence().restart(s.pos, int(saved.frame));
+  sim_->passes().divergence().restart(s.pos, int(saved.frame));
   sim_->set_time(saved.time);
 }
 

@@ -52,7 +52,7 @@ GpuState::~GpuState() = default;  // here, where GpuMultigrid is whole
 size_t GpuState::buffer_bytes() const {
   size_t total = 0;
   for (const gl::Buffer* b : {&positions_, &displacement_, &forces_, &normals_, &springs_, &spheres_, &planes_,
-                              &step_params_, &positions_out_, &cell_count_, &cell_start_, &cell_entries_,
+                              &step_params_, &substep_control_, &positions_out_, &cell_count_, &cell_start_, &cell_entries_,
                               &sorted_positions_, &tethers_, &wind_forces_, &anchors_, &gather_start_, &gather_,
                               &particles_, &materials_, &corner_start_, &corner_triangles_, &triangles_, &rest_positions_,
                               &multipliers_, &meshes_, &sdf_, &stretch_control_, &contacts_})
@@ -115,6 +115,7 @@ void GpuState::bind_all() const {
   spheres_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_SPHERES);
   planes_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_PLANES);
   step_params_.bind_base(GL_UNIFORM_BUFFER, BINDING_STEP_PARAMS);
+  substep_control_.bind_base(GL_UNIFORM_BUFFER, BINDING_SUBSTEP_CONTROL);
   positions_out_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_POSITIONS_OUT);
   cell_count_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_CELL_COUNT);
   cell_start_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_CELL_START);

@@ -1,6 +1,7 @@
 // The GPU's state (issue 42, item 4): every buffer the passes read and write, their texel views
 // (compute/particle_views.glsl) and their bindings (layout.glsl), and the transfers of the hash.
-// GpuPasses (the programs, pass_table.hpp) and GpuSimulator (the step, the edits) build on it.
+// GpuSimulator owns one; GpuPasses (the programs, pass_table.hpp) runs on it. The uploads from
+// the constants are gpu_state_uploads.cpp.
 #pragma once
 
 #include <memory>
@@ -27,8 +28,26 @@ class GpuState {
   void upload_hash(const SpatialHash& hash);  // the same, for a stage checked on its own
   std::vector<glm::vec4> download_sorted_positions();
   std::vector<Vec4<float>> download_displacement() const;  // w zeroed: the GPU's scratch (predict.comp)
+  // With stretch_passes_max above stretch_passes: the settling passes run so far (a read-back).
+  uint64_t stretch_settling_passes() const;
+  // The masses the last advance or predict listed for collide_objects (a read-back).
+  std::vector<uint32_t> contact_list() const;
 
- protected:
+ private:
+  friend class GpuPasses;     // runs its passes on these buffers
+  friend class GpuSimulator;  // owns this state: transfers and edits
+
+  // From the constants (gpu_state_uploads.cpp): the scratch and the hash table, once; the colliders
+  // (the mesh colliders' slope bounds written into c.control.meshes), the moving pins' anchors, the rest
+  // positions (the bounded contact) and the materials.
+  void allocate_scratch(const Constants<float>& c);
+  // The substep's control, c.control: its block (BINDING_SUBSTEP_CONTROL) and the colliders.
+  void upload_control(Constants<float>& c);
+  void upload_colliders(Constants<float>& c);
+  void upload_anchors(const Constants<float>& c);  // one dummy element without pinned_motion
+  void upload_rest_positions(const Constants<float>& c);  // Constants::rest, or one dummy texel
+  void upload_materials(const Constants<float>& c);  // the materials, every particle's mass and material
+
   // Binds every simulation buffer and view, on binding points and texture units no one else
   // uses (layout.glsl): at the start of every step, and for a pass called on its own (tests,
   // pass checks: another simulator in the same context may have bound its own since).
@@ -45,6 +64,7 @@ class GpuState {
   uint32_t table_size_ = 0;
   gl::Buffer positions_{"positions"}, displacement_{"displacement"}, forces_{"forces"}, normals_{"normals"};
   gl::Buffer springs_{"springs"}, spheres_{"spheres"}, planes_{"planes"}, step_params_{"step params"};
+  gl::Buffer substep_control_{"substep control"};  // Control<float>'s block (layout::SubstepControl)
   gl::Buffer positions_out_{"positions out"}, cell_count_{"cell count"}, cell_start_{"cell start"};
   gl::Buffer cell_entries_{"cell entries"}, sorted_positions_{"sorted positions"}, tethers_{"tethers"};
   gl::Buffer wind_forces_{"wind forces"}, anchors_{"anchors"};

@@ -13,15 +13,15 @@ void GpuPasses::run(PassId pass, PassArgs a) {
     case PassId::collide_listed:
     case PassId::collide_listed_frictionless: return dispatch_row(pass);
     case PassId::count_cells:
-    case PassId::fill_cells: cell_count_.clear_to_zero(); break;  // fill_cells: reused as the per-bucket cursors
+    case PassId::fill_cells: state_.cell_count_.clear_to_zero(); break;  // fill_cells: reused as the per-bucket cursors
     case PassId::scan_cells:
-      cell_start_.copy_from(cell_count_, 0, 0, table_size_ * sizeof(uint32_t));
-      scan_.scan(cell_start_, table_size_);  // ends with a barrier for fill_cells
+      state_.cell_start_.copy_from(state_.cell_count_, 0, 0, state_.table_size_ * sizeof(uint32_t));
+      scan_.scan(state_.cell_start_, state_.table_size_);  // ends with a barrier for fill_cells
       return;
     case PassId::resolve_self_contacts:
       programs_[size_t(pass)].set(flag_[size_t(pass)], int(a.collide_objects));
       dispatch_row(pass);
-      swap_positions();  // Jacobi: the output becomes the positions
+      state_.swap_positions();  // Jacobi: the output becomes the positions
       return;
     case PassId::collide_objects:
       if (!constants_.has_colliders()) return;
@@ -31,8 +31,8 @@ void GpuPasses::run(PassId pass, PassArgs a) {
       return length_constraint_passes(constants_.iterations);
     case PassId::solve_distance_constraints:
       if (a.colour >= 0) return colour_pass(pass, a.colour);
-      for (int colour = 0; colour < model_.colours(); ++colour)
-        if (constants_.colour_enabled(model_, colour)) colour_pass(pass, colour);
+      for (int colour = 0; colour < state_.model_.colours(); ++colour)
+        if (constants_.colour_enabled(state_.model_, colour)) colour_pass(pass, colour);
       return;
     case PassId::stretch_fixed_passes:
     case PassId::arm_stretch_pass:
@@ -56,12 +56,12 @@ void GpuPasses::first_pass(PassId pass, bool then_collide_objects) {
   dispatch_row(pass, {}, listed);
   // advance writes the positions out of place: the output becomes the positions (predict
   // writes them in place).
-  if (pass == PassId::advance) swap_positions();
+  if (pass == PassId::advance) state_.swap_positions();
   if (listed) dispatch_row(PassId::collide_listed);
 }
 
 void GpuPasses::colour_pass(PassId pass, int colour) {
-  const uint32_t first = model_.colour_start[colour], count = model_.colour_start[colour + 1] - first;
+  const uint32_t first = state_.model_.colour_start[colour], count = state_.model_.colour_start[colour + 1] - first;
   // xpbd's sweep pushes the masses this colour listed out after it.
   const bool listed = pass == PassId::solve_distance_constraints && uses_contact_list() && count > 0;
   if (listed) start_contact_list();
@@ -72,8 +72,8 @@ void GpuPasses::colour_pass(PassId pass, int colour) {
 void GpuPasses::length_constraint_passes(int passes, PassId row) {
   bind_for_pass();
   for (int pass = 0; pass < passes; ++pass)
-    for (int colour = 0; colour < model_.colours(); ++colour)
-      if (constants_.colour_enabled(model_, colour)) colour_pass(row, colour);
+    for (int colour = 0; colour < state_.model_.colours(); ++colour)
+      if (constants_.colour_enabled(state_.model_, colour)) colour_pass(row, colour);
 }
 
 void GpuPasses::collide_self(bool then_collide_objects) {

@@ -8,7 +8,7 @@
 namespace clothsim {
 
 bool GpuPasses::enabled_colour(int colour) const {
-  return model_.colour_start[colour + 1] > model_.colour_start[colour] && constants_.colour_enabled(model_, colour);
+  return state_.model_.colour_start[colour + 1] > state_.model_.colour_start[colour] && constants_.colour_enabled(state_.model_, colour);
 }
 
 void GpuPasses::enforce_stretch_limit() {
@@ -26,40 +26,34 @@ void GpuPasses::enforce_stretch_limit() {
 void GpuPasses::settling_passes(int fixed) {
   if (!settling_loaded_) load_rows(Build::settling);
   settling_loaded_ = true;
-  const int colours = model_.colours();
+  const int colours = state_.model_.colours();
   const size_t bytes = sizeof(layout::StretchControl) + size_t(colours) * sizeof(layout::StretchDispatch);
-  if (stretch_control_.size() != bytes) {
+  if (state_.stretch_control_.size() != bytes) {
     // Made once per model: the header zeroed (no flag, no passes counted), each colour's
     // workgroups in w for arm_stretch_pass to copy into x.
     std::vector<glm::uvec4> control(1 + colours, glm::uvec4(0));
     for (int c = 0; c < colours; ++c) {
-      const uint32_t springs = model_.colour_start[c + 1] - model_.colour_start[c];
+      const uint32_t springs = state_.model_.colour_start[c + 1] - state_.model_.colour_start[c];
       control[1 + c] = {0u, 1u, 1u, gl::workgroups_for(springs, WORKGROUP_SIZE)};
     }
-    gl::upload_vector(stretch_control_, control);
+    gl::upload_vector(state_.stretch_control_, control);
   }
   bind_for_pass();
   // On the scan's point (layout.glsl), which the scan binds again before its next use.
-  stretch_control_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_STRETCH_CONTROL);
-  stretch_control_.bind(GL_DISPATCH_INDIRECT_BUFFER);
+  state_.stretch_control_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_STRETCH_CONTROL);
+  state_.stretch_control_.bind(GL_DISPATCH_INDIRECT_BUFFER);
   for (int pass = fixed - 1; pass < constants_.stretch_passes_max; ++pass) {
     const size_t arm = size_t(PassId::arm_stretch_pass);
     programs_[arm].set(flag_[arm], int(pass == fixed - 1));
     dispatch_row(PassId::arm_stretch_pass);
     for (int colour = 0; colour < colours; ++colour) {
       if (!enabled_colour(colour)) continue;
-      const uint32_t first = model_.colour_start[colour];
+      const uint32_t first = state_.model_.colour_start[colour];
       // Its workgroups from the colour's entry, which the arm set (0 where the last pass settled).
-      dispatch_row(PassId::stretch_watched_passes, {first, model_.colour_start[colour + 1] - first}, false,
+      dispatch_row(PassId::stretch_watched_passes, {first, state_.model_.colour_start[colour + 1] - first}, false,
                    GLintptr((1 + colour) * sizeof(layout::StretchDispatch)));
     }
   }
-}
-
-uint64_t GpuPasses::stretch_settling_passes() const {
-  if (stretch_control_.size() == 0) return 0;
-  // The GPU's count is a uint: the host's 64 bits are for the CPU's statistic.
-  return gl::download_vector<glm::uvec4>(stretch_control_, 0, 1)[0].y;
 }
 
 }  // namespace clothsim

@@ -51,28 +51,28 @@ void check_self_collision_stages(const Constants<float>& c, State<float>& s, Gpu
   gpu.upload(s);
   count_cells(buckets, h);
   gpu.run(PassId::count_cells);
-  gpu.download_hash(g);
+  gpu.state().download_hash(g);
   out.push_back(integer_result("count_cells", differing(g.count, h.count)));
-  gpu.upload_hash(h);
+  gpu.state().upload_hash(h);
   scan_cells(h);
   gpu.run(PassId::scan_cells);
-  gpu.download_hash(g);
+  gpu.state().download_hash(g);
   out.push_back(integer_result("scan_cells", differing(g.start, h.start)));
-  gpu.upload_hash(h);
+  gpu.state().upload_hash(h);
   fill_cells(buckets, order, h);
   gpu.run(PassId::fill_cells);
-  gpu.download_hash(g);
+  gpu.state().download_hash(g);
   out.push_back(integer_result("fill_cells (as a set per bucket)",
                                differing(g.count, h.count) +
                                    differing(entries_as_sets(h, g.entries), entries_as_sets(h, h.entries))));
-  gpu.upload_hash(h);
+  gpu.state().upload_hash(h);
   sort_cells(h);
   gpu.run(PassId::sort_cells);
-  gpu.download_hash(g);
+  gpu.state().download_hash(g);
   std::vector<glm::vec4> want_sorted(n);
   for (size_t e = 0; e < n; ++e) want_sorted[e] = s.pos[h.entries[e]];
   out.push_back(integer_result("sort_cells (+ positions in cell order)",
-                               differing(g.entries, h.entries) + differing(gpu.download_sorted_positions(), want_sorted)));
+                               differing(g.entries, h.entries) + differing(gpu.state().download_sorted_positions(), want_sorted)));
   // The GPU's hash and sorted positions are now the CPU's: the response reads them.
   resolve_self_contacts(c, s);
   gpu.run(PassId::resolve_self_contacts);
@@ -102,11 +102,11 @@ void check_multigrid_passes(const ClothModel& model, const Constants<float>& c, 
   State<float> g;
   auto check = [&](const std::string& name, const std::function<void()>& on_cpu, const std::function<void()>& on_gpu) {
     gpu.upload(s);
-    gpu.upload_multigrid(s);
+    gpu.passes().upload_multigrid(s);
     on_cpu();
     on_gpu();
     gpu.download(g);
-    gpu.download_multigrid(g);
+    gpu.passes().download_multigrid(g);
     const Deviation d = deviation(stream(g), stream(s));
     out.push_back({name, d.max, d.bitwise});
   };
@@ -172,16 +172,16 @@ void check_settling_passes(const ClothModel& model, const Constants<float>& c, S
   const State<float> stretched = s;
   for (const State<float>* from : {&stretched, &start}) {
     s = *from;
-    const uint64_t cpu_before = s.stretch_settling_passes, gpu_before = gpu.stretch_settling_passes();
+    const uint64_t cpu_before = s.stretch_settling_passes, gpu_before = gpu.state().stretch_settling_passes();
     gpu.upload(s);
     enforce_stretch_limit(model, c, s);
-    gpu.enforce_stretch_limit();
+    gpu.passes().enforce_stretch_limit();
     State<float> g;
     gpu.download(g);
     const Deviation d = deviation(positions_and_displacements(g), positions_and_displacements(s));
     const char* from_what = from == &stretched ? ", stretched" : "";
     out.push_back({fmt::format("enforce_stretch_limit (settling{})", from_what), d.max, d.bitwise});
-    const uint64_t cpu_ran = s.stretch_settling_passes - cpu_before, gpu_ran = gpu.stretch_settling_passes() - gpu_before;
+    const uint64_t cpu_ran = s.stretch_settling_passes - cpu_before, gpu_ran = gpu.state().stretch_settling_passes() - gpu_before;
     out.push_back(integer_result(fmt::format("arm_stretch_pass ({} settling passes{})", cpu_ran, from_what).c_str(),
                                  cpu_ran != gpu_ran));
   }
@@ -249,11 +249,11 @@ void check_classic_passes(PassCheck& k) {
     const State<float> before = s;
     check_self_collision_stages(c, s, k.gpu, k.out);
     s = before;
-    k.check("collide_self", [&] { collide_self(c, s); }, [&] { k.gpu.collide_self(); }, kBoth);
+    k.check("collide_self", [&] { collide_self(c, s); }, [&] { k.gpu.passes().collide_self(); }, kBoth);
     if (colliders) {
       s = before;
       k.check("collide_self (+ collide_objects)", [&] { collide_self(c, s), collide_objects(c, s); },
-              [&] { k.gpu.collide_self(true); }, kBoth);
+              [&] { k.gpu.passes().collide_self(true); }, kBoth);
     }
   }
   k.check(PassId::collide_objects, [&] { collide_objects(c, s); }, kBoth);

@@ -27,9 +27,9 @@ struct ShaderFeatures {
   // What a run with these constants can reach.
   static ShaderFeatures of(const Constants<float>& c) {
     ShaderFeatures f;
-    f.spheres = !c.spheres.empty();
-    f.planes = !c.planes.empty();
-    f.meshes = !c.meshes.empty();
+    f.spheres = !c.control.spheres.empty();
+    f.planes = !c.control.planes.empty();
+    f.meshes = !c.control.meshes.empty();
     f.moving = false;
     for (const auto* keys : {&c.timeline.spheres, &c.timeline.planes, &c.timeline.meshes})
       for (const auto& k : *keys) f.moving = f.moving || k.has_value();

@@ -91,9 +91,9 @@ class Renderer {
                        const std::vector<glm::vec3>& mesh_origins = {});
   template <class R> void place_colliders(const Constants<R>& c) {
     std::vector<glm::vec3> spheres, planes, meshes;
-    for (const auto& s : c.spheres) spheres.emplace_back(s.origin_radius);
-    for (const auto& p : c.planes) planes.emplace_back(p.point);
-    for (const auto& m : c.meshes) meshes.emplace_back(mesh_origin(m));
+    for (const auto& s : c.control.spheres) spheres.emplace_back(s.origin_radius);
+    for (const auto& p : c.control.planes) planes.emplace_back(p.point);
+    for (const auto& m : c.control.meshes) meshes.emplace_back(mesh_origin(m));
     place_colliders(spheres, planes, meshes);
   }
 

@@ -112,12 +112,12 @@ class Viewer {
     render_timer_.mark(0);
     // Keyframed (or alt-dragged) colliders are drawn where the simulation has them now.
     session_.renderer->place_colliders(session_.sim->constants());
-    session_.renderer->draw(session_.sim->positions(), session_.sim->normals(), st_.camera, st_.look);
+    session_.renderer->draw(session_.sim->state().positions(), session_.sim->state().normals(), st_.camera, st_.look);
     render_timer_.mark(1);
     st_.stats.render_ms = render_timer_.finish()[0];
     st_.stats.passes = session_.renderer->times();
     st_.stats.gpu_timers = sim_timer_.uses_queries();
-    st_.stats.dispatches_per_frame = session_.sim->dispatches_per_substep() * st_.scene.simulation.simulation_steps +
+    st_.stats.dispatches_per_frame = session_.sim->passes().dispatches_per_substep() * st_.scene.simulation.simulation_steps +
                                      1 + GpuDivergenceGuard::kDispatchesPerFrame;  // normals, the guard
     ImGui_ImplOpenGL3_NewFrame();
     ImGui_ImplGlfw_NewFrame();
@@ -154,7 +154,7 @@ class Viewer {
     if (!st_.scene.simulation.self_collision) return;
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     st_.stats.contacts =
-        count_self_contacts(gl::download_vector<glm::vec4>(session_.sim->positions()), session_.sim->constants());
+        count_self_contacts(gl::download_vector<glm::vec4>(session_.sim->state().positions()), session_.sim->constants());
   }
 
   bool save_screenshot(const std::string& path) {

@@ -7,7 +7,7 @@
 namespace clothsim {
 
 bool Viewer::poll_divergence() {
-  GpuDivergenceGuard& guard = session_.sim->divergence();
+  GpuDivergenceGuard& guard = session_.sim->passes().divergence();
   for (const FrameCheck& check : guard.take(false)) {
     auto message = divergence_message(st_.scene, *session_.model, check);
     if (!message) continue;

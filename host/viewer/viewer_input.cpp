@@ -103,7 +103,7 @@ void Viewer::on_mouse_button(int button, int action, int mods) {
     int w = 0, h = 0;
     glfwGetWindowSize(window_->handle(), &w, &h);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    const auto pos = gl::download_vector<glm::vec4>(session_.sim->positions());
+    const auto pos = gl::download_vector<glm::vec4>(session_.sim->state().positions());
     const Ray ray = pick_ray(st_.camera, glm::vec2(cursor_), glm::vec2(w, h));
     if (auto i = pick_particle(ray, pos, *session_.model)) {
       grab_ = begin_grab(*i, glm::vec3(pos[*i]), st_.camera);
@@ -116,9 +116,9 @@ void Viewer::on_mouse_button(int button, int action, int mods) {
     int w = 0, h = 0;
     glfwGetWindowSize(window_->handle(), &w, &h);
     const Ray ray = pick_ray(st_.camera, glm::vec2(cursor_), glm::vec2(w, h));
-    const auto sphere = pick_sphere(ray, session_.sim->constants().spheres);
+    const auto sphere = pick_sphere(ray, session_.sim->constants().control.spheres);
     const float sphere_t = sphere ? glm::length(sphere->second - ray.origin) : INFINITY;
-    if (auto mesh = pick_mesh(ray, st_.scene, session_.sim->constants().meshes, sphere_t))
+    if (auto mesh = pick_mesh(ray, st_.scene, session_.sim->constants().control.meshes, sphere_t))
       sphere_drag_ = {mesh->first, begin_grab(0, mesh->second, st_.camera), mesh->second, glm::dvec3(0.0), true};
     else if (sphere)
       sphere_drag_ = {sphere->first, begin_grab(0, sphere->second, st_.camera), sphere->second, glm::dvec3(0.0)};

@@ -1,4 +1,4 @@
-// Reads the step parameters, materials and colliders; writes positions and probe_uints.
+// Reads the step parameters, the substep's control, materials and colliders; writes positions and probe_uints.
 // One invocation does the work. Test fixture for tests/test_gpu_layout.cpp: it declares the
 // buffers exactly as the passes do (the parameter block comes from common.glsl itself) and
 // copies every member of every struct out, so the compiler keeps them all and the test can
@@ -24,10 +24,13 @@ void put(vec3 v) { put(v.x); put(v.y); put(v.z); }
 
 // Every field of StepParams in declaration order, the list of layout.glsl itself.
 #define PUT_FIELD(type, name) put(params.name);
+// Then every field of SubstepControl, the same way.
+#define PUT_CONTROL_FIELD(type, name) put(control.name);
 
 void main() {
   if (gl_GlobalInvocationID.x != 0u) return;
   STEP_PARAMS_FIELDS(PUT_FIELD)
+  SUBSTEP_CONTROL_FIELDS(PUT_CONTROL_FIELD)
   // Element 1 of each array, so a wrong stride shows as well as a wrong offset.
   pos[0] = materials[1].stiffness;
   pos[1] = materials[1].keep;

@@ -57,11 +57,11 @@ template <class R> void make_timeline(const Scene& scene, const ClothModel& mode
   }
   // Where the colliders are at t = 0, at rest: set_substep_time takes over from the first substep.
   for (size_t k = 0; k < tl.spheres.size(); ++k)
-    if (tl.spheres[k]) set_xyz(c.spheres[k].origin_radius, interpolate(*tl.spheres[k], 0.0));
+    if (tl.spheres[k]) set_xyz(c.control.spheres[k].origin_radius, interpolate(*tl.spheres[k], 0.0));
   for (size_t k = 0; k < tl.planes.size(); ++k)
-    if (tl.planes[k]) set_xyz(c.planes[k].point, interpolate(*tl.planes[k], 0.0));
+    if (tl.planes[k]) set_xyz(c.control.planes[k].point, interpolate(*tl.planes[k], 0.0));
   for (size_t k = 0; k < tl.meshes.size(); ++k)
-    if (tl.meshes[k]) set_mesh_origin(c.meshes[k], Vec3<R>(interpolate(*tl.meshes[k], 0.0)));
+    if (tl.meshes[k]) set_mesh_origin(c.control.meshes[k], Vec3<R>(interpolate(*tl.meshes[k], 0.0)));
 }
 
 // Each mesh collider's field, appended to one array the backends share (GPU: one buffer).
@@ -72,7 +72,7 @@ template <class R> void make_meshes(const Scene& scene, Constants<R>& c) {
   for (size_t k = 0; k < scene.meshes.size(); ++k) {
     const std::shared_ptr<const ColliderMesh> mesh = load_collider_mesh(scene, k);
     loaded.push_back(mesh);
-    c.meshes.push_back(make_mesh_collider<R>(scene.meshes[k], mesh->sdf, offset));
+    c.control.meshes.push_back(make_mesh_collider<R>(scene.meshes[k], mesh->sdf, offset));
     offset += uint32_t(mesh->sdf.values.size());
   }
   c.sdf = concatenated_fields(loaded);
@@ -82,7 +82,7 @@ template <class R> void make_meshes(const Scene& scene, Constants<R>& c) {
 
 template <class R> void set_substep_time(Constants<R>& c, double t) {
   const Timeline& tl = c.timeline;
-  Control<R>& now = c.control();
+  Control<R>& now = c.control;
   const double t1 = t + tl.dt;
   // The motion is rounded once, from double.
   auto motion = [&](const Keyframes& k, const glm::dvec3& at, R w) { return Vec4<R>(Vec3<R>(at - interpolate(k, t)), w); };
@@ -104,8 +104,8 @@ template <class R> void set_substep_time(Constants<R>& c, double t) {
       set_mesh_origin(now.meshes[k], Vec3<R>(at));
       now.meshes[k].motion = motion(*tl.meshes[k], at, now.meshes[k].motion.w);
     }
-  if (tl.pins) c.pin_offset = Vec3<R>(interpolate(*tl.pins, t1));
-  if (tl.gust_period > 0) c.gust_phase = R(gust_phase(t, tl.gust_period));
+  if (tl.pins) now.pin_offset = Vec3<R>(interpolate(*tl.pins, t1));
+  if (tl.gust_period > 0) now.gust_phase = R(gust_phase(t, tl.gust_period));
 }
 
 int stretch_passes_for(const Scene& scene, const ClothModel& model) {
@@ -188,9 +188,9 @@ Constants<R> make_constants(const Scene& scene, const ClothModel& model, std::sh
   c.count = uint32_t(model.count());
   c.table_size = hash_table_size(uint32_t(model.count()));
   for (auto& s : scene.spheres)
-    c.spheres.push_back({Vec4<R>(Vec3<R>(s.origin), R(s.radius)), Vec4<R>(R(1.0 - s.friction), R(s.friction), 0, 0), Vec4<R>(0)});
+    c.control.spheres.push_back({Vec4<R>(Vec3<R>(s.origin), R(s.radius)), Vec4<R>(R(1.0 - s.friction), R(s.friction), 0, 0), Vec4<R>(0)});
   for (auto& p : scene.planes)
-    c.planes.push_back({Vec4<R>(Vec3<R>(p.point), R(1)), Vec4<R>(Vec3<R>(p.normal), R(1.0 - p.friction)),
+    c.control.planes.push_back({Vec4<R>(Vec3<R>(p.point), R(1)), Vec4<R>(Vec3<R>(p.normal), R(1.0 - p.friction)),
                         Vec4<R>(Vec3<R>(0), R(p.friction))});
   make_meshes(scene, c);
   make_wind(scene, c);
@@ -199,13 +199,13 @@ Constants<R> make_constants(const Scene& scene, const ClothModel& model, std::sh
   glm::dvec3 centre(0.0);
   for (auto& p : model.initial) centre += p;
   centre /= double(std::max(1, model.count()));
-  for (size_t k = 0; k < c.planes.size(); ++k) {
+  for (size_t k = 0; k < c.control.planes.size(); ++k) {
     const glm::dvec3 at = c.timeline.planes[k] ? interpolate(*c.timeline.planes[k], 0.0) : scene.planes[k].point;
-    c.planes[k].point.w = glm::dot(centre - at, scene.planes[k].normal) < 0 ? R(-1) : R(1);  // its front
+    c.control.planes[k].point.w = glm::dot(centre - at, scene.planes[k].normal) < 0 ? R(-1) : R(1);  // its front
   }
-  c.sphere_count = uint32_t(c.spheres.size());
-  c.plane_count = uint32_t(c.planes.size());
-  c.mesh_count = uint32_t(c.meshes.size());
+  c.sphere_count = uint32_t(c.control.spheres.size());
+  c.plane_count = uint32_t(c.control.planes.size());
+  c.mesh_count = uint32_t(c.control.meshes.size());
   c.pins_moving = c.moving_pins();
   return c;
 }

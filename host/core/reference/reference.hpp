@@ -74,28 +74,31 @@ template <class R> struct MaterialC {
 // distance per substep (Constants::max_step).
 inline constexpr double kMaxStepFraction = 0.25;
 
-// The substep's control: the colliders where they are at its end, with their motion over it
-// (the pose; their shape and friction are fixed over a run). With the parameter block's two
-// moving fields, pin_offset (where moving pins are at the substep's end) and gust_phase (at
-// its start), it is all that set_substep_time writes: the rest of Constants, the model, is
-// fixed between edits. The GPU uploads these arrays of Constants<float> as they are.
-template <class R> struct Control {
+// The substep's control (issue 42, item 4): everything set_substep_time writes, the rest of
+// Constants (the model) being fixed between edits. The colliders where they are at the
+// substep's end, with their motion over it (the pose; their shape and friction are fixed over a
+// run), and the block's two fields (layout::SubstepControlT): pin_offset (where moving pins are
+// at the substep's end) and gust_phase (at its start). The GPU uploads Control<float>'s arrays
+// and its block as they are, every substep when something moves.
+template <class R> struct Control : layout::SubstepControlT<R> {
   std::vector<SphereColliderT<R>> spheres;
   std::vector<PlaneColliderT<R>> planes;
   std::vector<MeshColliderT<R>> meshes;
+  const layout::SubstepControlT<R>& block() const { return *this; }  // as uploaded
 };
 
 // Scene parameters converted once to R. The scalars the shaders read are the parameter block
 // of compute/layout.glsl itself (StepParamsT<R>: gravity, dt2, stretch_limit, contact_distance,
 // inv_cell, steps, tether_limit, max_step, inv_dt2, the wind's, bounded_contact, multigrid,
-// ...), and the colliders its structs (Control): the GPU uploads Constants<float>'s bytes.
+// ...); `control` the per-substep part (Control): the GPU uploads Constants<float>'s bytes.
 // bounded_contact: xpbd with self-collision, the bounded contact (docs/model.md, "Self-contact
 // that holds"): predict clamps each substep's displacement to max_step (0: no clamp), and
 // resolve_self_contacts keeps two masses min(contact_distance, their rest distance) apart, the
 // rest distance from `rest` (the model's rest positions, rounded to R once).
 // multigrid: the multigrid solver, whose solve replaces xpbd's sweep (docs/model.md) and whose
 // hierarchy (hierarchy.hpp) is built once here.
-template <class R> struct Constants : layout::StepParamsT<R>, Control<R> {
+template <class R> struct Constants : layout::StepParamsT<R> {
+  Control<R> control;  // what set_substep_time writes
   std::vector<Vec3<R>> rest;
   std::vector<MaterialC<R>> materials;  // by cloth, Scene::cloths() order
   std::vector<R> mass;  // kg, per particle (particle_masses: follows a live density edit)
@@ -116,9 +119,9 @@ template <class R> struct Constants : layout::StepParamsT<R>, Control<R> {
   std::vector<Vec4<R>> anchors;
   Timeline timeline;
   const layout::StepParamsT<R>& params() const { return *this; }  // the block, as uploaded
-  Control<R>& control() { return *this; }
-  const Control<R>& control() const { return *this; }
-  bool has_colliders() const { return !this->spheres.empty() || !this->planes.empty() || !this->meshes.empty(); }
+  bool has_colliders() const {
+    return !control.spheres.empty() || !control.planes.empty() || !control.meshes.empty();
+  }
   bool moving_pins() const { return !anchors.empty(); }
   bool enabled(const Spring& s) const { return materials[s.material].enabled[int(s.type)]; }
   // Colour c of `m` runs at all: its type is enabled in some cloth (a colour is of one type).
@@ -136,8 +139,7 @@ template <class R>
 Constants<R> make_constants(const Scene& scene, const ClothModel& model,
                             std::shared_ptr<const Hierarchy> reuse = nullptr);
 
-// The control of the substep from t to t + dt (Control and the block's pin_offset and
-// gust_phase; nothing else of c): the colliders where they are
+// The control of the substep from t to t + dt (c.control, nothing else of c): the colliders where they are
 // at t + dt (when the collision passes run) with their motion over the substep, the pins'
 // offset at t + dt (advance moves them there), the gusts' phase at t (when the forces are
 // computed). A no-op for a scene in which nothing moves (!c.timeline.moves()).

@@ -52,7 +52,7 @@ template <class R> void resolve_self_contacts(const Constants<R>& c, State<R>& s
 // The formulas are compute/shared/collisions.glsl's.
 template <class R> void collide_particle(const Constants<R>& c, Vec3<R>& x, Vec3<R>& d, bool friction) {
   const bool coulomb = friction && c.xpbd;
-  for (const SphereColliderT<R>& sp : c.spheres) {
+  for (const SphereColliderT<R>& sp : c.control.spheres) {
     const Vec3<R> origin(sp.origin_radius), motion(sp.motion);
     const R radius = sp.origin_radius.w, keep = sp.keep.x, mu = sp.keep.y;
     const Vec3<R> e = x - origin;
@@ -69,7 +69,7 @@ template <class R> void collide_particle(const Constants<R>& c, Vec3<R>& x, Vec3
     respond_to_sphere(coulomb, origin, friction ? keep : R(1), mu, motion, t_minus_x, x, d);
     keep_out_of_sphere(origin, radius, x, d);
   }
-  for (const PlaneColliderT<R>& pl : c.planes) {
+  for (const PlaneColliderT<R>& pl : c.control.planes) {
     // The classic test: a mass that crossed the plane this substep (dist * dist_prev <= 0; for
     // a moving plane in its frame, x_prev - p_prev = (x - p) - (d - m), so a sweep is seen at
     // any speed) goes back to the side it came from. And a mass found behind the plane's front
@@ -85,13 +85,13 @@ template <class R> void collide_particle(const Constants<R>& c, Vec3<R>& x, Vec3
     respond_to_plane(coulomb, normal, front, friction ? keep : R(1), mu, motion, dist, side, x, d);
     if (side == front) keep_in_front_of_plane(point, normal, front, x, d);
   }
-  for (const MeshColliderT<R>& m : c.meshes) collide_with_mesh(c, m, friction, x, d);
+  for (const MeshColliderT<R>& m : c.control.meshes) collide_with_mesh(c, m, friction, x, d);
 }
 
 template <class R> void keep_out_of_colliders(const Constants<R>& c, Vec3<R>& x, Vec3<R>& d) {
-  for (const SphereColliderT<R>& sp : c.spheres) keep_out_of_sphere(Vec3<R>(sp.origin_radius), sp.origin_radius.w, x, d);
-  for (const PlaneColliderT<R>& pl : c.planes) keep_in_front_of_plane(Vec3<R>(pl.point), Vec3<R>(pl.normal), pl.point.w, x, d);
-  for (const MeshColliderT<R>& m : c.meshes) keep_out_of_mesh(c, m, x, d);
+  for (const SphereColliderT<R>& sp : c.control.spheres) keep_out_of_sphere(Vec3<R>(sp.origin_radius), sp.origin_radius.w, x, d);
+  for (const PlaneColliderT<R>& pl : c.control.planes) keep_in_front_of_plane(Vec3<R>(pl.point), Vec3<R>(pl.normal), pl.point.w, x, d);
+  for (const MeshColliderT<R>& m : c.control.meshes) keep_out_of_mesh(c, m, x, d);
 }
 
 template <class R> void collide_objects(const Constants<R>& c, State<R>& s) {

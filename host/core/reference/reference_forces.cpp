@@ -10,9 +10,9 @@ namespace clothsim {
 // The share of one corner in the aerodynamic force on triangle (a, b, c), from its corners'
 // positions and displacements (docs/model.md, "Wind"; the formulas are compute/shared/wind.glsl's).
 template <class R>
-Vec3<R> triangle_wind_share(const layout::StepParamsT<R>& w, const Vec3<R>& pa, const Vec3<R>& pb, const Vec3<R>& pc,
+Vec3<R> triangle_wind_share(const layout::StepParamsT<R>& w, R gust_phase, const Vec3<R>& pa, const Vec3<R>& pb, const Vec3<R>& pc,
                             const Vec3<R>& da, const Vec3<R>& db, const Vec3<R>& dc) {
-  const Vec3<R> air = shared::air_velocity(w.gust_enabled != 0u, w.wind_velocity, w.gust_velocity, w.gust_phase,
+  const Vec3<R> air = shared::air_velocity(w.gust_enabled != 0u, w.wind_velocity, w.gust_velocity, gust_phase,
                                            w.wind_direction, w.gust_inv_length3, pa, pb, pc);
   return shared::triangle_wind_share(pa, pb, pc, (da + db) + dc, air, w.wind_inv_3dt, w.wind_drag, w.wind_lift);
 }
@@ -33,7 +33,7 @@ template <class R> void compute_wind_forces(const ClothModel& m, const Constants
   for (uint32_t self = 0; self < uint32_t(m.count()); ++self) {
     Vec3<R> f(0);
     for_each_triangle_around(m, self, [&](const int (&t)[3]) {
-      f += triangle_wind_share(c.params(), Vec3<R>(s.pos[t[0]]), Vec3<R>(s.pos[t[1]]), Vec3<R>(s.pos[t[2]]),
+      f += triangle_wind_share(c.params(), c.control.gust_phase, Vec3<R>(s.pos[t[0]]), Vec3<R>(s.pos[t[1]]), Vec3<R>(s.pos[t[2]]),
                                Vec3<R>(s.disp[t[0]]), Vec3<R>(s.disp[t[1]]), Vec3<R>(s.disp[t[2]]));
     });
     s.wind[self] = Vec4<R>(f, R(0));
@@ -64,7 +64,7 @@ template <class R> void accumulate_forces(const ClothModel& m, const Constants<R
 // Where pinned mass k is at the end of this substep, if it follows pinned_motion.
 template <class R> bool moving_pin_position(const Constants<R>& c, size_t k, Vec3<R>& x) {
   if (!c.moving_pins() || c.anchors[k].w == R(0)) return false;
-  x = shared::pin_target(Vec3<R>(c.anchors[k]), c.pin_offset);
+  x = shared::pin_target(Vec3<R>(c.anchors[k]), c.control.pin_offset);
   return true;
 }
 

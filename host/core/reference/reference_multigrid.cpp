@@ -63,11 +63,11 @@ Vec3<R> coarse_residual(const Hierarchy& h, const Constants<R>& c, const State<R
 // touches_colliders in compute/multigrid.glsl.
 template <class R> bool touches_colliders(const Constants<R>& c, const Vec3<R>& x) {
   const R reach = R(kContactReach);
-  for (const SphereColliderT<R>& sp : c.spheres)
+  for (const SphereColliderT<R>& sp : c.control.spheres)
     if (shared::near_sphere(x, Vec3<R>(sp.origin_radius), sp.origin_radius.w, reach)) return true;
-  for (const PlaneColliderT<R>& pl : c.planes)
+  for (const PlaneColliderT<R>& pl : c.control.planes)
     if (shared::near_plane(x, Vec3<R>(pl.point), Vec3<R>(pl.normal), pl.point.w, reach)) return true;  // w: front
-  for (const MeshColliderT<R>& m : c.meshes) {
+  for (const MeshColliderT<R>& m : c.control.meshes) {
     R phi;
     Vec3<R> grad;
     if (sample_mesh_at(m, c.sdf->data(), x, phi, grad) && phi < m.material.y + reach) return true;  // y: thickness
