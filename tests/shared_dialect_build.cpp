@@ -81,6 +81,8 @@ template <class R> void exercise(const char* type) {
   layout::StepParamsT<R> params{};
   params.dt2 = R(1);
   t = verlet_move(up, R(1), up, R(1), params) + predicted_move(up, R(1), up, up, R(1), params);
+  params.max_move = R(0.5);
+  expect(speed_clamped(up, params) == up * R(0.5), "speed_clamped to max_move", type);
   expect(limit_step(e, R(1)) == e * R(0.2), "limit_step", type);
   tether_to(e, R(1), x, d);
   expect(pin_target(e, up) == V(R(3), R(5), R(0)), "pin_target", type);
