@@ -190,3 +190,26 @@ TEST_CASE("with simulation.max_speed 2 a dropped cloth never falls faster than 2
     }
   }
 }
+
+// The limit_speed pass at the end of every substep: no free mass's move over a substep is
+// longer than max_speed * dt, whatever the constraints and the contacts did after the
+// integration (here a sphere the cloth falls onto, and pins that hold it at two corners).
+TEST_CASE("with simulation.max_speed no free mass moves faster than max_speed over any substep", "[reference]") {
+  for (const char* solver : {"classic", "xpbd", "multigrid"}) {
+    Scene s = test::make_scene(17, 17, 0, {"cloth.damping=0", "cloth.pinned=[[0,0],[16,0]]",
+                                           fmt::format("simulation.solver=\"{}\"", solver), "simulation.max_speed=1.5"},
+                               R"(, "sphere": {"origin": [0.5, 0.2, 0.5], "radius": 0.5, "friction": 0.3})");
+    ClothModel m = build_cloth(s);
+    CpuBackend<double> cpu(s, m);
+    const double max_move = 1.5 * s.dt();
+    double longest = 0;
+    for (int f = 0; f < 60; ++f) {
+      cpu.step_frame();
+      for (size_t i = 0; i < m.count(); ++i)
+        if (cpu.state().pos[i].w != 0) longest = std::max(longest, glm::length(glm::dvec3(cpu.state().disp[i])));
+    }
+    INFO(solver << ": longest move " << longest << " m, max_speed * dt " << max_move << " m");
+    CHECK(longest <= max_move * (1 + 1e-9));
+    CHECK(longest > 0.5 * max_move);  // it does fall
+  }
+}

@@ -24,7 +24,7 @@ enum class PassId : uint8_t {
   compute_wind_forces, advance, predict, collide_listed, count_cells, scan_cells, fill_cells, sort_cells,
   resolve_self_contacts, solve_length_constraints, solve_distance_constraints, compute_residuals,
   restrict_residuals, cycle_small_levels, prolong_corrections, smooth_corrections, prolong_to_cloth, relax_vertices,
-  collide_listed_frictionless, stretch_fixed_passes, arm_stretch_pass, stretch_watched_passes, compute_normals,
+  collide_listed_frictionless, stretch_fixed_passes, arm_stretch_pass, stretch_watched_passes, limit_speed, compute_normals,
   accumulate_forces, integrate, collide_objects, count_
 };
 inline constexpr size_t kPassCount = size_t(PassId::count_);
@@ -57,13 +57,14 @@ enum Feature : uint16_t {
   kWind = 1, kClassic = 2, kXpbd = 4, kMultigrid = 8, kSelf = 16, kListed = 32, kStretch = 64, kSettling = 128,
   kCheckOnly = 256,  // run only by the pass checks (a row no substep runs)
   kPerFrame = 512,   // once per frame, after the substeps
+  kSpeedLimit = 1024,  // simulation.max_speed above 0
 };
 
 // A scene's features (`listed`: collide_objects runs over the contact list).
 inline uint16_t features_of(const Constants<float>& c, bool listed) {
   return uint16_t((c.wind_enabled ? kWind : 0) | (c.xpbd ? kXpbd : kClassic) | (c.multigrid ? kMultigrid : 0) |
                   (c.self_collision ? kSelf : 0) | (listed ? kListed : 0) | (c.stretch_passes_max > 0 ? kStretch : 0) |
-                  (c.stretch_passes_max > c.stretch_passes ? kSettling : 0));
+                  (c.stretch_passes_max > c.stretch_passes ? kSettling : 0) | (c.max_move > 0.f ? kSpeedLimit : 0));
 }
 
 // How many dispatches of the row one substep issues (dispatches_per_substep, pass_check).
@@ -198,6 +199,10 @@ inline constexpr PassRow kPasses[] = {
     {P::stretch_watched_passes, "solve_length_constraints", "solve_length_constraints", B::settling,
      P::stretch_watched_passes, D::stretch_control, kComputeReads, 0, kSettling, 0, C::watched_sweeps, nullptr,
      "enforce_stretch_limit", false, "the next colour reads these positions; the next arm reads the flag"},
+    {P::limit_speed, "limit_speed", "limit_speed", B::always, P::limit_speed, D::particles, kComputeReads, 0,
+     kSpeedLimit, 0, C::once, nullptr, nullptr, true,
+     "the next substep's first pass (or compute_normals) reads the positions and displacements", &limit_speed<float>,
+     K::positions},
     {P::compute_normals, "compute_normals", "compute_normals", B::always, P::compute_normals, D::particles,
      kSsbo | kUpdate, 0, kPerFrame, 0, C::none, nullptr, nullptr, true,
      "the vertex shader pulls the normals (and a read-back may follow)", kComputeNormals, K::normals},

@@ -148,12 +148,25 @@ template <class R> void compute_normals(const ClothModel& m, State<R>& s) {
   }
 }
 
+// compute/limit_speed.comp
+template <class R> void limit_speed(const ClothModel&, const Constants<R>& c, State<R>& s) {
+  for (size_t i = 0; i < s.pos.size(); ++i) {
+    const Vec4<R> p = s.pos[i], d = s.disp[i];
+    if (p.w == R(0) || !(length3(Vec3<R>(d)) > c.max_move)) continue;
+    const Vec3<R> limited = shared::limit_step(Vec3<R>(d), c.max_move);
+    const Vec3<R> start = Vec3<R>(p) - Vec3<R>(d);
+    s.pos[i] = Vec4<R>(start + limited, p.w);
+    s.disp[i] = Vec4<R>(limited, d.w);
+  }
+}
+
 #define CLOTHSIM_INSTANTIATE(R) \
   template void compute_wind_forces<R>(const ClothModel&, const Constants<R>&, State<R>&); \
   template void accumulate_forces<R>(const ClothModel&, const Constants<R>&, State<R>&); \
   template void integrate<R>(const ClothModel&, const Constants<R>&, State<R>&); \
   template void predict<R>(const ClothModel&, const Constants<R>&, State<R>&); \
-  template void compute_normals<R>(const ClothModel&, State<R>&);
+  template void compute_normals<R>(const ClothModel&, State<R>&); \
+  template void limit_speed<R>(const ClothModel&, const Constants<R>&, State<R>&);
 CLOTHSIM_INSTANTIATE(float)
 CLOTHSIM_INSTANTIATE(double)
 
