@@ -34,7 +34,7 @@ void main() {
   Material mat = material_and_mass_of(i, mass);
   precise vec3 f = spring_force(i, x, mat, mass);
   if (WIND_ENABLED) f = f + wind_force[i].xyz;  // compute_wind_forces ran before
-  precise vec3 d = verlet_move(displacement_of(i).xyz, mat.keep.x, f, p.w, params.dt2);
+  precise vec3 d = verlet_move(displacement_of(i).xyz, mat.keep.x, f, p.w, params);
   precise vec3 next = x + d;
   // (The clearance it returns is for the sweeps after predict: the classic step has none.)
   if (u_collide_objects) list_if_collider_may_move(i, next, d);  // compute/contact_list.glsl

@@ -25,7 +25,7 @@ void main() {
     return;
   }
   // d' = (1 - damping) d + a dt^2, x' = x + d' (docs/design.md §1 step 2 with d = x - x_prev).
-  precise vec3 d = verlet_move(disp[i].xyz, material_of(int(i)).keep.x, force[i].xyz, p.w, params.dt2);
+  precise vec3 d = verlet_move(disp[i].xyz, material_of(int(i)).keep.x, force[i].xyz, p.w, params);
   precise vec3 next = p.xyz + d;
   disp[i] = vec4(d, 0.0);
   pos[i] = vec4(next, p.w);

@@ -56,7 +56,7 @@ void main() {
       warm = entry.w != 0u ? minus : plus;
     }
   }
-  precise vec3 d = predicted_move(displacement_of(i).xyz, material_of(i).keep.x, acc, params.dt2, warm, p.w);
+  precise vec3 d = predicted_move(displacement_of(i).xyz, material_of(i).keep.x, acc, warm, p.w, params);
   if (params.max_step > 0.0) d = limit_step(d, params.max_step);  // the bounded contact's speed limit
   precise vec3 next = p.xyz + d;
   // The multigrid solve's offset: the external forces' share, which it applies with the

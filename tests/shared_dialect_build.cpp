@@ -84,7 +84,11 @@ template <class R> void exercise(const char* type) {
   expect(spring_terms(zero, e, R(5), R(1), n, len, s, dd) && len == R(5), "spring_terms", type);
   expect(solve3(h, V(R(3), R(2), R(2)), t) && t == V(R(1)), "solve3 of diag(3, 2, 2)", type);
 
-  t = verlet_move(up, R(1), up, R(1), R(1)) + predicted_move(up, R(1), up, R(1), up, R(1));
+  layout::StepParamsT<R> params{};
+  params.dt2 = R(1);
+  t = verlet_move(up, R(1), up, R(1), params) + predicted_move(up, R(1), up, up, R(1), params);
+  params.max_move = R(0.5);
+  expect(speed_clamped(up, params) == up * R(0.5), "speed_clamped to max_move", type);
   expect(limit_step(e, R(1)) == e * R(0.2), "limit_step", type);
   tether_to(e, R(1), x, d);
   expect(pin_target(e, up) == V(R(3), R(5), R(0)), "pin_target", type);

@@ -26,3 +26,22 @@ TEST_CASE("each GPU pass matches the reference from an identical state on a 131x
   check_passes_on_grid(131, 129);
   CHECK_NO_GL_ERRORS();
 }
+
+TEST_CASE("the limit_speed pass (simulation.max_speed) matches its CPU twin, checked from its row", "[gpu]") {
+  REQUIRE_GL_CONTEXT();
+  for (const char* solver : {"classic", "xpbd"}) {
+    const Scene scene = pass_fixtures::pressed_cloth(33, 17, {fmt::format("simulation.solver=\"{}\"", solver),
+                                                              "simulation.max_speed=0.05"});
+    const ClothModel model = build_cloth(scene);
+    GpuSimulator gpu(scene, model, pass_fixtures::compute_dir());
+    const std::vector<PassError> errors = check_passes(scene, model, gpu, pass_fixtures::kWarmupFrames);
+    const auto it = std::find_if(errors.begin(), errors.end(), [](const PassError& e) { return e.pass == "limit_speed"; });
+    REQUIRE(it != errors.end());
+    INFO(solver << ": max |GPU - CPU| = " << it->max_error << " m");
+    if (gl::gl_renderer_is_llvmpipe())
+      CHECK(it->bitwise);
+    else
+      CHECK(it->max_error <= pass_fixtures::kPassTolerance);
+  }
+  CHECK_NO_GL_ERRORS();
+}

@@ -156,3 +156,60 @@ TEST_CASE("normals of a flat horizontal cloth point up", "[reference]") {
   compute_normals(m, st);
   for (auto& n : st.normal) CHECK(glm::dvec3(n) == glm::dvec3(0, 1, 0));
 }
+
+// simulation.max_speed (the speed clamp): the integration moves no free mass further than
+// max_speed * dt per substep, so a dropped cloth's centre of mass never outruns it, where it
+// reaches 9.8 m/s after a second of free fall without the clamp.
+TEST_CASE("with simulation.max_speed 2 a dropped cloth never falls faster than 2 m/s", "[reference]") {
+  for (const char* solver : {"classic", "xpbd"}) {
+    for (const double max_speed : {0.0, 2.0}) {
+      Scene s = test::make_scene(9, 9, 0, {"simulation.self_collision=false", "cloth.damping=0",
+                                           fmt::format("simulation.solver=\"{}\"", solver),
+                                           fmt::format("simulation.max_speed={}", max_speed)});
+      ClothModel m = build_cloth(s);
+      CpuBackend<double> cpu(s, m);
+      auto centre = [&] {  // of mass: the springs' pulls cancel in it
+        glm::dvec3 sum(0);
+        double mass = 0;
+        for (const auto& p : cpu.state().pos) sum += glm::dvec3(p) / p.w, mass += 1.0 / p.w;
+        return sum / mass;
+      };
+      double fastest = 0;
+      glm::dvec3 last = centre();
+      for (int f = 0; f < 90; ++f) {
+        cpu.step_frame();
+        const glm::dvec3 now = centre();
+        fastest = std::max(fastest, glm::length(now - last) * s.simulation.frames_per_sec);
+        last = now;
+      }
+      INFO(solver << ", max_speed " << max_speed << ": fastest " << fastest << " m/s");
+      if (max_speed > 0)
+        CHECK(fastest <= max_speed * (1 + 1e-9));
+      else
+        CHECK(fastest > 9.0);
+    }
+  }
+}
+
+// The limit_speed pass at the end of every substep: no free mass's move over a substep is
+// longer than max_speed * dt, whatever the constraints and the contacts did after the
+// integration (here a sphere the cloth falls onto, and pins that hold it at two corners).
+TEST_CASE("with simulation.max_speed no free mass moves faster than max_speed over any substep", "[reference]") {
+  for (const char* solver : {"classic", "xpbd", "multigrid"}) {
+    Scene s = test::make_scene(17, 17, 0, {"cloth.damping=0", "cloth.pinned=[[0,0],[16,0]]",
+                                           fmt::format("simulation.solver=\"{}\"", solver), "simulation.max_speed=1.5"},
+                               R"(, "sphere": {"origin": [0.5, 0.2, 0.5], "radius": 0.5, "friction": 0.3})");
+    ClothModel m = build_cloth(s);
+    CpuBackend<double> cpu(s, m);
+    const double max_move = 1.5 * s.dt();
+    double longest = 0;
+    for (int f = 0; f < 60; ++f) {
+      cpu.step_frame();
+      for (size_t i = 0; i < m.count(); ++i)
+        if (cpu.state().pos[i].w != 0) longest = std::max(longest, glm::length(glm::dvec3(cpu.state().disp[i])));
+    }
+    INFO(solver << ": longest move " << longest << " m, max_speed * dt " << max_move << " m");
+    CHECK(longest <= max_move * (1 + 1e-9));
+    CHECK(longest > 0.5 * max_move);  // it does fall
+  }
+}

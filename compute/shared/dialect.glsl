@@ -5,7 +5,9 @@
 //    (uint(x), int(x)), 32-bit wrap-around uint arithmetic;
 //  - floating-point formulas: `SHARED_FN` in front (C++: a template on the scalar REAL, so the
 //    reference runs them in float and in double), the types REAL, VEC3, VEC4, INOUT(T) and
-//    OUT(T) for parameters, PRECISE on every rounded temporary (GLSL's `precise`: no fused
+//    OUT(T) for parameters, PARAMS for the step's parameter block (GLSL: the StepParams value
+//    `params`; C++: the reference's Constants, whose base is layout::StepParamsT<REAL>) so that
+//    a formula reads the fields it needs itself, PRECISE on every rounded temporary (GLSL's `precise`: no fused
 //    multiply-add; C++ builds with -ffp-contract=off), literals as REAL(0.5), and only the
 //    built-ins brought in below for C++;
 //  - ternaries instead of switch, no arrays, no swizzles (.xyz), no GLSL vector relations.
@@ -22,6 +24,8 @@
 
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
+
+#include "../layout.glsl"
 
 namespace clothsim::shared {
 using uint = uint32_t;
@@ -49,6 +53,7 @@ template <class REAL> inline bool nonzero3(const glm::vec<3, REAL>& v) { return 
 #define VEC4 glm::vec<4, REAL>
 #define INOUT(T) T&
 #define OUT(T) T&
+#define PARAMS const layout::StepParamsT<REAL>&
 #define PRECISE
 #else
 #define SHARED
@@ -60,6 +65,7 @@ template <class REAL> inline bool nonzero3(const glm::vec<3, REAL>& v) { return 
 #define VEC4 vec4
 #define INOUT(T) inout T
 #define OUT(T) out T
+#define PARAMS StepParams  // the shader includes layout.glsl first
 #define PRECISE precise
 #define F32 float
 bool nonzero3(vec3 v) { return any(notEqual(v, vec3(0.0))); }

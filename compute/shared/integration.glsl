@@ -10,21 +10,6 @@
 
 SHARED_BEGIN
 
-// d' = (1 - damping) d + a dt^2 with a = f w (keep = 1 - damping, w the inverse mass), the
-// substep's displacement (d = x - x_prev kept as its own vector); then x' = x + d'.
-SHARED_FN VEC3 verlet_move(VEC3 d, REAL keep, VEC3 f, REAL w, REAL dt2) {
-  PRECISE VEC3 a = f * w;
-  PRECISE VEC3 next_d = d * keep + a * dt2;
-  return next_d;
-}
-
-// xpbd's prediction: the kept motion, the external acceleration acc, and the springs'
-// multipliers of the last substep as forces (warm, times the inverse mass w).
-SHARED_FN VEC3 predicted_move(VEC3 d, REAL keep, VEC3 acc, REAL dt2, VEC3 warm, REAL w) {
-  PRECISE VEC3 next_d = d * keep + acc * dt2 + warm * w;
-  return next_d;
-}
-
 // The bounded contact's speed limit (docs/model.md, "Self-contact that holds"): d shortened to
 // max_step where it is longer.
 SHARED_FN VEC3 limit_step(VEC3 d, REAL max_step) {
@@ -32,6 +17,29 @@ SHARED_FN VEC3 limit_step(VEC3 d, REAL max_step) {
   PRECISE REAL scale = max_step * (REAL(1) / len);
   PRECISE VEC3 limited = d * scale;
   return len > max_step ? limited : d;
+}
+
+// The speed clamp (simulation.max_speed): a substep's move d no longer than max_move =
+// max_speed * dt (0: no limit), as limit_step shortens it.
+SHARED_FN VEC3 speed_clamped(VEC3 d, PARAMS params) {
+  return params.max_move > REAL(0) ? limit_step(d, params.max_move) : d;
+}
+
+// d' = (1 - damping) d + a dt^2 with a = f w (keep = 1 - damping, w the inverse mass), the
+// substep's displacement (d = x - x_prev kept as its own vector); then x' = x + d'.
+// (advance.comp, integrate.comp and the reference's integrate; params: the step's block.)
+SHARED_FN VEC3 verlet_move(VEC3 d, REAL keep, VEC3 f, REAL w, PARAMS params) {
+  PRECISE VEC3 a = f * w;
+  PRECISE VEC3 next_d = d * keep + a * params.dt2;
+  return speed_clamped(next_d, params);
+}
+
+// xpbd's prediction: the kept motion, the external acceleration acc, and the springs'
+// multipliers of the last substep as forces (warm, times the inverse mass w).
+// (predict.comp and the reference's predict.)
+SHARED_FN VEC3 predicted_move(VEC3 d, REAL keep, VEC3 acc, VEC3 warm, REAL w, PARAMS params) {
+  PRECISE VEC3 next_d = d * keep + acc * params.dt2 + warm * w;
+  return speed_clamped(next_d, params);
 }
 
 // A tether (e = x - the pin's position) longer than `limit` pulls x, and d with it, back to it.

@@ -123,10 +123,7 @@ SubstepShape GpuPasses::shape() const {
   const Constants<float>& c = constants_;
   SubstepShape s;
   const bool listed = uses_contact_list();
-  s.features = uint16_t((c.wind_enabled ? kWind : 0) | (c.xpbd ? kXpbd : kClassic) | (c.multigrid ? kMultigrid : 0) |
-                        (c.self_collision ? kSelf : 0) | (listed ? kListed : 0) |
-                        (c.stretch_passes_max > 0 ? kStretch : 0) |
-                        (c.stretch_passes_max > c.stretch_passes ? kSettling : 0));
+  s.features = features_of(c, listed);
   for (int colour = 0; colour < state_.model_.colours(); ++colour) s.enabled_colours += enabled_colour(colour);
   s.iterations = c.iterations;
   s.scan_dispatches = c.self_collision ? scan_.dispatches(state_.table_size_) : 0;

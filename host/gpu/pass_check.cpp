@@ -1,6 +1,7 @@
 #include "pass_check.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <functional>
@@ -199,6 +200,7 @@ struct PassCheck {
   State<float>& s;
   GpuSimulator& gpu;
   std::vector<PassError>& out;
+  std::array<bool, kPassCount> checked{};  // the rows checked alone so far
   using Stream = std::function<std::vector<Vec4<float>>(const State<float>&)>;
   void check(const std::string& name, const std::function<void()>& on_cpu, const std::function<void()>& on_gpu,
              const Stream& stream) {
@@ -210,14 +212,17 @@ struct PassCheck {
     const Deviation d = deviation(stream(g), stream(s));
     out.push_back({name, d.max, d.bitwise});
   }
-  // A pass of the table alone (its row's name), its CPU twin `on_cpu`.
-  void check(PassId pass, const std::function<void()>& on_cpu, const Stream& stream, PassArgs args = {}) {
-    check(row(pass).name, on_cpu, [&] { gpu.run(pass, args); }, stream);
+  // A pass of the table alone (its row's name), its CPU twin and comparison the row's.
+  void check(PassId pass) {
+    const PassRow& r = row(pass);
+    checked[size_t(pass)] = true;
+    check(r.name, [&] { r.twin(model, c, s); }, [&] { gpu.run(pass); }, stream(r.compare));
   }
   // The same fused with collide_objects after it, as the step runs it.
-  void check_fused(PassId pass, const std::function<void()>& on_cpu, const Stream& stream) {
-    check(fmt::format("{} (+ collide_objects)", row(pass).name), [&] { on_cpu(), collide_objects(c, s); },
-          [&] { gpu.run(pass, {.collide_objects = true}); }, stream);
+  void check_fused(PassId pass) {
+    const PassRow& r = row(pass);
+    check(fmt::format("{} (+ collide_objects)", r.name), [&] { r.twin(model, c, s), collide_objects(c, s); },
+          [&] { gpu.run(pass, {.collide_objects = true}); }, stream(r.compare));
   }
   // A force error matters by the displacement it causes in one substep: F * w * dt^2.
   Stream displacement_of(std::vector<Vec4<float>> State<float>::*forces) const {
@@ -227,6 +232,27 @@ struct PassCheck {
       return v;
     };
   }
+  Stream stream(Compare what) const {
+    switch (what) {
+      case Compare::wind: return displacement_of(&State<float>::wind);
+      case Compare::forces: return displacement_of(&State<float>::force);
+      case Compare::multipliers:
+        return [](const State<float>& st) {
+          auto v = positions_and_displacements(st);
+          v.insert(v.end(), st.lambda.begin(), st.lambda.end());
+          return v;
+        };
+      case Compare::normals: return [](const State<float>& st) { return st.normal; };
+      case Compare::positions:
+      case Compare::none: break;
+    }
+    return positions_and_displacements;
+  }
+  // Every row with a twin not checked above that the scene runs (or only the checks do).
+  void check_the_other_rows(uint16_t features) {
+    for (const PassRow& r : kPasses)
+      if (r.twin && !checked[size_t(r.id)] && runs(r, features | kCheckOnly | kPerFrame)) check(r.id);
+  }
 };
 
 const PassCheck::Stream kBoth = positions_and_displacements;
@@ -234,17 +260,20 @@ const PassCheck::Stream kBoth = positions_and_displacements;
 // The unfused passes, then (from the same state) the fused ones GpuSimulator::step runs:
 // collide_objects rides along with advance, or with collide_self when that is on.
 void check_classic_passes(PassCheck& k) {
-  const ClothModel& model = k.model;
   const Constants<float>& c = k.c;
   State<float>& s = k.s;
-  if (c.wind_enabled) k.check(PassId::compute_wind_forces, [&] { compute_wind_forces(model, c, s); }, k.displacement_of(&State<float>::wind));
+  if (c.wind_enabled) k.check(PassId::compute_wind_forces);
   const State<float> start = s;
-  k.check(PassId::accumulate_forces, [&] { accumulate_forces(model, c, s); }, k.displacement_of(&State<float>::force));
-  k.check(PassId::integrate, [&] { integrate(model, c, s); }, kBoth);
+  k.check(PassId::accumulate_forces);
+  k.check(PassId::integrate);
   s = start;
   const bool colliders = c.has_colliders();
-  if (colliders && !c.self_collision) k.check_fused(PassId::advance, [&] { advance(model, c, s); }, kBoth);
-  else k.check(PassId::advance, [&] { advance(model, c, s); }, kBoth);
+  if (colliders && !c.self_collision) {
+    k.check_fused(PassId::advance);
+    k.checked[size_t(PassId::advance)] = true;  // the step never runs it alone here
+  } else {
+    k.check(PassId::advance);
+  }
   if (c.self_collision) {
     const State<float> before = s;
     check_self_collision_stages(c, s, k.gpu, k.out);
@@ -256,8 +285,8 @@ void check_classic_passes(PassCheck& k) {
               [&] { k.gpu.passes().collide_self(true); }, kBoth);
     }
   }
-  k.check(PassId::collide_objects, [&] { collide_objects(c, s); }, kBoth);
-  k.check(PassId::solve_length_constraints, [&] { solve_length_constraints(model, c, s); }, kBoth);
+  k.check(PassId::collide_objects);
+  k.check(PassId::solve_length_constraints);
 }
 
 // The xpbd solver's passes, whichever solver the scene uses (validate checks every pass).
@@ -266,18 +295,13 @@ void check_xpbd_passes(PassCheck& k) {
   const Constants<float>& c = k.c;
   State<float>& s = k.s;
   const State<float> classic_done = s;
-  k.check(PassId::predict, [&] { predict(model, c, s); }, kBoth);
+  k.check(PassId::predict);
   if (c.has_colliders()) {
     s = classic_done;
-    k.check_fused(PassId::predict, [&] { predict(model, c, s); }, kBoth);
+    k.check_fused(PassId::predict);
   }
   // The sweep also writes the springs' carried multipliers (direction, lambda).
-  k.check(PassId::solve_distance_constraints, [&] { solve_distance_constraints(model, c, s); },
-          [](const State<float>& st) {
-            auto v = positions_and_displacements(st);
-            v.insert(v.end(), st.lambda.begin(), st.lambda.end());
-            return v;
-          });
+  k.check(PassId::solve_distance_constraints);
   if (c.stretch_passes_max > c.stretch_passes) check_settling_passes(model, c, s, k.gpu, k.out);
   // Predict again, now from the multipliers that sweep carried (a classic scene has none
   // before it): their forces in the gather order.
@@ -300,7 +324,8 @@ std::vector<PassError> check_passes(const Scene& scene, const ClothModel& model,
   check_classic_passes(k);
   check_xpbd_passes(k);
   if (c.multigrid) check_multigrid_passes(model, c, s, gpu, out);
-  k.check(PassId::compute_normals, [&] { compute_normals(model, s); }, [](const State<float>& st) { return st.normal; });
+  k.check(PassId::compute_normals);
+  k.check_the_other_rows(gpu.passes().shape().features);
   return out;
 }
 

@@ -166,6 +166,7 @@ Constants<R> make_constants(const Scene& scene, const ClothModel& model, std::sh
   c.xpbd = sp.solver == Solver::Xpbd || sp.solver == Solver::Multigrid;
   c.multigrid = sp.solver == Solver::Multigrid;
   c.inv_dt2 = R(1.0 / (dt * dt));
+  c.max_move = R(sp.max_speed * dt);  // 0: no speed clamp
   if (c.multigrid) {
     std::vector<double> ks;
     for (const ClothParams* k : scene.cloths()) ks.push_back(k->ks);

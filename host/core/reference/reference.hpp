@@ -281,6 +281,11 @@ template <class R> void relax_vertices(const ClothModel& m, const Constants<R>& 
 template <class R> void cycle_levels(const Constants<R>& c, State<R>& s);
 template <class R> void solve_multigrid(const ClothModel& m, const Constants<R>& c, State<R>& s);
 
+// The speed clamp's last word (simulation.max_speed): after the constraints and the contacts,
+// a free mass whose substep moved it further than max_move goes back along its move to
+// max_move from where it started (a fast collider cannot fling it faster either).
+template <class R> void limit_speed(const ClothModel& m, const Constants<R>& c, State<R>& s);
+
 // One substep: the pass list of docs/design.md §1, or of docs/model.md for xpbd.
 template <class R> void step(const ClothModel& m, const Constants<R>& c, State<R>& s) {
   if (c.wind_enabled) compute_wind_forces(m, c, s);  // advance or predict add them
@@ -293,12 +298,13 @@ template <class R> void step(const ClothModel& m, const Constants<R>& c, State<R
     else
       solve_distance_constraints(m, c, s);
     enforce_stretch_limit(m, c, s);  // stretch_passes: the limit holds after either sweep
-    return;
+  } else {
+    advance(m, c, s);
+    if (c.self_collision) collide_self(c, s);
+    collide_objects(c, s);
+    solve_length_constraints(m, c, s);
   }
-  advance(m, c, s);
-  if (c.self_collision) collide_self(c, s);
-  collide_objects(c, s);
-  solve_length_constraints(m, c, s);
+  if (c.max_move > R(0)) limit_speed(m, c, s);
 }
 
 }  // namespace clothsim

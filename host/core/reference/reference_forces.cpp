@@ -84,7 +84,7 @@ template <class R> void integrate(const ClothModel& m, const Constants<R>& c, St
       continue;
     }
     // x' = x + (1 - damping) (x - x_prev) + a dt^2, with d = x - x_prev kept as its own vector.
-    const Vec3<R> d = shared::verlet_move(Vec3<R>(s.disp[i]), keep, Vec3<R>(s.force[i]), w, c.dt2);
+    const Vec3<R> d = shared::verlet_move(Vec3<R>(s.disp[i]), keep, Vec3<R>(s.force[i]), w, c);
     s.disp[i] = Vec4<R>(d, R(0));
     s.pos[i] = Vec4<R>(Vec3<R>(s.pos[i]) + d, w);
   }
@@ -118,7 +118,7 @@ template <class R> void predict(const ClothModel& m, const Constants<R>& c, Stat
       const Vec3<R> f = Vec3<R>(l) * l.w;
       warm = m.springs[sk].i == uint32_t(i) ? warm - f : warm + f;
     }
-    Vec3<R> d = shared::predicted_move(Vec3<R>(s.disp[i]), c.materials[m.material[i]].keep_velocity, acc, c.dt2, warm, w);
+    Vec3<R> d = shared::predicted_move(Vec3<R>(s.disp[i]), c.materials[m.material[i]].keep_velocity, acc, warm, w, c);
     if (c.max_step > R(0)) d = shared::limit_step(d, c.max_step);  // the bounded contact's speed limit
     Vec3<R> x = Vec3<R>(s.pos[i]) + d;
     // The multigrid solve starts from the inertial position without the external forces' share
@@ -148,12 +148,25 @@ template <class R> void compute_normals(const ClothModel& m, State<R>& s) {
   }
 }
 
+// compute/limit_speed.comp
+template <class R> void limit_speed(const ClothModel&, const Constants<R>& c, State<R>& s) {
+  for (size_t i = 0; i < s.pos.size(); ++i) {
+    const Vec4<R> p = s.pos[i], d = s.disp[i];
+    if (p.w == R(0) || !(length3(Vec3<R>(d)) > c.max_move)) continue;
+    const Vec3<R> limited = shared::limit_step(Vec3<R>(d), c.max_move);
+    const Vec3<R> start = Vec3<R>(p) - Vec3<R>(d);
+    s.pos[i] = Vec4<R>(start + limited, p.w);
+    s.disp[i] = Vec4<R>(limited, d.w);
+  }
+}
+
 #define CLOTHSIM_INSTANTIATE(R) \
   template void compute_wind_forces<R>(const ClothModel&, const Constants<R>&, State<R>&); \
   template void accumulate_forces<R>(const ClothModel&, const Constants<R>&, State<R>&); \
   template void integrate<R>(const ClothModel&, const Constants<R>&, State<R>&); \
   template void predict<R>(const ClothModel&, const Constants<R>&, State<R>&); \
-  template void compute_normals<R>(const ClothModel&, State<R>&);
+  template void compute_normals<R>(const ClothModel&, State<R>&); \
+  template void limit_speed<R>(const ClothModel&, const Constants<R>&, State<R>&);
 CLOTHSIM_INSTANTIATE(float)
 CLOTHSIM_INSTANTIATE(double)
 

@@ -123,6 +123,7 @@ struct SimulationParams {
   int simulation_steps = 30;
   glm::dvec3 gravity{0, -9.8, 0};
   double max_stretch = 0.1;
+  double max_speed = 0;  // m/s: no free mass moves further than max_speed * dt in a substep's integration; 0 = no limit
   int constraint_iterations = 1;
   bool self_collision = true;
   Solver solver = Solver::Classic;

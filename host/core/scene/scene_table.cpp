@@ -244,6 +244,11 @@ const Param<SimulationParams> kSimulation[] = {
     row<&SimulationParams::max_stretch>({.key = "max_stretch", .lo = 0, .expected = "a stretch ratio >= 0",
                                          .meaning = "no spring ends a substep longer than (1 + max_stretch) · rest",
                                          .widget = drag(0.005f, 0.0, 10.0, "%.3f")}),
+    row<&SimulationParams::max_speed>({.key = "max_speed", .lo = 0, .expected = "a speed >= 0", .unit = "m/s",
+                                       .meaning = "speed clamp: a free mass's move in a substep's integration (Verlet's "
+                                                  "or xpbd's prediction) is at most max_speed · dt, against the explosions "
+                                                  "of fast colliders and large time steps; 0: no limit",
+                                       .widget = drag(0.05f, 0.0, 1000.0, "%.2f")}),
     row<&SimulationParams::constraint_iterations>({.key = "constraint_iterations", .lo = 0, .hi = 10000,
                                                    .meaning = "sweeps of the length constraint per substep",
                                                    .widget = drag(0.1f, 0, 100, "%d")}),
