@@ -115,7 +115,7 @@ BenchResult BenchRunner::run_gpu(const Scene& scene) {
   // the first pass or resolve_self_contacts, the V-cycle as cycle_levels, the limit as
   // enforce_stretch_limit; then the frame's (compute_normals) and the divergence guard.
   PassList passes;
-  const uint16_t f = sim.passes().shape().features;
+  const uint16_t f = sim.passes().features();
   for (const PassRow& row : kPasses) {
     if (!row.stage) continue;
     const char* name = stage_name(row);

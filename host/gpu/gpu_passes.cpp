@@ -123,7 +123,7 @@ SubstepShape GpuPasses::shape() const {
   const Constants<float>& c = constants_;
   SubstepShape s;
   const bool listed = uses_contact_list();
-  s.features = features_of(c, listed);
+  s.features = features();
   for (int colour = 0; colour < state_.model_.colours(); ++colour) s.enabled_colours += enabled_colour(colour);
   s.iterations = c.iterations;
   s.scan_dispatches = c.self_collision ? scan_.dispatches(state_.table_size_) : 0;

@@ -55,6 +55,9 @@ class GpuPasses {
   int multigrid_dispatches() const;    // of one solve_multigrid
   GpuCounters counters() const;        // dispatches and barriers issued so far
   SubstepShape shape() const;          // the scene's features and what the table's counts need
+  // The scene's features alone: which rows a substep runs. Cheap, unlike shape(), which also
+  // walks the colours and levels for the counts; the step asks for it per stage.
+  uint16_t features() const { return features_of(constants_, uses_contact_list()); }
   // The multigrid scratch (State::residual, offset, coarse_rhs, coarse_corr), for the pass checks.
   void download_multigrid(State<float>& state);
   void upload_multigrid(const State<float>& state);

@@ -55,7 +55,7 @@ void GpuSimulator::step() {
   state_.bind_all();  // once: nothing in the step binds over these (swap_positions rebinds its two)
   {
     const ScopedFlag in_step(passes_.in_step_);
-    const uint16_t features = passes_.shape().features;
+    const uint16_t features = passes_.features();
     for (const PassRow& r : kPasses)
       if (r.stage && runs(r, features)) run_stage(r.id);
   }
@@ -63,7 +63,7 @@ void GpuSimulator::step() {
 }
 
 void GpuSimulator::run_stage(PassId stage) {
-  if (!runs(row(stage), passes_.shape().features)) return;
+  if (!runs(row(stage), passes_.features())) return;
   // collide_objects reads only a particle's own position and displacement, so it rides along
   // with the last per-particle pass before the constraints: the first pass without
   // self-collision, the response with it.

@@ -325,7 +325,7 @@ std::vector<PassError> check_passes(const Scene& scene, const ClothModel& model,
   check_xpbd_passes(k);
   if (c.multigrid) check_multigrid_passes(model, c, s, gpu, out);
   k.check(PassId::compute_normals);
-  k.check_the_other_rows(gpu.passes().shape().features);
+  k.check_the_other_rows(gpu.passes().features());
   return out;
 }
 
