@@ -14,7 +14,8 @@ layout(local_size_x = WORKGROUP_SIZE) in;
 layout(std430, binding = BINDING_POSITIONS) writeonly buffer Positions { vec4 pos[]; };
 layout(std430, binding = BINDING_DISPLACEMENT) writeonly buffer Displacements { vec4 disp[]; };
 layout(std430, binding = BINDING_WIND_FORCES) readonly buffer WindForces { vec4 wind_force[]; };
-layout(std430, binding = BINDING_MG_OFFSET) writeonly buffer Offsets { vec4 offset[]; };  // multigrid only
+// multigrid only; fabric reads the last substep's offset first (solve_start_offset)
+layout(std430, binding = BINDING_MG_OFFSET) buffer Offsets { vec4 offset[]; };
 
 uniform bool u_collide_objects;
 
@@ -61,10 +62,7 @@ void main() {
   precise vec3 next = p.xyz + d;
   // The multigrid solve's offset: the external forces' share, which it applies with the
   // springs (predict in host/core/reference/reference_forces.cpp).
-  if (MULTIGRID_SOLVER) {
-    precise vec3 applied = acc * params.dt2;
-    offset[i] = vec4(-applied, 0.0);
-  }
+  if (MULTIGRID_SOLVER) offset[i] = vec4(solve_start_offset(acc, offset[i].xyz, params), 0.0);
   // The tether to the nearest pin (long-range attachments, host/core/cloth/tethers.cpp): xpbd's only,
   // the multigrid solve needs none (docs/solvers.md).
   vec4 tether = MULTIGRID_SOLVER ? vec4(-1.0) : texelFetch(tethers_view, i);

@@ -37,6 +37,23 @@ SHARED_FN VEC3 verlet_move(VEC3 d, REAL keep, VEC3 f, REAL w, PARAMS params) {
 // xpbd's prediction: the kept motion, the external acceleration acc, and the springs'
 // multipliers of the last substep as forces (warm, times the inverse mass w).
 // (predict.comp and the reference's predict.)
+// Where the multigrid solve starts, as its offset x - y from the prediction y (predict.comp and
+// the reference's predict; docs/solvers.md, "The fabric solver"). multigrid: back by the whole
+// external move u = acc dt^2, which its solve then applies with the springs, so a cloth at rest
+// starts where it rests. fabric (adaptive_start): back by the share of u that the mass did not
+// take in the substep before, read from that substep's offset `last` (x - y at its end, so
+// last + u is its move beyond inertia): a falling or buckling mass starts at y, with all of it,
+// a resting one where it rests, with none (the adaptive start of Chen et al. 2024, VBD).
+SHARED_FN VEC3 solve_start_offset(VEC3 acc, VEC3 last, PARAMS params) {
+  PRECISE VEC3 u = acc * params.dt2;
+  REAL uu = dot3(u, u);
+  if (params.adaptive_start == 0u || !(uu > REAL(0))) return -u;
+  PRECISE VEC3 taken_move = last + u;
+  REAL taken = min(max(dot3(taken_move, u) / uu, REAL(0)), REAL(1));
+  PRECISE VEC3 back = u * (REAL(1) - taken);
+  return -back;
+}
+
 SHARED_FN VEC3 predicted_move(VEC3 d, REAL keep, VEC3 acc, VEC3 warm, REAL w, PARAMS params) {
   PRECISE VEC3 next_d = d * keep + acc * params.dt2 + warm * w;
   return speed_clamped(next_d, params);

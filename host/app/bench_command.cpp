@@ -46,10 +46,10 @@ void print_ratios(const Timings& ms, const std::vector<int>& sizes, const std::v
     for (int n : sizes) {
       std::string line;
       for (const char* backend : {"gpu", "cpu"})
-        for (const char* solver : {"xpbd", "multigrid"})
+        for (const char* solver : {"xpbd", "multigrid", "fabric"})
           if (double a = find(backend, solver, n, sc), b = find(backend, "classic", n, sc); a > 0 && b > 0)
             line += fmt::format("  {} {}/classic {:.2f}", backend, solver, a / b);
-      for (const char* solver : {"classic", "xpbd", "multigrid"})
+      for (const char* solver : {"classic", "xpbd", "multigrid", "fabric"})
         if (double g = find("gpu", solver, n, sc), c = find("cpu", solver, n, sc); g > 0 && c > 0)
           line += fmt::format("  {} gpu/cpu speed {:.2f}x", solver, c / g);
       if (!line.empty()) fmt::print("{}x{} self-collision {}:{}\n", n, n, sc ? "on" : "off", line);
@@ -59,7 +59,7 @@ void print_ratios(const Timings& ms, const std::vector<int>& sizes, const std::v
 struct Opts {
   std::vector<int> sizes{32, 64, 128, 256, 512, 1024};
   std::vector<std::string> backends{"gpu", "cpu"};
-  std::vector<std::string> solvers{"classic", "xpbd", "multigrid"};
+  std::vector<std::string> solvers{"classic", "xpbd", "multigrid", "fabric"};
   int frames = 10;
   std::string self_collision = "both", json_path, root;
   double cpu_limit_s = 60;
@@ -94,7 +94,7 @@ int run_bench(const Opts& o) {
     for (bool sc : sc_modes)
       for (int n : o.sizes) {
         progress.update(done);
-        const Scene scene = bench_scene(n, sc, solver == "multigrid" ? Solver::Multigrid : solver == "xpbd" ? Solver::Xpbd : Solver::Classic);
+        const Scene scene = bench_scene(n, sc, solver_of(solver));
         if (backend == "cpu") {
           const double estimate = runner.estimate_cpu_seconds(scene);
           if (estimate > o.cpu_limit_s) {
@@ -143,9 +143,9 @@ void add_bench_command(CLI::App& app, std::function<int()>& run) {
   CLI::App* cmd = app.add_subcommand("bench", "measure throughput of the GPU and CPU backends on square cloths");
   cmd->add_option("--sizes", o->sizes, "cloth sizes (points per side), comma separated")->delimiter(',')->capture_default_str();
   cmd->add_option("--backend", o->backends, "gpu, cpu or gpu,cpu")->delimiter(',')->capture_default_str();
-  cmd->add_option("--solver", o->solvers, "classic, xpbd or classic,xpbd (simulation.solver)")
+  cmd->add_option("--solver", o->solvers, "classic, xpbd, multigrid, fabric, or a list: classic,fabric (simulation.solver)")
       ->delimiter(',')
-      ->check(CLI::IsMember({"classic", "xpbd", "multigrid"}))
+      ->check(CLI::IsMember({"classic", "xpbd", "multigrid", "fabric"}))
       ->capture_default_str();
   cmd->add_option("--frames", o->frames, "timed frames per configuration (after 2 warm-up frames)")
       ->check(positive_number())

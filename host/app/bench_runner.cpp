@@ -1,6 +1,7 @@
 #include "bench_runner.hpp"
 
 #include <chrono>
+#include <stdexcept>
 #include <functional>
 
 #include <fmt/format.h>
@@ -70,7 +71,16 @@ std::map<std::string, double> time_passes_with_queries(int substeps, const PassL
 }  // namespace
 
 const char* solver_name(Solver solver) {
-  return solver == Solver::Multigrid ? "multigrid" : solver == Solver::Xpbd ? "xpbd" : "classic";
+  return solver == Solver::Fabric      ? "fabric"
+         : solver == Solver::Multigrid ? "multigrid"
+         : solver == Solver::Xpbd      ? "xpbd"
+                                       : "classic";
+}
+
+Solver solver_of(const std::string& name) {
+  for (Solver s : {Solver::Classic, Solver::Xpbd, Solver::Multigrid, Solver::Fabric})
+    if (name == solver_name(s)) return s;
+  throw std::invalid_argument("unknown solver " + name);  // --solver's check lets none through
 }
 
 Scene bench_scene(int n, bool self_collision, Solver solver) {

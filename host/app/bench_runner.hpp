@@ -28,6 +28,7 @@ struct BenchResult {
 // physical values at every size (fabric density 0.15 kg/m^2, ks 5000 N/m).
 Scene bench_scene(int n, bool self_collision, Solver solver = Solver::Classic);
 const char* solver_name(Solver solver);  // as the scene key spells it
+Solver solver_of(const std::string& name);  // the inverse of solver_name
 
 class BenchRunner {
  public:

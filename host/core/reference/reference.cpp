@@ -111,7 +111,7 @@ template <class R> void set_substep_time(Constants<R>& c, double t) {
 int stretch_passes_for(const Scene& scene, const ClothModel& model) {
   const SimulationParams& sp = scene.simulation;
   if (sp.stretch_passes >= 0) return sp.stretch_passes;
-  if (sp.solver != Solver::Multigrid) return 0;
+  if (sp.solver != Solver::Multigrid && sp.solver != Solver::Fabric) return 0;
   const std::vector<const ClothParams*> cloths = scene.cloths();
   for (size_t k = 0; k < cloths.size() && k < model.parts.size(); ++k) {
     const ClothPart& part = model.parts[k];
@@ -163,8 +163,11 @@ Constants<R> make_constants(const Scene& scene, const ClothModel& model, std::sh
   }
   // From the scene, so a live density edit takes effect.
   for (double m : particle_masses(scene, model)) c.mass.push_back(R(m));
-  c.xpbd = sp.solver == Solver::Xpbd || sp.solver == Solver::Multigrid;
-  c.multigrid = sp.solver == Solver::Multigrid;
+  c.xpbd = sp.solver != Solver::Classic;
+  c.multigrid = sp.solver == Solver::Multigrid || sp.solver == Solver::Fabric;
+  // Where the multigrid solve starts (shared/integration.glsl, solve_start_offset): multigrid less
+  // the external forces' move, fabric where the last substep's acceleration says.
+  c.adaptive_start = sp.solver == Solver::Fabric ? 1u : 0u;
   c.inv_dt2 = R(1.0 / (dt * dt));
   c.max_move = R(sp.max_speed * dt);  // 0: no speed clamp
   if (c.multigrid) {

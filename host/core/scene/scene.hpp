@@ -15,7 +15,7 @@ namespace clothsim {
 enum class Orientation { Horizontal = 0, Vertical = 1 };
 // classic: the CS184 mass-spring model (explicit springs, Verlet, Provot); xpbd: the springs
 // as XPBD distance constraints with small steps (docs/model.md).
-enum class Solver { Classic = 0, Xpbd = 1, Multigrid = 2 };
+enum class Solver { Classic = 0, Xpbd = 1, Multigrid = 2, Fabric = 3 };
 
 // One key of a keyframed motion: at `time` (simulated seconds) the value is `value`.
 struct Keyframe {

@@ -61,7 +61,7 @@ void visit_cloths(Scene& s, const ParamInfo& info, ParamVisitor& v) {
   v.list(info, l);
 }
 
-const char* const kSolvers[] = {"classic", "xpbd", "multigrid"};
+const char* const kSolvers[] = {"classic", "xpbd", "multigrid", "fabric"};
 const char* const kMassLumpings[] = {"area", "uniform"};
 
 const ParamInfo kFriction{.key = "friction", .required = true, .lo = 0, .hi = 1,
@@ -258,7 +258,9 @@ const Param<SimulationParams> kSimulation[] = {
                                     .meaning = "classic: mass-spring + Verlet + Provot (CS184); xpbd: springs as XPBD "
                                                "distance constraints, one iteration per substep; multigrid: implicit "
                                                "Euler, a coarse-grid correction and a vertex sweep per substep, as stiff "
-                                               "at any resolution (docs/model.md)",
+                                               "at any resolution (docs/model.md); fabric: multigrid's solve started "
+                                               "from the whole inertial prediction, so a falling or buckling cloth "
+                                               "keeps its pace (docs/solvers.md)",
                                     .widget = {.style = Widget::Drag},  // a combo box
                                     .choices = kSolvers}),
     row<&SimulationParams::tether_stretch>(
