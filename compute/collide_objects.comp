@@ -27,7 +27,8 @@ void main() {
   vec4 moved = displacement_of(i);
   vec3 x = p.xyz, d = moved.xyz;
 #ifdef FRICTIONLESS
-  collide_with_objects_friction(x, d, false);  // the push-out after a sweep's correction
+  // The push-out after a sweep's correction: frictionless but under fabric (params.sweep_friction).
+  collide_with_objects_friction(x, d, params.sweep_friction != 0u);
 #else
   collide_with_objects(x, d);
 #endif

@@ -47,7 +47,8 @@ void list_ends_if_collider_may_move(int i, vec3 xi, vec3 di, float ci, int j, ve
 // One free mass after its correction, with its clearance (multigrid's relax_vertices): both
 // halves of the pair get the same values, so the compiler merges them (as in may_collide).
 void list_if_collider_may_push(int i, vec3 x, vec3 d, float clearance) {
-  if (may_collide_pair_after(x, d, clearance, x, d, clearance, false).x) list_contact(i);
+  // With friction under fabric, as collide_objects' listed push-out responds (params.sweep_friction).
+  if (may_collide_pair_after(x, d, clearance, x, d, clearance, params.sweep_friction != 0u).x) list_contact(i);
 }
 
 #endif

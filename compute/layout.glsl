@@ -261,6 +261,7 @@ struct ShadowFrame {
   F(REAL, inv_dt2)             /* 1/s^2, 1 / dt^2: a mass's inertia per kg (multigrid) */   \
   F(UINT, multigrid)           /* 1 = the multigrid solve (multigrid, fabric) */            \
   F(UINT, adaptive_start)      /* 1 = fabric: the multigrid solve starts where the last substep's acceleration says */ \
+  F(UINT, sweep_friction)      /* 1 = fabric: the push-out after the multigrid sweep takes Coulomb friction */ \
   F(REAL, max_move)            /* m, simulation.max_speed * dt: integration's move limit per substep (0: none) */
 #define STEP_PARAMS_DECLARE(type, name) type name;
 // std140 rounds the block's size up to 16 bytes; alignas makes sizeof agree (for REAL = float:

@@ -49,7 +49,8 @@ SHARED_FN VEC3 solve_start_offset(VEC3 acc, VEC3 last, PARAMS params) {
   REAL uu = dot3(u, u);
   if (params.adaptive_start == 0u || !(uu > REAL(0))) return -u;
   PRECISE VEC3 taken_move = last + u;
-  REAL taken = min(max(dot3(taken_move, u) / uu, REAL(0)), REAL(1));
+  // a * (1 / b), not a / b: GLSL may compute a quotient as that product, the reference must too.
+  REAL taken = min(max(dot3(taken_move, u) * (REAL(1) / uu), REAL(0)), REAL(1));
   PRECISE VEC3 back = u * (REAL(1) - taken);
   return -back;
 }

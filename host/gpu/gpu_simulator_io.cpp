@@ -1,6 +1,7 @@
 // The simulator's transfers: explicit uploads and read-backs for export, validation, the pass
 // checks and tests. None runs during a step.
 #include "gpu_simulator.hpp"
+#include "gpu_multigrid.hpp"
 
 namespace clothsim {
 
@@ -10,6 +11,15 @@ void GpuSimulator::upload(const State<float>& s) {
   if (s.force.size() == s.pos.size()) gl::upload_vector(state_.forces_, s.force);
   if (constants_.wind_enabled && s.wind.size() == s.pos.size()) gl::upload_vector(state_.wind_forces_, s.wind);
   state_.upload_multipliers(s.lambda);  // zero for a state without them
+  // The multigrid solve's offsets, which fabric's predict reads from the substep before
+  // (solve_start_offset): the state's, or zero for a state without them (as the reference starts).
+  if (state_.multigrid_) {
+    gl::Buffer& offset = state_.multigrid_->offset;
+    if (s.offset.size() == s.pos.size())
+      offset.upload(0, s.offset.size() * sizeof(glm::vec4), s.offset.data());
+    else
+      offset.clear_to_zero();
+  }
   // The Jacobi/ping-pong output matches the buffer it stands in for.
   state_.positions_out_.allocate(state_.positions_.size());
   state_.attach_views();
@@ -25,6 +35,7 @@ void GpuSimulator::download(State<float>& s) {
   if (constants_.wind_enabled) s.wind = gl::download_vector<Vec4<float>>(state_.wind_forces_);
   s.lambda = gl::download_vector<Vec4<float>>(state_.multipliers_);
   s.lambda.resize(state_.model_.springs.size());  // less the dummy of a cloth without springs
+  if (state_.multigrid_) s.offset = gl::download_vector<Vec4<float>>(state_.multigrid_->offset);
 }
 
 // A checkpoint is the two state buffers as they are, read back and uploaded bit for bit.

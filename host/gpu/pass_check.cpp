@@ -18,10 +18,12 @@ template <class T> size_t differing(const std::vector<T>& a, const std::vector<T
   return n;
 }
 
-// What most passes write: every position, then every displacement.
+// What most passes write: every position, then every displacement (and with the multigrid
+// solve every offset, which predict writes and fabric's predict reads).
 std::vector<Vec4<float>> positions_and_displacements(const State<float>& st) {
   auto v = st.pos;
   v.insert(v.end(), st.disp.begin(), st.disp.end());
+  if (st.offset.size() == st.pos.size()) v.insert(v.end(), st.offset.begin(), st.offset.end());
   return v;
 }
 

@@ -93,6 +93,9 @@ template <class R> void load_streams(const SavedState& saved, State<R>& s, doubl
   }
   s.disp.resize(s.pos.size());
   std::memcpy(s.disp.data(), saved.displacement.data(), saved.displacement.size());
+  // The multigrid solve's offsets are not saved: a resumed fabric run starts its first substep
+  // as a fresh one does, from the whole prediction (solve_start_offset), on both backends.
+  s.offset.clear();
   // Multipliers of this cloth's springs load bit for bit; none saved (an older file): zero.
   s.lambda.assign(s.lambda.size(), Vec4<R>(0));
   if (!saved.multipliers.empty()) {

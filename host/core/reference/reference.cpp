@@ -168,6 +168,7 @@ Constants<R> make_constants(const Scene& scene, const ClothModel& model, std::sh
   // Where the multigrid solve starts (shared/integration.glsl, solve_start_offset): multigrid less
   // the external forces' move, fabric where the last substep's acceleration says.
   c.adaptive_start = sp.solver == Solver::Fabric ? 1u : 0u;
+  c.sweep_friction = sp.solver == Solver::Fabric ? 1u : 0u;  // relax_vertices' push-out
   c.inv_dt2 = R(1.0 / (dt * dt));
   c.max_move = R(sp.max_speed * dt);  // 0: no speed clamp
   if (c.multigrid) {
