@@ -152,53 +152,31 @@ TEST_CASE("xpbd: a chain at rest saved and resumed with twice the substeps stays
 }
 
 // The multigrid solver solves implicit Euler itself, so its rest state is the static solve's
-// whatever the stiffness: the same three checks.
-TEST_CASE("multigrid: a chain stretched into its lowest mode and released swings at its frequency, within 5 %",
+// whatever the stiffness: the same three checks. fabric is the same solve started where the
+// last substep's acceleration says (solve_start_offset): at rest, where it rests, so the same.
+TEST_CASE("multigrid and fabric: a chain stretched into its lowest mode and released swings at its frequency, within 5 %",
           "[closed-form]") {
+  const std::string solver = GENERATE("multigrid", "fabric");
   int periods = 0;
-  const double omega = mode_omega<double>("multigrid", &periods);
-  INFO("omega " << omega << " rad/s over " << periods << " periods; the mode's " << test::chain_mode_omega());
+  const double omega = mode_omega<double>(solver, &periods);
+  INFO(solver << ": omega " << omega << " rad/s over " << periods << " periods; the mode's " << test::chain_mode_omega());
   CHECK(omega == Approx(test::chain_mode_omega()).epsilon(0.05));
 }
 
-TEMPLATE_TEST_CASE("multigrid: a hanging chain at rest stretches each link by the weight below it over ks, within 1 %",
+TEMPLATE_TEST_CASE("multigrid and fabric: a hanging chain at rest stretches each link by the weight below it over ks, within 1 %",
                    "[closed-form]", float, double) {
-  const double e = chain_error<TestType>("multigrid");
-  INFO("largest relative error of a link's stretch: " << e);
+  const std::string solver = GENERATE("multigrid", "fabric");
+  const double e = chain_error<TestType>(solver);
+  INFO(solver << ": largest relative error of a link's stretch: " << e);
   CHECK(e <= 0.01);
 }
 
-TEMPLATE_TEST_CASE("multigrid: a sheet pinned along its border rests under its weight where the static solve puts it, "
-                   "within 1 mm",
+TEMPLATE_TEST_CASE("multigrid and fabric: a sheet pinned along its border rests under its weight where the static solve "
+                   "puts it, within 1 mm",
                    "[closed-form][long]", float, double) {
+  const std::string solver = GENERATE("multigrid", "fabric");
   double sag = 0;
-  const double e = sheet_error<TestType>("multigrid", &sag);
-  INFO("static sag " << sag << " m; largest distance from it after 300 frames " << e << " m");
-  CHECK(e <= 1e-3);
-}
-
-// The fabric solver is the multigrid solve started from the whole prediction: its rest state is
-// still the static solve's (the one sweep's share of gravity's move comes back each substep).
-TEST_CASE("fabric: a chain stretched into its lowest mode and released swings at its frequency, within 5 %",
-          "[closed-form]") {
-  int periods = 0;
-  const double omega = mode_omega<double>("fabric", &periods);
-  INFO("omega " << omega << " rad/s over " << periods << " periods; the mode's " << test::chain_mode_omega());
-  CHECK(omega == Approx(test::chain_mode_omega()).epsilon(0.05));
-}
-
-TEMPLATE_TEST_CASE("fabric: a hanging chain at rest stretches each link by the weight below it over ks, within 1 %",
-                   "[closed-form]", float, double) {
-  const double e = chain_error<TestType>("fabric");
-  INFO("largest relative error of a link's stretch: " << e);
-  CHECK(e <= 0.01);
-}
-
-TEMPLATE_TEST_CASE("fabric: a sheet pinned along its border rests under its weight where the static solve puts it, "
-                   "within 1 mm",
-                   "[closed-form][long]", float, double) {
-  double sag = 0;
-  const double e = sheet_error<TestType>("fabric", &sag);
-  INFO("static sag " << sag << " m; largest distance from it after 300 frames " << e << " m");
+  const double e = sheet_error<TestType>(solver, &sag);
+  INFO(solver << ": static sag " << sag << " m; largest distance from it after 300 frames " << e << " m");
   CHECK(e <= 1e-3);
 }
