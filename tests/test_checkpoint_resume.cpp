@@ -70,7 +70,7 @@ template <class R> void check_resumes_bitwise(const Scene& s, int n) {
     write_checkpoint(dir / "half.state", checkpoint_of(s, m, first));
   }
   const Checkpoint c = read_checkpoint(dir / "half.state");
-  CHECK(c.version == 3);
+  CHECK(c.version == 4);
   CHECK(c.state.dt == s.dt());
   CpuBackend<R> second(s, m);
   check_fits(c, dir / "half.state", s, m, second.scalar_bytes(), second.name());
@@ -99,6 +99,14 @@ TEST_CASE("save and resume is bitwise on a windy xpbd scene (flag_pole) and on h
   check_resumes_bitwise<double>(scene_file("flag_pole"), 6);
   check_resumes_bitwise<double>(scene_file("hang_xpbd"), 10);
   check_resumes_bitwise<float>(scene_file("hang_xpbd"), 10);
+}
+
+// fabric's predict reads the multigrid solve's offsets of the substep before: version 4 saves
+// them, so its run resumes bit for bit too (a drop onto the sphere: the adaptive start in play).
+TEST_CASE("save and resume is bitwise under the fabric solver (its solve offsets saved)", "[checkpoint][long]") {
+  const Scene s = scene_file("sphere", {"simulation.solver=\"fabric\"", "cloth.density=0.15", "cloth.ks=5000"});
+  check_resumes_bitwise<float>(s, 8);
+  check_resumes_bitwise<double>(s, 8);
 }
 
 TEST_CASE("a state loaded with another substep length keeps the cloth's kinetic energy (pinned2, 30 -> 60 substeps)",
@@ -157,13 +165,14 @@ TEST_CASE("a version-1 state file (no substep length) still loads, its dt taken 
   CpuBackend<double> first(s, m);
   for (int f = 0; f < 5; ++f) first.step_frame();
   TempDir dir("v1");
-  write_checkpoint(dir / "v3.state", checkpoint_of(s, m, first));
+  write_checkpoint(dir / "v4.state", checkpoint_of(s, m, first));
   // The same state as version 1 wrote it: 72-byte header (no dt, offset 68 reserved as zero),
-  // version 1, no multipliers after the two streams, its own checksum.
-  const std::string v3 = slurp(dir / "v3.state");
+  // version 1, no multipliers (nor offsets: a classic cloth has none) after the two streams,
+  // its own checksum.
+  const std::string v4 = slurp(dir / "v4.state");
   const size_t multipliers = m.springs.size() * 4 * sizeof(double);
-  REQUIRE(v3.size() > 88 + multipliers);
-  std::string v1 = v3.substr(0, 72) + v3.substr(80, v3.size() - 80 - 8 - multipliers);
+  REQUIRE(v4.size() > 96 + multipliers);
+  std::string v1 = v4.substr(0, 72) + v4.substr(88, v4.size() - 88 - 8 - multipliers);
   const uint32_t one = 1, zero = 0;
   std::memcpy(v1.data() + 16, &one, 4);
   std::memcpy(v1.data() + 68, &zero, 4);
@@ -176,7 +185,7 @@ TEST_CASE("a version-1 state file (no substep length) still loads, its dt taken 
   CHECK(c.state.dt == 0);
   CpuBackend<double> a(s, m), b(s, m);
   a.load_state(c.state);
-  b.load_state(read_checkpoint(dir / "v3.state").state);
+  b.load_state(read_checkpoint(dir / "v4.state").state);
   a.step_frame();
   b.step_frame();
   CHECK(test::mismatches(a.save_state().positions, b.save_state().positions) == 0);
@@ -185,11 +194,11 @@ TEST_CASE("a version-1 state file (no substep length) still loads, its dt taken 
   CHECK(read_checkpoint(dir / "again.state").state.dt == s.dt());
 
   // A version this clothsim does not know is refused, naming both.
-  std::string v9 = v3;
+  std::string v9 = v4;
   const uint32_t nine = 9;
   std::memcpy(v9.data() + 16, &nine, 4);
   std::ofstream(dir / "v9.state", std::ios::binary) << v9;
-  CHECK_THROWS_WITH(read_checkpoint(dir / "v9.state"), Catch::Contains("version 9") && Catch::Contains("versions 1 to 3"));
+  CHECK_THROWS_WITH(read_checkpoint(dir / "v9.state"), Catch::Contains("version 9") && Catch::Contains("versions 1 to 4"));
 }
 
 TEST_CASE("a state with a NaN time or an Inf position or displacement is refused naming the file (exit 2)",

@@ -94,6 +94,14 @@ TEST_CASE("GPU: save and resume is bitwise on living (moving sphere and pins, gu
   CHECK_NO_GL_ERRORS();
 }
 
+// fabric's predict reads the solve offsets of the substep before: the state file keeps them.
+TEST_CASE("GPU: save and resume is bitwise under the fabric solver (sphere: its solve offsets saved)",
+          "[gpu][checkpoint][long]") {
+  REQUIRE_GL_CONTEXT();
+  check_gpu_resumes_bitwise(gpu_scene_file("sphere", {"simulation.solver=\"fabric\"", "cloth.density=0.15", "cloth.ks=5000"}), 6);
+  CHECK_NO_GL_ERRORS();
+}
+
 TEST_CASE("GPU: a state loaded with another substep length is rescaled as the reference rescales it", "[gpu][checkpoint]") {
   REQUIRE_GL_CONTEXT();
   // Undamped (damping is per substep, so it would differ between 30 and 60 substeps anyway).

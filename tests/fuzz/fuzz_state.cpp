@@ -71,9 +71,10 @@ void check_loaded(const Checkpoint& c, const std::string& b) {
   const SavedState& s = c.state;
   expect(b.size() >= 80 && std::memcmp(b.data(), "clothsim state\n", 16) == 0, "loaded without the magic");
   const uint32_t version = get<uint32_t>(b, 16);
-  expect(version >= 1 && version <= 3, fmt::format("loaded a version-{} file", version));
+  expect(version >= 1 && version <= 4, fmt::format("loaded a version-{} file", version));
   expect(c.version == int(version), "Checkpoint::version is the file's");
-  const size_t header = version == 1 ? 72 : 80;
+  const size_t header = version == 1 ? 72 : version <= 3 ? 80 : 88;
+  expect(b.size() >= header, "loaded a file shorter than its header");
   const uint32_t scalar = get<uint32_t>(b, 20), nw = get<uint32_t>(b, 24), nh = get<uint32_t>(b, 28);
   expect(scalar == 4 || scalar == 8, fmt::format("loaded {}-byte scalars", scalar));
   expect(s.scalar_bytes == int(scalar), "scalar_bytes is the file's");
@@ -90,6 +91,10 @@ void check_loaded(const Checkpoint& c, const std::string& b) {
   // Version 3 keeps the xpbd springs' carried multipliers (4 scalars each) after the
   // displacements, their count at 68; before it that word was unused and the stream absent.
   const uint64_t multipliers = version >= 3 ? get<uint32_t>(b, 68) : 0;
+  // Version 4 keeps the multigrid solve's offsets (4 scalars per particle, or none) after the
+  // multipliers, their count at 80.
+  const uint64_t offsets = version >= 4 ? get<uint32_t>(b, 80) : 0;
+  expect(offsets == 0 || offsets == particles, "loaded offsets neither none nor one per particle");
   if (version == 1)
     expect(s.dt == 0, "a version-1 state has an unknown dt (0)");
   else
@@ -97,8 +102,8 @@ void check_loaded(const Checkpoint& c, const std::string& b) {
            "the dt is the file's, finite and > 0");
 
   const uint64_t stream = particles * 4 * scalar;
-  const uint64_t multiplier_stream = multipliers * 4 * scalar;
-  expect(uint64_t(b.size()) == header + scene_len + backend_len + 2 * stream + multiplier_stream + 8,
+  const uint64_t multiplier_stream = multipliers * 4 * scalar, offset_stream = offsets * 4 * scalar;
+  expect(uint64_t(b.size()) == header + scene_len + backend_len + 2 * stream + multiplier_stream + offset_stream + 8,
          "the file is exactly header + names + streams + checksum");
   expect(fnv1a(b.data(), b.size() - 8) == get<uint64_t>(b, b.size() - 8), "loaded with a wrong checksum");
   size_t at = header;
@@ -115,7 +120,11 @@ void check_loaded(const Checkpoint& c, const std::string& b) {
              (multiplier_stream == 0 ||
               std::memcmp(s.multipliers.data(), b.data() + at + 2 * stream, multiplier_stream) == 0),
          "the multipliers are the file's");
-  for (const std::vector<uint8_t>* bytes : {&s.positions, &s.displacement, &s.multipliers})
+  expect(s.offsets.size() == offset_stream &&
+             (offset_stream == 0 ||
+              std::memcmp(s.offsets.data(), b.data() + at + 2 * stream + multiplier_stream, offset_stream) == 0),
+         "the offsets are the file's");
+  for (const std::vector<uint8_t>* bytes : {&s.positions, &s.displacement, &s.multipliers, &s.offsets})
     for (size_t i = 0; i < bytes->size(); i += scalar) {
       double v;
       if (scalar == 8) {

@@ -6,7 +6,7 @@ tests/fuzz/seeds_pc2/, each file with its expected outcome in the folder's expec
 
 The valid files are written by clothsim itself (`simulate --save-state` on the CPU reference in
 double and on the GPU in float, both solvers, `--export FILE.pc2`, and a run continued from a
-state) on a 3x2 cloth, or derived from them (the older versions 1 and 2), so they are a few hundred bytes; the others are copies of them with one thing broken
+state) on a 3x2 cloth, or derived from them (the older versions 1 and 2), so they are a few hundred bytes (the v3_ seeds were written by a version-3 clothsim; since version 4 a rerun writes version 4 under those names); the others are copies of them with one thing broken
 (cut short, a field out of range, a NaN with its checksum made to match, ...); a header field
 out of range needs no more than the header. The GPU state
 needs an OpenGL 4.3 context (llvmpipe will do). Rerun it when a format changes, and commit what
@@ -47,7 +47,7 @@ def state_stream_offset(state):
     return 80 + scene_len + backend_len
 
 
-def state_seeds(cpu, gpu, xpbd, pc2):
+def state_seeds(cpu, gpu, xpbd, fabric, pc2):
     """(file, bytes, outcome, why) for seeds_state/; outcome is 'loads' or 'rejected<TAB>message'."""
     f_pos = state_stream_offset(gpu)   # float positions: 16 bytes per particle
     d_pos = state_stream_offset(cpu)   # double positions: 32 bytes per particle
@@ -68,6 +68,8 @@ def state_seeds(cpu, gpu, xpbd, pc2):
         ('v3_float_gpu.state', gpu, 'loads', 'simulate --backend gpu --frames 3 --save-state: 3x2, floats'),
         ('v3_xpbd_double_cpu.state', xpbd, 'loads',
          f'the same with --set simulation.solver=xpbd: {springs} springs\' multipliers after the streams'),
+        ('v4_fabric_double_cpu.state', fabric, 'loads',
+         'simulate --backend cpu --frames 3 --set simulation.solver=fabric --save-state: version 4, with the solve offsets'),
         ('v2_float_gpu.state', v2, 'loads', 'the float state as version 2 (no multipliers): still read'),
         ('v1_float.state', v1, 'loads', 'the float state as version 1 (72-byte header, no dt): still read'),
         ('nan_multiplier.state', with_checksum(patch(xpbd, x_lambda + 32 + 24, '<d', nan)[:-8]),
@@ -85,7 +87,7 @@ def state_seeds(cpu, gpu, xpbd, pc2):
          f'rejected\ttruncated ({len(cpu) - 40} bytes, a 3x2 cloth of 8-byte scalars needs {len(cpu)})',
          'cut inside the displacements'),
         ('trailing_byte.state', gpu + b'\0', 'rejected\thas trailing bytes', 'one byte too many'),
-        ('version_4.state', patch(gpu[:80], 16, '<I', 4), 'rejected\tstate file version 4', 'an unknown version'),
+        ('version_5.state', patch(gpu[:80], 16, '<I', 5), 'rejected\tstate file version 5', 'an unknown version'),
         ('scalar_6.state', patch(gpu[:80], 20, '<I', 6), 'rejected\tscalar size 6 bytes', 'neither float nor double'),
         ('grid_4096x4096.state', patch(patch(gpu, 24, '<I', 4096), 28, '<I', 4096),
          f'rejected\ta 4096x4096 cloth of 4-byte scalars needs {f_pos + 2 * 4096 * 4096 * 16 + multipliers + 8}',
@@ -173,13 +175,14 @@ def main():
         run('--backend', 'cpu', '--frames', '3', '--save-state', 'cpu.state', '--export', 'cache.pc2')
         run('--backend', 'gpu', '--frames', '3', '--save-state', 'gpu.state')
         run('--backend', 'cpu', '--frames', '3', '--set', 'simulation.solver=xpbd', '--save-state', 'xpbd.state')
+        run('--backend', 'cpu', '--frames', '3', '--set', 'simulation.solver=fabric', '--save-state', 'fabric.state')
         run('--backend', 'cpu', '--load-state', 'cpu.state', '--frames', '4', '--export-every', '2',
             '--export', 'resumed.pc2')
-        cpu, gpu, xpbd = read('cpu.state'), read('gpu.state'), read('xpbd.state')
+        cpu, gpu, xpbd, fabric = read('cpu.state'), read('gpu.state'), read('xpbd.state'), read('fabric.state')
         cache, resumed = read('cache.pc2'), read('resumed.pc2')
     finally:
         shutil.rmtree(tmp)
-    write_corpus(os.path.join(HERE, 'seeds_state'), state_seeds(cpu, gpu, xpbd, cache), 'state-file')
+    write_corpus(os.path.join(HERE, 'seeds_state'), state_seeds(cpu, gpu, xpbd, fabric, cache), 'state-file')
     write_corpus(os.path.join(HERE, 'seeds_pc2'), pc2_seeds(cache, resumed, gpu), 'PC2')
 
 

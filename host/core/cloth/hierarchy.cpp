@@ -1,6 +1,8 @@
 #include "cloth/hierarchy.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <tuple>
 
 #include <glm/geometric.hpp>
 
@@ -30,15 +32,39 @@ Graph spring_graph(const ClothModel& m, bool with_bending) {
   return g;
 }
 
-// Greedy colouring in index order: each vertex takes the smallest colour none of its coloured
-// neighbours has. Returns the vertices grouped by colour (ascending within one) and the starts.
-// `start` gets order.size() before and after each colour.
-void colour_vertices(const Graph& g, uint32_t base, std::vector<uint32_t>& order, std::vector<uint32_t>& start) {
+// The order in which the hierarchy visits a level's vertices (their particles `particles`): by
+// rest position, not by index, so the same cloth numbered otherwise (a grid, or the same grid as
+// a mesh in another vertex order) gets the same coarse vertices and colours, and one sweep the
+// same answer (issue 43, item 2). Positions are compared quantised to a quarter of the shortest
+// spring (a grid's jitter of at most 5 % of its spacing does not reorder a row), z, then y, then
+// x: a grid's own order, row by row (so a grid's hierarchy is what index order gave it); exact
+// positions, then the index, break ties.
+std::vector<uint32_t> canonical_order(const ClothModel& m, const std::vector<uint32_t>& particles) {
+  double shortest = 0;
+  for (const Spring& s : m.springs)
+    if (s.rest > 0 && (shortest == 0 || s.rest < shortest)) shortest = s.rest;
+  const double quantum = shortest > 0 ? 0.25 * shortest : 1.0;
+  auto key = [&](uint32_t v) {
+    const glm::dvec3& p = m.initial[particles[v]];
+    return std::tuple(std::llround(p.z / quantum), std::llround(p.y / quantum), std::llround(p.x / quantum), p.z, p.y,
+                      p.x, v);
+  };
+  std::vector<uint32_t> order(particles.size());
+  for (uint32_t v = 0; v < order.size(); ++v) order[v] = v;
+  std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) { return key(a) < key(b); });
+  return order;
+}
+
+// Greedy colouring in the order `visit`: each vertex takes the smallest colour none of its
+// coloured neighbours has. Returns the vertices grouped by colour (ascending within one) and the
+// starts. `start` gets order.size() before and after each colour.
+void colour_vertices(const Graph& g, const std::vector<uint32_t>& visit, uint32_t base, std::vector<uint32_t>& order,
+                     std::vector<uint32_t>& start) {
   const size_t n = g.size();
   std::vector<int> colour(n, -1);
   int colours = 0;
   std::vector<char> used;
-  for (size_t v = 0; v < n; ++v) {
+  for (uint32_t v : visit) {
     used.assign(size_t(colours) + 1, 0);
     for (uint32_t u : g[v])
       if (colour[u] >= 0) used[size_t(colour[u])] = 1;
@@ -60,12 +86,12 @@ void colour_vertices(const Graph& g, uint32_t base, std::vector<uint32_t>& order
 Hierarchy build_hierarchy(const ClothModel& m, const std::vector<double>& ks) {
   Hierarchy h;
   h.ks = ks;
-  colour_vertices(spring_graph(m, true), 0, h.fine_order, h.fine_colour_start);
   // The current level: its vertices' particles and their graph (structural and shearing springs
   // on the cloth itself, the coarse springs further down).
   Graph graph = spring_graph(m, false);
   std::vector<uint32_t> particles(size_t(m.count()));
   for (uint32_t i = 0; i < particles.size(); ++i) particles[i] = i;
+  colour_vertices(spring_graph(m, true), canonical_order(m, particles), 0, h.fine_order, h.fine_colour_start);
   uint32_t finer_base = 0;  // global index of the current level's vertex 0 (unused for the cloth)
   bool cloth_level = true;
   h.fine_parent_start.push_back(0);
@@ -74,7 +100,7 @@ Hierarchy build_hierarchy(const ClothModel& m, const std::vector<double>& ks) {
   while (particles.size() > kCoarsestVertices && h.levels.size() < 16) {
     const size_t n = particles.size();
     // A maximal independent set, pinned particles first so a pin is a coarse vertex (a coarse
-    // correction then holds still where the cloth is held), then in index order.
+    // correction then holds still where the cloth is held), then in the canonical order.
     std::vector<char> taken(n, 0);
     std::vector<int64_t> coarse_of(n, -1);
     std::vector<uint32_t> coarse;
@@ -85,13 +111,14 @@ Hierarchy build_hierarchy(const ClothModel& m, const std::vector<double>& ks) {
       taken[v] = 1;
       for (uint32_t u : graph[v]) taken[u] = 1;
     };
-    for (uint32_t v = 0; v < n; ++v)
+    const std::vector<uint32_t> visit = canonical_order(m, particles);
+    for (uint32_t v : visit)
       if (m.pinned[particles[v]]) take(v);
-    for (uint32_t v = 0; v < n; ++v) take(v);
+    for (uint32_t v : visit) take(v);
     // Not worth a level: the graph hardly coarsens (a cloud of loose particles).
     if (coarse.size() * 5 > n * 4) break;
-    // With the MIS in index order the coarse vertices are not ascending when pins came first:
-    // number them in index order so levels are laid out like the cloth.
+    // With the MIS in the canonical order the coarse vertices are not ascending: number them in
+    // index order so levels are laid out like the cloth.
     std::sort(coarse.begin(), coarse.end());
     for (size_t k = 0; k < coarse.size(); ++k) coarse_of[coarse[k]] = int64_t(k);
 
@@ -153,7 +180,9 @@ Hierarchy build_hierarchy(const ClothModel& m, const std::vector<double>& ks) {
       }
       h.spring_start.push_back(uint32_t(h.spring_other.size()));
     }
-    colour_vertices(coarse_graph, base, h.order, level.colour_start);
+    std::vector<uint32_t> coarse_particles(coarse.size());
+    for (size_t a = 0; a < coarse.size(); ++a) coarse_particles[a] = particles[coarse[a]];
+    colour_vertices(coarse_graph, canonical_order(m, coarse_particles), base, h.order, level.colour_start);
     h.levels.push_back(level);
 
     std::vector<uint32_t> next(coarse.size());

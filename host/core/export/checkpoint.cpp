@@ -23,14 +23,16 @@ namespace {
 //   u32 multipliers (version 3; zero before), [version >= 2: f64 dt, the substep length the
 //   displacements are per], the two names,
 //   positions (nw*nh*4 scalars), displacements (nw*nh*4 scalars), [version 3: the xpbd
-//   springs' carried multipliers (multipliers*4 scalars: direction, lambda)], u64 FNV-1a of all before.
+//   springs' carried multipliers (multipliers*4 scalars: direction, lambda)], [version 4: the
+//   header is 88 bytes, u32 offsets and u32 reserved after dt; after the multipliers the
+//   multigrid solve's offsets (offsets*4 scalars; 0 or one per particle)], u64 FNV-1a of all before.
 // Version 1 (72-byte header, no dt) is still read: its dt is unknown (SavedState::dt = 0) and
 // taken as the loading scene's, i.e. its displacements load unscaled, as they always did.
 // Versions 1 and 2 have no multipliers: an xpbd run resumed from one starts them at zero.
 static_assert(std::endian::native == std::endian::little, "state files are written in host byte order");
 constexpr char kMagic[16] = "clothsim state\n";
-constexpr uint32_t kVersion = 3;
-constexpr size_t kHeaderBytesV1 = 72, kHeaderBytes = 80;  // by version
+constexpr uint32_t kVersion = 4;
+constexpr size_t kHeaderBytesV1 = 72, kHeaderBytesV2 = 80, kHeaderBytes = 88;  // by version
 constexpr uint32_t kMaxName = 4096;
 
 constexpr uint64_t kFnvOffset = 0xcbf29ce484222325ull, kFnvPrime = 0x100000001b3ull;
@@ -77,6 +79,7 @@ template <class R> SavedState save_streams(const State<R>& s, int64_t frame, dou
   out.positions = bytes_of(s.pos);
   out.displacement = bytes_of(s.disp);
   out.multipliers = bytes_of(s.lambda);
+  if (s.offset.size() == s.pos.size()) out.offsets = bytes_of(s.offset);  // the multigrid solve's
   return out;
 }
 
@@ -93,9 +96,13 @@ template <class R> void load_streams(const SavedState& saved, State<R>& s, doubl
   }
   s.disp.resize(s.pos.size());
   std::memcpy(s.disp.data(), saved.displacement.data(), saved.displacement.size());
-  // The multigrid solve's offsets are not saved: a resumed fabric run starts its first substep
-  // as a fresh one does, from the whole prediction (solve_start_offset), on both backends.
+  // The multigrid solve's offsets, which fabric's predict reads: as saved, or none (a state of
+  // another solver or an older file): the first substep then starts as a fresh run's does.
   s.offset.clear();
+  if (saved.offsets.size() == s.pos.size() * sizeof(Vec4<R>)) {
+    s.offset.resize(s.pos.size());
+    std::memcpy(s.offset.data(), saved.offsets.data(), saved.offsets.size());
+  }
   // Multipliers of this cloth's springs load bit for bit; none saved (an older file): zero.
   s.lambda.assign(s.lambda.size(), Vec4<R>(0));
   if (!saved.multipliers.empty()) {
@@ -145,6 +152,8 @@ void write_checkpoint(const std::string& path, const Checkpoint& c) {
   put<uint32_t>(head, uint32_t(c.pins));
   put<uint32_t>(head, uint32_t(s.multipliers.size() / (4 * size_t(s.scalar_bytes))));
   put<double>(head, s.dt);
+  put<uint32_t>(head, uint32_t(s.offsets.size() / (4 * size_t(s.scalar_bytes))));
+  put<uint32_t>(head, 0u);  // reserved
   head.insert(head.end(), c.scene.begin(), c.scene.end());
   head.insert(head.end(), c.backend.begin(), c.backend.end());
 
@@ -156,7 +165,7 @@ void write_checkpoint(const std::string& path, const Checkpoint& c) {
   if (!f) throw CheckpointError(fmt::format("{}: cannot open for writing ({})", tmp, std::strerror(errno)));
   uint64_t h = kFnvOffset;
   bool ok = true;
-  const std::vector<uint8_t>* parts[] = {&head, &s.positions, &s.displacement, &s.multipliers};
+  const std::vector<uint8_t>* parts[] = {&head, &s.positions, &s.displacement, &s.multipliers, &s.offsets};
   for (const std::vector<uint8_t>* part : parts) {
     fnv(h, part->data(), part->size());
     ok = ok && std::fwrite(part->data(), 1, part->size(), f) == part->size();
@@ -191,7 +200,7 @@ Checkpoint read_checkpoint(std::istream& in, uint64_t size, const std::string& n
   const uint32_t version = get<uint32_t>(head + 16);
   if (version < 1 || version > kVersion)
     throw fail(fmt::format("state file version {}, this clothsim reads versions 1 to {}", version, kVersion));
-  const size_t header = version == 1 ? kHeaderBytesV1 : kHeaderBytes;
+  const size_t header = version == 1 ? kHeaderBytesV1 : version <= 3 ? kHeaderBytesV2 : kHeaderBytes;
   if (size < header) throw fail(fmt::format("truncated ({} bytes, shorter than the header)", size));
   in.clear();
   in.seekg(std::streamoff(header));  // a version-1 header is shorter than what was read
@@ -210,7 +219,12 @@ Checkpoint read_checkpoint(std::istream& in, uint64_t size, const std::string& n
   if (uint64_t(multipliers) > 64 * uint64_t(nw) * nh)
     throw fail(fmt::format("{} spring multipliers for {} particles is out of range", multipliers, uint64_t(nw) * nh));
   const uint64_t multiplier_stream = uint64_t(multipliers) * 4 * scalar;
-  const uint64_t expected = header + scene_len + backend_len + 2 * stream + multiplier_stream + sizeof(uint64_t);
+  const uint32_t offsets = version >= 4 ? get<uint32_t>(head + 80) : 0;
+  if (offsets != 0 && uint64_t(offsets) != uint64_t(nw) * nh)
+    throw fail(fmt::format("{} solve offsets for {} particles (expected 0 or one per particle)", offsets, uint64_t(nw) * nh));
+  const uint64_t offset_stream = uint64_t(offsets) * 4 * scalar;
+  const uint64_t expected =
+      header + scene_len + backend_len + 2 * stream + multiplier_stream + offset_stream + sizeof(uint64_t);
   if (size != expected)
     throw fail(fmt::format("{} ({} bytes, a {}x{} cloth of {}-byte scalars needs {})",
                            size < expected ? "truncated" : "has trailing bytes", size, nw, nh, scalar, expected));
@@ -229,12 +243,14 @@ Checkpoint read_checkpoint(std::istream& in, uint64_t size, const std::string& n
   s.positions.resize(stream);
   s.displacement.resize(stream);
   s.multipliers.resize(multiplier_stream);
+  s.offsets.resize(offset_stream);
   uint64_t stored = 0;
   in.read(c.scene.data(), scene_len);
   in.read(c.backend.data(), backend_len);
   in.read(reinterpret_cast<char*>(s.positions.data()), std::streamsize(stream));
   in.read(reinterpret_cast<char*>(s.displacement.data()), std::streamsize(stream));
   in.read(reinterpret_cast<char*>(s.multipliers.data()), std::streamsize(multiplier_stream));
+  in.read(reinterpret_cast<char*>(s.offsets.data()), std::streamsize(offset_stream));
   in.read(reinterpret_cast<char*>(&stored), sizeof stored);
   if (!in) throw fail("read failed");
   uint64_t h = kFnvOffset;
@@ -244,6 +260,7 @@ Checkpoint read_checkpoint(std::istream& in, uint64_t size, const std::string& n
   fnv(h, s.positions.data(), stream);
   fnv(h, s.displacement.data(), stream);
   fnv(h, s.multipliers.data(), multiplier_stream);
+  fnv(h, s.offsets.data(), offset_stream);
   if (h != stored) throw fail("corrupted (checksum mismatch)");
   // A state that passed its checksum may still hold what no run can continue from (written
   // by hand, or by a foreign tool): every number is checked before a backend sees it.
@@ -251,10 +268,11 @@ Checkpoint read_checkpoint(std::istream& in, uint64_t size, const std::string& n
   if (s.frame < 0) throw fail(fmt::format("the frame is {} (expected >= 0)", s.frame));
   if (version != 1 && !(std::isfinite(s.dt) && s.dt > 0))
     throw fail(fmt::format("the substep length is {} s (expected a finite length > 0)", s.dt));
-  const char* streams[3] = {"position", "displacement", "multiplier"};
-  const char* owners[3] = {"particle", "particle", "spring"};
-  for (int k = 0; k < 3; ++k) {
-    const std::vector<uint8_t>& bytes = k == 0 ? s.positions : k == 1 ? s.displacement : s.multipliers;
+  const char* streams[4] = {"position", "displacement", "multiplier", "solve offset"};
+  const char* owners[4] = {"particle", "particle", "spring", "particle"};
+  const std::vector<uint8_t>* stream_bytes[4] = {&s.positions, &s.displacement, &s.multipliers, &s.offsets};
+  for (int k = 0; k < 4; ++k) {
+    const std::vector<uint8_t>& bytes = *stream_bytes[k];
     const size_t n = bytes.size() / scalar;
     for (size_t i = 0; i < n; ++i) {
       const double v = scalar == 8 ? get<double>(bytes.data() + 8 * i) : double(get<float>(bytes.data() + 4 * i));

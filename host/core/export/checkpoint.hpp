@@ -28,6 +28,9 @@ struct SavedState {
                                         // besides the positions (see velocity_stream)
   std::vector<uint8_t> multipliers;   // 4 scalars per spring: xpbd's carried multipliers
                                       // (State::lambda); empty from a version 1 or 2 file
+  std::vector<uint8_t> offsets;       // 4 scalars per particle: the multigrid solve's offsets,
+                                      // which fabric's predict reads (State::offset); empty for
+                                      // the other solvers and from a version 1 to 3 file
   size_t particles() const { return scalar_bytes ? positions.size() / (4 * size_t(scalar_bytes)) : 0; }
 };
 
