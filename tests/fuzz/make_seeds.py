@@ -6,7 +6,7 @@ tests/fuzz/seeds_pc2/, each file with its expected outcome in the folder's expec
 
 The valid files are written by clothsim itself (`simulate --save-state` on the CPU reference in
 double and on the GPU in float, both solvers, `--export FILE.pc2`, and a run continued from a
-state) on a 3x2 cloth, or derived from them (the older versions 1 and 2), so they are a few hundred bytes (the v3_ seeds were written by a version-3 clothsim; since version 4 a rerun writes version 4 under those names); the others are copies of them with one thing broken
+state) on a 3x2 cloth, or derived from them (the older versions 1, 2 and 3), so they are a few hundred bytes the others are copies of them with one thing broken
 (cut short, a field out of range, a NaN with its checksum made to match, ...); a header field
 out of range needs no more than the header. The GPU state
 needs an OpenGL 4.3 context (llvmpipe will do). Rerun it when a format changes, and commit what
@@ -41,10 +41,22 @@ def patch(data, offset, fmt, value):
     return data[:offset] + struct.pack(fmt, value) + data[offset + struct.calcsize(fmt):]
 
 
+def state_header(state):
+    """A state's header size by its version: 72 (version 1), 80 (2 and 3), 88 (4)."""
+    version = struct.unpack_from('<I', state, 16)[0]
+    return 72 if version == 1 else 80 if version <= 3 else 88
+
+
 def state_stream_offset(state):
-    """Where a version-2 or -3 state's positions start: the header and the two names."""
+    """Where a state's positions start: the header and the two names."""
     scene_len, backend_len = struct.unpack_from('<II', state, 56)
-    return 80 + scene_len + backend_len
+    return state_header(state) + scene_len + backend_len
+
+
+def as_version_3(state):
+    """A version-4 state without solve offsets as version 3 wrote it: the 80-byte header."""
+    assert struct.unpack_from('<I', state, 80)[0] == 0, 'no solve offsets'
+    return with_checksum(patch(state[:80], 16, '<I', 3) + state[88:-8])
 
 
 def state_seeds(cpu, gpu, xpbd, fabric, pc2):
@@ -54,8 +66,9 @@ def state_seeds(cpu, gpu, xpbd, fabric, pc2):
     d_disp = d_pos + 6 * 32            # the 3x2 cloth's displacements follow its positions
     # Versions 1 and 2: the streams without the version-3 multipliers (their count at offset 68,
     # 16 bytes each in floats), version 1 also without the dt (a 72-byte header); checksummed again.
-    multipliers = struct.unpack_from('<I', gpu, 68)[0] * 16
-    older = patch(gpu, 68, '<I', 0)[:len(gpu) - 8 - multipliers]
+    v3_gpu = as_version_3(gpu)
+    multipliers = struct.unpack_from('<I', v3_gpu, 68)[0] * 16
+    older = patch(v3_gpu, 68, '<I', 0)[:len(v3_gpu) - 8 - multipliers]
     v2 = with_checksum(patch(older, 16, '<I', 2))
     v1 = with_checksum(patch(older[:72], 16, '<I', 1) + older[80:])
     # The xpbd state's multipliers (4 doubles per spring) follow its two streams.
@@ -64,9 +77,10 @@ def state_seeds(cpu, gpu, xpbd, fabric, pc2):
     assert springs > 0 and len(xpbd) == x_lambda + springs * 32 + 8, 'the xpbd state carries its multipliers'
     nan = float('nan')
     return [
-        ('v3_double_cpu.state', cpu, 'loads', 'simulate --backend cpu --frames 3 --save-state: 3x2, doubles'),
-        ('v3_float_gpu.state', gpu, 'loads', 'simulate --backend gpu --frames 3 --save-state: 3x2, floats'),
-        ('v3_xpbd_double_cpu.state', xpbd, 'loads',
+        ('v4_double_cpu.state', cpu, 'loads', 'simulate --backend cpu --frames 3 --save-state: 3x2, doubles'),
+        ('v4_float_gpu.state', gpu, 'loads', 'simulate --backend gpu --frames 3 --save-state: 3x2, floats'),
+        ('v3_float_gpu.state', v3_gpu, 'loads', 'the float state as version 3 (80-byte header, no offsets): still read'),
+        ('v4_xpbd_double_cpu.state', xpbd, 'loads',
          f'the same with --set simulation.solver=xpbd: {springs} springs\' multipliers after the streams'),
         ('v4_fabric_double_cpu.state', fabric, 'loads',
          'simulate --backend cpu --frames 3 --set simulation.solver=fabric --save-state: version 4, with the solve offsets'),
@@ -74,7 +88,7 @@ def state_seeds(cpu, gpu, xpbd, fabric, pc2):
         ('v1_float.state', v1, 'loads', 'the float state as version 1 (72-byte header, no dt): still read'),
         ('nan_multiplier.state', with_checksum(patch(xpbd, x_lambda + 32 + 24, '<d', nan)[:-8]),
          'rejected\tthe multiplier of spring 1 has w = nan', 'a NaN multiplier with a matching checksum'),
-        ('multipliers_out_of_range.state', patch(xpbd[:80], 68, '<I', 385),
+        ('multipliers_out_of_range.state', patch(xpbd[:88], 68, '<I', 385),
          'rejected\t385 spring multipliers for 6 particles is out of range', 'more than 64 springs a particle'),
         ('truncated_multipliers.state', xpbd[:-16],
          f'rejected\ttruncated ({len(xpbd) - 16} bytes, a 3x2 cloth of 8-byte scalars needs {len(xpbd)})',
@@ -87,14 +101,14 @@ def state_seeds(cpu, gpu, xpbd, fabric, pc2):
          f'rejected\ttruncated ({len(cpu) - 40} bytes, a 3x2 cloth of 8-byte scalars needs {len(cpu)})',
          'cut inside the displacements'),
         ('trailing_byte.state', gpu + b'\0', 'rejected\thas trailing bytes', 'one byte too many'),
-        ('version_5.state', patch(gpu[:80], 16, '<I', 5), 'rejected\tstate file version 5', 'an unknown version'),
-        ('scalar_6.state', patch(gpu[:80], 20, '<I', 6), 'rejected\tscalar size 6 bytes', 'neither float nor double'),
+        ('version_5.state', patch(gpu[:88], 16, '<I', 5), 'rejected\tstate file version 5', 'an unknown version'),
+        ('scalar_6.state', patch(gpu[:88], 20, '<I', 6), 'rejected\tscalar size 6 bytes', 'neither float nor double'),
         ('grid_4096x4096.state', patch(patch(gpu, 24, '<I', 4096), 28, '<I', 4096),
          f'rejected\ta 4096x4096 cloth of 4-byte scalars needs {f_pos + 2 * 4096 * 4096 * 16 + multipliers + 8}',
          'a legal grid the file is far too short for: refused before 512 MiB are allocated'),
-        ('grid_8192x4096.state', patch(patch(gpu[:80], 24, '<I', 8192), 28, '<I', 4096),
+        ('grid_8192x4096.state', patch(patch(gpu[:88], 24, '<I', 8192), 28, '<I', 4096),
          'rejected\tgrid 8192x4096 is out of range', 'more particles than kMaxParticles'),
-        ('scene_name_5000.state', patch(gpu[:80], 56, '<I', 5000), 'rejected\tname lengths out of range',
+        ('scene_name_5000.state', patch(gpu[:88], 56, '<I', 5000), 'rejected\tname lengths out of range',
          'a name longer than 4096 bytes'),
         ('checksum_mismatch.state', gpu[:f_pos] + b'\x01' + gpu[f_pos + 1:], 'rejected\tchecksum mismatch',
          'a position byte changed, the checksum not'),
