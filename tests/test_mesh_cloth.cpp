@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <set>
+#include <tuple>
 
 #include <fmt/format.h>
 
@@ -87,6 +88,71 @@ TEST_CASE("a grid loaded from an OBJ of quads moves as the grid built from num_w
   CHECK(worst <= 1e-6);
   // And they really moved: the comparison is not of two resting cloths.
   CHECK(test::max_abs_diff(a.snapshot().pos, CpuBackend<double>(grid, gm).snapshot().pos) > 0.1);
+  fs::remove_all(dir);
+}
+
+// Issue 43, item 2: the same grid as an OBJ whose vertices are shuffled (vertex k of the file is
+// grid particle perm[k]) gets the same coarse vertices and sweep colours, compared as positions,
+// and under fabric the same motion: the hierarchy visits particles by rest position.
+TEST_CASE("the same grid as a shuffled OBJ has the same hierarchy and colours and moves alike under fabric",
+          "[mesh][multigrid]") {
+  const fs::path dir = scratch_dir();
+  const int nw = 21, nh = 21, n = nw * nh;
+  const size_t count = size_t(n);
+  std::vector<int> perm(count), slot(count);  // file vertex k is particle perm[k]; particle i is vertex slot[i]
+  for (int k = 0; k < n; ++k) perm[size_t(k)] = int((uint64_t(k) * 7919u + 13u) % uint64_t(n));  // 7919 is prime to 441
+  for (int k = 0; k < n; ++k) slot[size_t(perm[size_t(k)])] = k;
+  {
+    std::ofstream out(dir / "shuffled.obj");
+    const double s = 1.0 / (nw - 1);
+    for (int k = 0; k < n; ++k) out << fmt::format("v {:.17g} {:.17g} {:.17g}\n", (perm[size_t(k)] % nw) * s, 1.0, (perm[size_t(k)] / nw) * s);
+    for (int y = 0; y + 1 < nh; ++y)
+      for (int x = 0; x + 1 < nw; ++x) {
+        const int a = y * nw + x, b = a + 1, c = a + nw, d = c + 1;
+        out << fmt::format("f {} {} {} {}\n", slot[size_t(a)] + 1, slot[size_t(b)] + 1, slot[size_t(d)] + 1, slot[size_t(c)] + 1);
+      }
+  }
+  const std::vector<std::string> fabric{"simulation.solver=\"fabric\"", "cloth.density=0.15", "cloth.ks=5000",
+                                        "simulation.self_collision=false"};
+  std::vector<std::string> grid_sets = fabric;
+  grid_sets.push_back(fmt::format("cloth.pinned=[[0,0],[{},0]]", nw - 1));
+  const Scene grid = test::make_scene(nw, nh, 0, grid_sets);
+  const Scene mesh = parse_scene(
+      fmt::format(R"({{"cloth": {{"mesh": "{}", "thickness": 0.0095, "density": 0.15, "ks": 5000, "pinned_vertices": [{}, {}],
+                     "mass_lumping": "uniform"}}, "simulation": {{"solver": "fabric", "self_collision": false}}}})",
+                  (dir / "shuffled.obj").string(), slot[0], slot[size_t(nw - 1)]),
+      (dir / "scene.json").string());
+  const ClothModel gm = build_cloth(grid), mm = build_cloth(mesh);
+  REQUIRE(mm.count() == n);
+  const Hierarchy gh = build_hierarchy(gm, {5000.0}), mh = build_hierarchy(mm, {5000.0});
+  // A set of particles as the set of their rest positions.
+  auto where = [](const ClothModel& m, auto first, auto last) {
+    std::set<std::tuple<double, double, double>> out;
+    for (auto it = first; it != last; ++it) out.insert({m.initial[*it].x, m.initial[*it].y, m.initial[*it].z});
+    return out;
+  };
+  REQUIRE(gh.levels.size() == mh.levels.size());
+  for (size_t l = 0; l < gh.levels.size(); ++l) {
+    const HierarchyLevel &a = gh.levels[l], &b = mh.levels[l];
+    REQUIRE(a.count == b.count);
+    CHECK(where(gm, gh.particle.begin() + a.first, gh.particle.begin() + a.first + a.count) ==
+          where(mm, mh.particle.begin() + b.first, mh.particle.begin() + b.first + b.count));
+  }
+  REQUIRE(gh.fine_colours() == mh.fine_colours());
+  for (int c = 0; c < gh.fine_colours(); ++c)
+    CHECK(where(gm, gh.fine_order.begin() + gh.fine_colour_start[size_t(c)], gh.fine_order.begin() + gh.fine_colour_start[size_t(c) + 1]) ==
+          where(mm, mh.fine_order.begin() + mh.fine_colour_start[size_t(c)], mh.fine_order.begin() + mh.fine_colour_start[size_t(c) + 1]));
+  CpuBackend<double> a(grid, gm), b(mesh, mm);
+  for (int f = 0; f < 60; ++f) {
+    a.step_frame();
+    b.step_frame();
+  }
+  double worst = 0;
+  for (int i = 0; i < n; ++i)
+    worst = std::max(worst, double(glm::length(glm::dvec3(a.snapshot().pos[size_t(i)]) - glm::dvec3(b.snapshot().pos[size_t(slot[size_t(i)])]))));
+  INFO("largest distance between a grid particle and its mesh vertex after 60 frames: " << worst << " m");
+  CHECK(worst <= 1e-6);
+  CHECK(test::max_abs_diff(a.snapshot().pos, CpuBackend<double>(grid, gm).snapshot().pos) > 0.05);  // it moved
   fs::remove_all(dir);
 }
 
