@@ -167,6 +167,7 @@ void write_checkpoint(const std::string& path, const Checkpoint& c) {
   bool ok = true;
   const std::vector<uint8_t>* parts[] = {&head, &s.positions, &s.displacement, &s.multipliers, &s.offsets};
   for (const std::vector<uint8_t>* part : parts) {
+    if (part->empty()) continue;  // (no null data() to fwrite: a state without offsets has none)
     fnv(h, part->data(), part->size());
     ok = ok && std::fwrite(part->data(), 1, part->size(), f) == part->size();
   }
