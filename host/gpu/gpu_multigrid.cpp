@@ -137,7 +137,6 @@ void GpuPasses::download_multigrid(State<float>& s) {
   const GpuMultigrid& g = *state_.multigrid_;
   const size_t coarse = constants_.hierarchy->coarse_count();
   s.residual = gl::download_vector<Vec4<float>>(g.residuals);
-  s.offset = gl::download_vector<Vec4<float>>(g.offset);
   s.coarse_rhs = gl::download_vector<Vec4<float>>(g.rhs, 0, coarse);
   s.coarse_corr = gl::download_vector<Vec4<float>>(g.corr, 0, coarse);
 }
@@ -147,7 +146,6 @@ void GpuPasses::upload_multigrid(const State<float>& s) {
   GpuMultigrid& g = *state_.multigrid_;
   const size_t coarse = constants_.hierarchy->coarse_count();
   if (s.residual.size() == state_.model_.count() + coarse) g.residuals.upload(0, s.residual.size() * sizeof(glm::vec4), s.residual.data());
-  if (s.offset.size() == size_t(state_.model_.count())) g.offset.upload(0, s.offset.size() * sizeof(glm::vec4), s.offset.data());
   if (s.coarse_rhs.size() == coarse && coarse > 0) g.rhs.upload(0, coarse * sizeof(glm::vec4), s.coarse_rhs.data());
   if (s.coarse_corr.size() == coarse && coarse > 0) g.corr.upload(0, coarse * sizeof(glm::vec4), s.coarse_corr.data());
 }

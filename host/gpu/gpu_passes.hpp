@@ -58,7 +58,8 @@ class GpuPasses {
   // The scene's features alone: which rows a substep runs. Cheap, unlike shape(), which also
   // walks the colours and levels for the counts; the step asks for it per stage.
   uint16_t features() const { return features_of(constants_, uses_contact_list()); }
-  // The multigrid scratch (State::residual, offset, coarse_rhs, coarse_corr), for the pass checks.
+  // The multigrid scratch (State::residual, coarse_rhs, coarse_corr), for the pass checks; the
+  // offsets, which fabric carries between substeps, go with GpuSimulator::upload and download.
   void download_multigrid(State<float>& state);
   void upload_multigrid(const State<float>& state);
   PrefixScan& prefix_scan() { return scan_; }  // for tests of arbitrary lengths

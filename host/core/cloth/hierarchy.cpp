@@ -38,20 +38,24 @@ Graph spring_graph(const ClothModel& m, bool with_bending) {
 // same answer (issue 43, item 2). Positions are compared quantised to a quarter of the shortest
 // spring (a grid's jitter of at most 5 % of its spacing does not reorder a row), z, then y, then
 // x: a grid's own order, row by row (so a grid's hierarchy is what index order gave it); exact
-// positions, then the index, break ties.
-std::vector<uint32_t> canonical_order(const ClothModel& m, const std::vector<uint32_t>& particles) {
+// positions, then the index, break ties. `quantum` is ordering_quantum(m), found once per build.
+double ordering_quantum(const ClothModel& m) {
   double shortest = 0;
   for (const Spring& s : m.springs)
     if (s.rest > 0 && (shortest == 0 || s.rest < shortest)) shortest = s.rest;
-  const double quantum = shortest > 0 ? 0.25 * shortest : 1.0;
-  auto key = [&](uint32_t v) {
+  return shortest > 0 ? 0.25 * shortest : 1.0;
+}
+
+std::vector<uint32_t> canonical_order(const ClothModel& m, double quantum, const std::vector<uint32_t>& particles) {
+  using Key = std::tuple<long long, long long, long long, double, double, double, uint32_t>;
+  std::vector<Key> keys(particles.size());  // each once, not in every comparison
+  for (uint32_t v = 0; v < keys.size(); ++v) {
     const glm::dvec3& p = m.initial[particles[v]];
-    return std::tuple(std::llround(p.z / quantum), std::llround(p.y / quantum), std::llround(p.x / quantum), p.z, p.y,
-                      p.x, v);
-  };
-  std::vector<uint32_t> order(particles.size());
-  for (uint32_t v = 0; v < order.size(); ++v) order[v] = v;
-  std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) { return key(a) < key(b); });
+    keys[v] = {std::llround(p.z / quantum), std::llround(p.y / quantum), std::llround(p.x / quantum), p.z, p.y, p.x, v};
+  }
+  std::sort(keys.begin(), keys.end());
+  std::vector<uint32_t> order(keys.size());
+  for (size_t k = 0; k < keys.size(); ++k) order[k] = std::get<6>(keys[k]);
   return order;
 }
 
@@ -91,7 +95,8 @@ Hierarchy build_hierarchy(const ClothModel& m, const std::vector<double>& ks) {
   Graph graph = spring_graph(m, false);
   std::vector<uint32_t> particles(size_t(m.count()));
   for (uint32_t i = 0; i < particles.size(); ++i) particles[i] = i;
-  colour_vertices(spring_graph(m, true), canonical_order(m, particles), 0, h.fine_order, h.fine_colour_start);
+  const double quantum = ordering_quantum(m);
+  colour_vertices(spring_graph(m, true), canonical_order(m, quantum, particles), 0, h.fine_order, h.fine_colour_start);
   uint32_t finer_base = 0;  // global index of the current level's vertex 0 (unused for the cloth)
   bool cloth_level = true;
   h.fine_parent_start.push_back(0);
@@ -111,7 +116,7 @@ Hierarchy build_hierarchy(const ClothModel& m, const std::vector<double>& ks) {
       taken[v] = 1;
       for (uint32_t u : graph[v]) taken[u] = 1;
     };
-    const std::vector<uint32_t> visit = canonical_order(m, particles);
+    const std::vector<uint32_t> visit = canonical_order(m, quantum, particles);
     for (uint32_t v : visit)
       if (m.pinned[particles[v]]) take(v);
     for (uint32_t v : visit) take(v);
@@ -182,7 +187,7 @@ Hierarchy build_hierarchy(const ClothModel& m, const std::vector<double>& ks) {
     }
     std::vector<uint32_t> coarse_particles(coarse.size());
     for (size_t a = 0; a < coarse.size(); ++a) coarse_particles[a] = particles[coarse[a]];
-    colour_vertices(coarse_graph, canonical_order(m, coarse_particles), base, h.order, level.colour_start);
+    colour_vertices(coarse_graph, canonical_order(m, quantum, coarse_particles), base, h.order, level.colour_start);
     h.levels.push_back(level);
 
     std::vector<uint32_t> next(coarse.size());
