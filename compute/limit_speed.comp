@@ -18,9 +18,8 @@ void main() {
   if (i >= particle_count()) return;
   vec4 p = pos[i], d = disp[i];
   if (p.w == 0.0 || !(length3(d.xyz) > params.max_move)) return;
-  precise vec3 limited = limit_step(d.xyz, params.max_move);
-  precise vec3 start = p.xyz - d.xyz;
-  precise vec3 x = start + limited;
+  vec3 x = p.xyz, moved = d.xyz;
+  limit_speed_of(x, moved, params.max_move);
   pos[i] = vec4(x, p.w);
-  disp[i] = vec4(limited, d.w);
+  disp[i] = vec4(moved, d.w);
 }

@@ -95,6 +95,9 @@ template <class R> void exercise(const char* type) {
   params.max_move = R(0.5);
   expect(speed_clamped(up, params) == up * R(0.5), "speed_clamped to max_move", type);
   expect(limit_step(e, R(1)) == e * R(0.2), "limit_step", type);
+  V lx = e, ld = e;
+  limit_speed_of(lx, ld, R(1));
+  expect(ld == e * R(0.2) && lx == e * R(0.2), "limit_speed_of: back along d to 1 from the start", type);
   tether_to(e, R(1), x, d);
   expect(pin_target(e, up) == V(R(3), R(5), R(0)), "pin_target", type);
   expect(cell_axis(R(-0.5)) == -1, "cell_axis floors", type);

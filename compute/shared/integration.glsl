@@ -19,6 +19,16 @@ SHARED_FN VEC3 limit_step(VEC3 d, REAL max_step) {
   return len > max_step ? limited : d;
 }
 
+// The speed clamp's last word (limit_speed.comp and the reference's limit_speed): a mass at x
+// that a substep moved by d, taken back along d to max_move from where it started.
+SHARED_FN void limit_speed_of(INOUT(VEC3) x, INOUT(VEC3) d, REAL max_move) {
+  PRECISE VEC3 limited = limit_step(d, max_move);
+  PRECISE VEC3 start = x - d;
+  PRECISE VEC3 end = start + limited;
+  x = end;
+  d = limited;
+}
+
 // The speed clamp (simulation.max_speed): a substep's move d no longer than max_move =
 // max_speed * dt (0: no limit), as limit_step shortens it.
 SHARED_FN VEC3 speed_clamped(VEC3 d, PARAMS params) {

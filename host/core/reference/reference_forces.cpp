@@ -153,10 +153,10 @@ template <class R> void limit_speed(const ClothModel&, const Constants<R>& c, St
   for (size_t i = 0; i < s.pos.size(); ++i) {
     const Vec4<R> p = s.pos[i], d = s.disp[i];
     if (p.w == R(0) || !(length3(Vec3<R>(d)) > c.max_move)) continue;
-    const Vec3<R> limited = shared::limit_step(Vec3<R>(d), c.max_move);
-    const Vec3<R> start = Vec3<R>(p) - Vec3<R>(d);
-    s.pos[i] = Vec4<R>(start + limited, p.w);
-    s.disp[i] = Vec4<R>(limited, d.w);
+    Vec3<R> x(p), moved(d);
+    shared::limit_speed_of(x, moved, c.max_move);
+    s.pos[i] = Vec4<R>(x, p.w);
+    s.disp[i] = Vec4<R>(moved, d.w);
   }
 }
 
