@@ -46,12 +46,16 @@ void print_ratios(const Timings& ms, const std::vector<int>& sizes, const std::v
     for (int n : sizes) {
       std::string line;
       for (const char* backend : {"gpu", "cpu"})
-        for (const char* solver : {"xpbd", "multigrid", "fabric"})
-          if (double a = find(backend, solver, n, sc), b = find(backend, "classic", n, sc); a > 0 && b > 0)
-            line += fmt::format("  {} {}/classic {:.2f}", backend, solver, a / b);
-      for (const char* solver : {"classic", "xpbd", "multigrid", "fabric"})
-        if (double g = find("gpu", solver, n, sc), c = find("cpu", solver, n, sc); g > 0 && c > 0)
-          line += fmt::format("  {} gpu/cpu speed {:.2f}x", solver, c / g);
+        for (Solver s : kBenchSolvers) {
+          const char* solver = solver_name(s);
+          const double a = find(backend, solver, n, sc), b = find(backend, "classic", n, sc);
+          if (s != Solver::Classic && a > 0 && b > 0) line += fmt::format("  {} {}/classic {:.2f}", backend, solver, a / b);
+        }
+      for (Solver s : kBenchSolvers) {
+        const char* solver = solver_name(s);
+        const double g = find("gpu", solver, n, sc), c = find("cpu", solver, n, sc);
+        if (g > 0 && c > 0) line += fmt::format("  {} gpu/cpu speed {:.2f}x", solver, c / g);
+      }
       if (!line.empty()) fmt::print("{}x{} self-collision {}:{}\n", n, n, sc ? "on" : "off", line);
     }
 }
@@ -59,7 +63,7 @@ void print_ratios(const Timings& ms, const std::vector<int>& sizes, const std::v
 struct Opts {
   std::vector<int> sizes{32, 64, 128, 256, 512, 1024};
   std::vector<std::string> backends{"gpu", "cpu"};
-  std::vector<std::string> solvers{"classic", "xpbd", "multigrid", "fabric"};
+  std::vector<std::string> solvers = solver_names();
   int frames = 10;
   std::string self_collision = "both", json_path, root;
   double cpu_limit_s = 60;
@@ -145,7 +149,7 @@ void add_bench_command(CLI::App& app, std::function<int()>& run) {
   cmd->add_option("--backend", o->backends, "gpu, cpu or gpu,cpu")->delimiter(',')->capture_default_str();
   cmd->add_option("--solver", o->solvers, "classic, xpbd, multigrid, fabric, or a list: classic,fabric (simulation.solver)")
       ->delimiter(',')
-      ->check(CLI::IsMember({"classic", "xpbd", "multigrid", "fabric"}))
+      ->check(CLI::IsMember(solver_names()))
       ->capture_default_str();
   cmd->add_option("--frames", o->frames, "timed frames per configuration (after 2 warm-up frames)")
       ->check(positive_number())

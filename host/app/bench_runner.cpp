@@ -78,9 +78,15 @@ const char* solver_name(Solver solver) {
 }
 
 Solver solver_of(const std::string& name) {
-  for (Solver s : {Solver::Classic, Solver::Xpbd, Solver::Multigrid, Solver::Fabric})
+  for (Solver s : kBenchSolvers)
     if (name == solver_name(s)) return s;
   throw std::invalid_argument("unknown solver " + name);  // --solver's check lets none through
+}
+
+std::vector<std::string> solver_names() {
+  std::vector<std::string> names;
+  for (Solver s : kBenchSolvers) names.push_back(solver_name(s));
+  return names;
 }
 
 Scene bench_scene(int n, bool self_collision, Solver solver) {

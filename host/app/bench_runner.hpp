@@ -29,6 +29,9 @@ struct BenchResult {
 Scene bench_scene(int n, bool self_collision, Solver solver = Solver::Classic);
 const char* solver_name(Solver solver);  // as the scene key spells it
 Solver solver_of(const std::string& name);  // the inverse of solver_name
+// Every solver bench runs, classic first (the others are timed against it).
+inline constexpr Solver kBenchSolvers[] = {Solver::Classic, Solver::Xpbd, Solver::Multigrid, Solver::Fabric};
+std::vector<std::string> solver_names();  // of kBenchSolvers, in order
 
 class BenchRunner {
  public:
