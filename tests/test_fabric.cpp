@@ -11,6 +11,7 @@
 #include "backend.hpp"
 #include "analysis/static_solve.hpp"
 #include "test_helpers.hpp"
+#include "xpbd_scenes.hpp"
 
 using namespace clothsim;
 
@@ -45,10 +46,7 @@ int half_height_frame(const std::string& solver, int substeps, int frames) {
 // The 1 m cloth of scenes/hang_xpbd.json at n x n under fabric, tethers off, hung from its top
 // corners for 180 frames: the bottom-centre mass's sag, and Newton's for the same springs.
 void check_sag_against_static(int n) {
-  const Scene s = test::make_scene(n, n, 1,
-                                   {"cloth.density=0.15", "cloth.ks=5000", "cloth.damping=0.2",
-                                    fmt::format("cloth.pinned=[[0,{0}],[{0},{0}]]", n - 1), "simulation.max_stretch=10",
-                                    "simulation.self_collision=false", "simulation.solver=\"fabric\""});
+  const Scene s = test::hanging_cloth(n, 5000, "fabric");
   const ClothModel m = build_cloth(s);
   const StaticEquilibrium eq = solve_static_equilibrium(s, m);
   REQUIRE(eq.converged);
