@@ -107,7 +107,7 @@ uniform float u_exposure;  // Appearance::exposure, render --exposure
 // cloth facing the light (irradiance above 1) flat white and hide Bump's weave; this keeps
 // its shading, compressed. Per channel: the brightest highlights desaturate towards white.
 vec3 tone_map(vec3 c) {
-  const float knee = 0.6;
+  const float knee = 0.8;
   vec3 over = max(c - knee, 0.0);
   return min(c, knee) + (1.0 - knee) * (1.0 - exp(-over / (1.0 - knee)));
 }

@@ -30,7 +30,7 @@ std::optional<ShaderKind> parse_shader(const std::string& name);
 // What the user can change about the look (the viewer's Appearance panel).
 struct Appearance {
   ShaderKind shader = ShaderKind::Phong;
-  glm::vec4 color{0.9f, 0.88f, 0.85f, 1.f};
+  glm::vec4 color{0.72f, 0.7f, 0.68f, 1.f};
   float normal_scaling = 2.f;
   float height_scaling = 0.02f;  // metres at height 1
   // Scales the light before the tone map (shaders/lighting.glsl): 2 is one stop brighter.
