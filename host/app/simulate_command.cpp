@@ -1,5 +1,6 @@
 // `clothsim simulate SCENE --frames N [--backend gpu|cpu] [--export FILE.obj|FILE.pc2|DIR/]
-//  [--export-every K] [--export-mesh FILE.obj] [--load-state FILE] [--save-state FILE] [--stats]
+//  [--export-every K] [--export-mesh FILE.obj] [--export-colliders DIR/] [--load-state FILE]
+//  [--save-state FILE] [--stats]
 //  [--intersections-every K] [--stretch-every K]`
 // Every output replaces the file it names only once complete (docs/export.md).
 #include <algorithm>
@@ -14,6 +15,7 @@
 #include "export/frame_export.hpp"
 #include "analysis/intersections.hpp"
 #include "colliders/mesh_collider.hpp"
+#include "export/collider_export.hpp"
 #include "export/output_plan.hpp"
 
 namespace clothsim {
@@ -53,7 +55,7 @@ void print_stats(const Scene& scene, const ClothStats& st, int frames, double wa
 // sequence from `start`, the frame the run begins at.
 OutputPlan plan_outputs(const Scene& scene, ExportKind kind, const std::string& export_path,
                         const std::string& export_mesh, const std::string& load_path, const std::string& save_path,
-                        int64_t start, int frames, int every) {
+                        const std::string& colliders_path, int64_t start, int frames, int every) {
   OutputPlan plan;
   plan.inputs_of(scene);
   plan.input("the state of --load-state", load_path);
@@ -72,6 +74,7 @@ OutputPlan plan_outputs(const Scene& scene, ExportKind kind, const std::string& 
     for (int64_t f = start; f <= start + frames; f += every) names.push_back(fmt::format("frame_{:04d}.obj", f));
     plan.folder("--export", export_path, names);
   }
+  if (!colliders_path.empty()) plan_collider_export(plan, scene, colliders_path, start, frames, every);
   if (!save_path.empty()) plan.file("--save-state", save_path);
   return plan;
 }
@@ -100,7 +103,7 @@ void add_simulate_command(CLI::App& app, std::function<int()>& run) {
     SceneOptions scene;
     int frames = 90;
     std::string backend = "gpu";
-    std::string export_path, export_mesh, load_path, save_path;
+    std::string export_path, export_mesh, load_path, save_path, colliders_path;
     int export_every = 1;
     bool stats = false;
     int intersections_every = 0;
@@ -119,7 +122,10 @@ void add_simulate_command(CLI::App& app, std::function<int()>& run) {
   cmd->add_option("--export-mesh", o->export_mesh,
                   "with --export FILE.pc2: where the mesh goes (default FILE.obj beside it, which is written only "
                   "if absent or already that mesh)");
-  cmd->add_option("--export-every", o->export_every, "with a .pc2 or DIR/ export: write every K-th frame")
+  cmd->add_option("--export-colliders", o->colliders_path,
+                  "DIR/: every mesh collider as it stands at each exported frame, DIR/mesh0/frame_0000.obj, ... "
+                  "(the frames of --export DIR/ or FILE.pc2, or every --export-every-th)");
+  cmd->add_option("--export-every", o->export_every, "with a .pc2 or DIR/ export or --export-colliders: write every K-th frame")
       ->check(positive_number());
   cmd->add_option("--load-state", o->load_path, "continue from a state saved by --save-state")->check(non_empty_path());
   cmd->add_option("--save-state", o->save_path, "save the final state (positions, displacements, time)");
@@ -134,14 +140,19 @@ void add_simulate_command(CLI::App& app, std::function<int()>& run) {
     run = [o]() -> int {
       const ExportKind kind = export_kind(o->export_path);
       const bool sequence = kind == ExportKind::PointCache || kind == ExportKind::ObjSequence;
-      if (o->export_every != 1 && !sequence)
-        throw ExitError(kExitBadInput, "--export-every: needs --export FILE.pc2 or --export DIR/ (an OBJ holds one frame)");
+      const bool colliders = !o->colliders_path.empty();
+      if (o->export_every != 1 && !sequence && !colliders)
+        throw ExitError(kExitBadInput, "--export-every: needs --export FILE.pc2, --export DIR/ or --export-colliders DIR/ "
+                                       "(an OBJ holds one frame)");
       if (!o->export_mesh.empty() && kind != ExportKind::PointCache)
         throw ExitError(kExitBadInput, "--export-mesh: needs --export FILE.pc2 (the mesh the point cache deforms)");
       const Scene scene = o->scene.load();
+      if (colliders && scene.meshes.empty())
+        throw ExitError(kExitBadInput, fmt::format("--export-colliders: {} has no mesh collider (scene key `mesh`) to "
+                                                   "export", scene.source));
       auto plan = [&](int64_t start) {
-        return plan_outputs(scene, kind, o->export_path, o->export_mesh, o->load_path, o->save_path, start, o->frames,
-                            o->export_every);
+        return plan_outputs(scene, kind, o->export_path, o->export_mesh, o->load_path, o->save_path, o->colliders_path,
+                            start, o->frames, o->export_every);
       };
       check_outputs(plan(0));  // before anything is built: a bad output fails at once
       const ClothModel model = build_cloth(scene);
@@ -171,6 +182,19 @@ void add_simulate_command(CLI::App& app, std::function<int()>& run) {
         export_guarded([&] {
           frames = open_frame_export(kind, o->export_path, model, start, o->export_every, backend->snapshot(),
                                      o->export_mesh);
+        });
+      std::unique_ptr<ColliderExport> collider_frames;
+      auto colliders_guarded = [&](auto&& write) {
+        try {
+          write();
+        } catch (const std::runtime_error& e) {
+          throw ExitError(kExitBadInput, fmt::format("--export-colliders {}", e.what()));
+        }
+      };
+      if (colliders)
+        colliders_guarded([&] {
+          collider_frames = std::make_unique<ColliderExport>(scene, o->colliders_path, start, o->export_every);
+          collider_frames->add(start, backend->time());
         });
       Progress progress(frames ? "export frame" : "frame", o->frames);
       // A diverged run stops with the message. A sequence keeps the frames written so far (all
@@ -204,6 +228,8 @@ void add_simulate_command(CLI::App& app, std::function<int()>& run) {
         // written is read back anyway, so its check is waited for: no failed frame is exported.
         stop_if_diverged(backend->take_checks(write));
         if (write) export_guarded([&] { frames->add(frame, backend->snapshot()); });
+        if (collider_frames && collider_frames->wants(frame))
+          colliders_guarded([&] { collider_frames->add(frame, backend->time()); });
         if (o->intersections_every > 0 && f % o->intersections_every == 0) {
           // A line of its own per frame, so a script can collect them (scripts/contact-check).
           progress.finish();  // clears the progress line; update() redraws it
@@ -225,6 +251,7 @@ void add_simulate_command(CLI::App& app, std::function<int()>& run) {
         export_guarded([&] { frames->finish(); });
         fmt::print("wrote {}\n", frames->summary());
       }
+      if (collider_frames) fmt::print("wrote {}\n", collider_frames->summary());
       if (o->stats || kind == ExportKind::Obj) {
         const ClothSnapshot snap = backend->snapshot();
         if (o->stats) print_stats(scene, measure(scene, model, snap, backend->time()), o->frames, wall, *backend);

@@ -1,0 +1,93 @@
+// --export-colliders (collider_export.hpp). A mesh collider moves by translation only (its
+// `motion` keys its origin; docs/model.md, "Mesh colliders"): at time t its vertices are
+// R v + origin(t), R its fixed rotation, v the file's vertex scaled, as the simulation places
+// it for the substep ending at t (set_substep_time evaluates the same keys).
+#include "export/collider_export.hpp"
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <stdexcept>
+#include <utility>
+
+#include <fmt/format.h>
+
+#include "export/output_plan.hpp"
+#include "io/output_file.hpp"
+#include "scene/motion.hpp"
+
+namespace clothsim {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string frame_name(int64_t frame) { return fmt::format("frame_{:04d}.obj", frame); }
+
+void write_collider_obj(const std::string& path, const ColliderMesh& mesh, const glm::dmat3& rotation,
+                        const glm::dvec3& origin, const std::string& key, double time) {
+  PendingFile out(path);  // replaced only once complete (io/output_file.hpp)
+  std::FILE* f = std::fopen(out.temp().c_str(), "w");
+  if (!f) throw std::runtime_error(fmt::format("{}: cannot open for writing ({})", path, std::strerror(errno)));
+  struct Closer {
+    std::FILE*& f;
+    ~Closer() { if (f) std::fclose(f); }
+  } closer{f};
+  fmt::print(f, "# clothsim collider {} at t = {:.9g} s, {} triangles, scene coordinates\n", key, time,
+             mesh.surface.triangles.size());
+  for (const glm::dvec3& v : mesh.surface.positions) {
+    const glm::dvec3 p = rotation * v + origin;
+    fmt::print(f, "v {:.9g} {:.9g} {:.9g}\n", p.x, p.y, p.z);
+  }
+  for (const glm::uvec3& t : mesh.surface.triangles) fmt::print(f, "f {} {} {}\n", t.x + 1, t.y + 1, t.z + 1);
+  const bool ok = !std::ferror(f);
+  const bool closed = std::fclose(std::exchange(f, nullptr)) == 0;
+  if (!ok || !closed) throw std::runtime_error(fmt::format("{}: write failed", path));
+  out.commit();
+}
+
+}  // namespace
+
+std::string collider_folder(const std::string& dir, size_t k) {
+  std::string base = dir;
+  while (base.size() > 1 && base.back() == '/') base.pop_back();
+  return (fs::path(base) / fmt::format("mesh{}", k)).string();
+}
+
+void plan_collider_export(OutputPlan& plan, const Scene& scene, const std::string& dir, int64_t start, int frames,
+                          int every) {
+  std::vector<std::string> names;
+  for (int64_t f = start; f <= start + frames; f += every) names.push_back(frame_name(f));
+  for (size_t k = 0; k < scene.meshes.size(); ++k) plan.folder("--export-colliders", collider_folder(dir, k), names);
+}
+
+ColliderExport::ColliderExport(const Scene& scene, const std::string& dir, int64_t start, int every)
+    : scene_(scene), dir_(dir), start_(start), every_(every) {
+  while (dir_.size() > 1 && dir_.back() == '/') dir_.pop_back();
+  for (size_t k = 0; k < scene.meshes.size(); ++k) {
+    meshes_.push_back(load_collider_mesh(scene, k));
+    const std::string folder = collider_folder(dir, k);
+    std::error_code ec;
+    fs::create_directories(folder, ec);
+    if (ec || !fs::is_directory(folder))
+      throw std::runtime_error(fmt::format("{}: cannot create the directory ({})", folder, ec.message()));
+  }
+}
+
+void ColliderExport::add(int64_t frame, double time) {
+  for (size_t k = 0; k < meshes_.size(); ++k) {
+    const MeshColliderParams& p = scene_.meshes[k];
+    const glm::dvec3 origin = p.motion ? interpolate(p.motion->keyframes, time) : p.origin;
+    write_collider_obj((fs::path(collider_folder(dir_, k)) / frame_name(frame)).string(), *meshes_[k],
+                       collider_rotation(p), origin, mesh_key(scene_, k), time);
+  }
+  if (written_++ == 0) first_ = frame;
+  last_ = frame;
+}
+
+std::string ColliderExport::summary() const {
+  return fmt::format("{} collider{} x {} frame{} ({}/mesh*/frame_{:04d}.obj ... frame_{:04d}.obj)", meshes_.size(),
+                     meshes_.size() == 1 ? "" : "s", written_, written_ == 1 ? "" : "s", dir_, first_, last_);
+}
+
+}  // namespace clothsim

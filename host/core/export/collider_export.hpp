@@ -1,0 +1,46 @@
+// --export-colliders DIR/ (docs/export.md, "Colliders"): every mesh collider of the scene as it
+// stands at each exported frame, DIR/mesh0/frame_NNNN.obj, DIR/mesh1/..., in scene coordinates
+// and numbered like --export DIR/'s frames, so that a cloth's point cache and the bodies it
+// drapes over play back together in Blender or any tool that reads OBJ sequences.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "colliders/mesh_collider.hpp"
+
+namespace clothsim {
+
+class OutputPlan;
+
+// The folder of mesh collider k in `dir` ("DIR/mesh0").
+std::string collider_folder(const std::string& dir, size_t k);
+
+// Adds the files the export will write to `plan`: frames start, start + every, ... up to
+// start + frames, in each mesh collider's folder.
+void plan_collider_export(OutputPlan& plan, const Scene& scene, const std::string& dir, int64_t start, int frames,
+                          int every);
+
+class ColliderExport {
+ public:
+  // Loads the scene's mesh colliders (already built for the run: shared) and creates the
+  // folders. Throws std::runtime_error naming a folder that cannot be created.
+  ColliderExport(const Scene& scene, const std::string& dir, int64_t start, int every);
+  bool wants(int64_t frame) const { return frame >= start_ && (frame - start_) % every_ == 0; }
+  // Writes every collider at simulated time `time` (s) as frame `frame`.
+  void add(int64_t frame, double time);
+  std::string summary() const;
+
+ private:
+  const Scene& scene_;
+  std::string dir_;
+  int64_t start_;
+  int every_;
+  std::vector<std::shared_ptr<const ColliderMesh>> meshes_;
+  int written_ = 0;
+  int64_t first_ = 0, last_ = 0;
+};
+
+}  // namespace clothsim
