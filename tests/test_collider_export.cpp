@@ -53,7 +53,7 @@ void write_scene(const fs::path& dir) {
 
 }  // namespace
 
-TEST_CASE("--export-colliders writes each mesh collider where it stands at each exported frame", "[export][cli]") {
+TEST_CASE("simulate --export-colliders writes each mesh collider where it stands at each exported frame", "[export][cli]") {
   test::TempDir dir("collider_export", "frames");
   write_scene(dir.path);
   const std::string scene = (dir.path / "s.json").string(), out = (dir.path / "out/").string();
@@ -80,7 +80,7 @@ TEST_CASE("--export-colliders writes each mesh collider where it stands at each 
   CHECK_FALSE(fs::exists(dir.path / "out" / "mesh0" / "frame_0005.obj"));
 }
 
-TEST_CASE("--export-colliders follows the rules of every output: exit 2 before the run", "[export][cli]") {
+TEST_CASE("simulate --export-colliders follows the rules of every output: exit 2 before the run", "[export][cli]") {
   test::TempDir dir("collider_export", "rules");
   write_scene(dir.path);
   const std::string scene = (dir.path / "s.json").string();
