@@ -41,5 +41,8 @@ void main() {
     precise vec3 e = (position_of(j).xyz + offset_of(j)) - xi;
     f = add_spring_force(f, e, uintBitsToFloat(entry.y), stiffness(mat, type));
   }
+  vec4 rel;
+  vec3 origin;
+  if (ATTACHMENTS && attachment_of(i, rel, origin)) f = add_anchor_pull(f, xi, rel.xyz, origin, rel.w);
   residual[i] = vec4(f, mass);
 }

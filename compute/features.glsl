@@ -30,6 +30,9 @@
 #ifndef WIND_ENABLED
 #define WIND_ENABLED (params.wind_enabled != 0u)
 #endif
+#ifndef ATTACHMENTS
+#define ATTACHMENTS true
+#endif
 #ifndef MULTIGRID_SOLVER
 #define MULTIGRID_SOLVER (params.multigrid != 0u)
 #endif

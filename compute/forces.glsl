@@ -6,6 +6,7 @@
 #define CLOTHSIM_FORCES_GLSL
 
 #include "particle_views.glsl"
+#include "features.glsl"
 #include "shared/springs.glsl"
 
 vec3 add_spring(vec3 f, vec3 xi, int j, float rest, float k_spring) {
@@ -23,6 +24,10 @@ vec3 spring_force(int i, vec3 xi, Material mat, float mass) {
     if (!type_enabled(mat, type)) continue;
     f = add_spring(f, xi, int(entry.x & 0x3FFFFFFFu), uintBitsToFloat(entry.y), stiffness(mat, type));
   }
+  // An attachment's pull, after the springs (accumulate_forces in reference_forces.cpp).
+  vec4 rel;
+  vec3 origin;
+  if (ATTACHMENTS && attachment_of(i, rel, origin)) f = add_anchor_pull(f, xi, rel.xyz, origin, rel.w);
   return f;
 }
 

@@ -106,7 +106,7 @@ using uint = uint32_t;
 // The rest of the cloth model (ClothModel in host/core/cloth/cloth.hpp), static over a run.
 #define TEXTURE_GATHER_START 16      // R32UI, per particle + 1: its first entry in the gather list
 #define TEXTURE_GATHER 17            // RGBA32UI, per gather entry: x the other end | type << 30, y the rest length's bits, z the spring, w 1 if the particle is its i end
-#define TEXTURE_PARTICLES 18         // RGBA32F, per particle: x mass (kg), y its cloth's material index
+#define TEXTURE_PARTICLES 18         // RGBA32F, per particle: x mass (kg), y its cloth's material index, z its attachment's collider (kind + 4 index, 0 none)
 #define TEXTURE_MATERIALS 19         // RGBA32F, MATERIAL_TEXELS per cloth (MaterialTexels)
 #define TEXTURE_CORNER_START 20      // R32UI, per particle + 1: its first entry in the corner list
 #define TEXTURE_CORNER_TRIANGLES 21  // R32UI, per corner entry: a triangle around the particle (ascending)
@@ -118,6 +118,9 @@ using uint = uint32_t;
 // The same buffer as TEXTURE_MESHES as RGBA32I, for MeshCollider's integers (dims): read through
 // the float view they would be denormal floats, which a driver may flush to zero (AMD and Intel do).
 #define TEXTURE_MESHES_INT 35        // RGBA32I, MESH_TEXELS per MeshCollider
+// cloth.attachments (Constants::attach): per particle xyz its start position less its collider's
+// start origin, w the stiffness (0: none); the collider's code is the particle texel's z.
+#define TEXTURE_ATTACHMENTS 36       // RGBA32F, per particle (1 texel without attachments)
 // The multigrid hierarchy (Hierarchy in host/core/cloth/hierarchy.hpp), static over a run, and the views of its scratch.
 #define TEXTURE_MG_VERTICES 27       // RGBA32UI, per coarse vertex + 1: x its particle, y its first child, z its first parent, w its first spring (entries of TEXTURE_MG_LISTS)
 #define TEXTURE_MG_LISTS 28          // RGBA32UI, MultigridEntry: the children, then the parents, the springs, the particles' parents

@@ -28,11 +28,27 @@ layout(binding = TEXTURE_MULTIPLIERS) uniform samplerBuffer multipliers_view;
 layout(binding = TEXTURE_MESHES) uniform samplerBuffer meshes_view;
 layout(binding = TEXTURE_MESHES_INT) uniform isamplerBuffer meshes_int_view;
 layout(binding = TEXTURE_SDF) uniform samplerBuffer sdf_view;
+layout(binding = TEXTURE_ATTACHMENTS) uniform samplerBuffer attachments_view;
 
 vec4 position_of(int i) { return texelFetch(positions_view, i); }
 vec4 displacement_of(int i) { return texelFetch(displacement_view, i); }
 float mass_of(int i) { return texelFetch(particles_view, i).x; }
 int material_index_of(int i) { return int(texelFetch(particles_view, i).y); }
+
+// Particle i's attachment (Constants::attach; docs/model.md, "Attachments"): false if it has
+// none; else xyz of `rel` its start position less its collider's start origin, w the stiffness,
+// and `origin` the collider's origin at the substep's end (Constants::attached_origin).
+bool attachment_of(int i, out vec4 rel, out vec3 origin) {
+  origin = vec3(0.0);
+  rel = texelFetch(attachments_view, i);
+  if (rel.w == 0.0) return false;
+  uint code = uint(texelFetch(particles_view, i).z), k = code >> 2;
+  if ((code & 3u) == 1u) origin = texelFetch(spheres_view, int(k) * SPHERE_TEXELS).xyz;
+  else if ((code & 3u) == 2u) origin = texelFetch(planes_view, int(k) * PLANE_TEXELS).xyz;
+  else origin = vec3(texelFetch(meshes_view, int(k) * MESH_TEXELS).w, texelFetch(meshes_view, int(k) * MESH_TEXELS + 1).w,
+                     texelFetch(meshes_view, int(k) * MESH_TEXELS + 2).w);
+  return true;
+}
 
 // One cloth's material (MaterialTexels in layout.glsl, MaterialC in host/core/reference/reference.hpp).
 struct Material {

@@ -45,6 +45,13 @@ void main() {
     f = add_spring_pull(f, n, len, rest, k);
     add_spring_hessian(hess, n, sa, sd);
   }
+  // An attachment: its pull and its block k I (docs/model.md, "Attachments").
+  vec4 rel;
+  vec3 origin;
+  if (ATTACHMENTS && attachment_of(i, rel, origin)) {
+    f = add_anchor_pull(f, x, rel.xyz, origin, rel.w);
+    add_spring_hessian(hess, vec3(0.0), 0.0, rel.w);
+  }
   vec3 step;
   uint limit_last = first;
   if (solve3(hess, f, step)) {

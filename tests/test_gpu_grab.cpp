@@ -149,11 +149,12 @@ TEST_CASE("the passes compile in what each scene can reach, and no more", "[gpu]
     const Scene s = load_scene(test::source_path("scenes/" + name + ".json"), sets);
     return ShaderFeatures::of(make_constants<float>(s, build_cloth(s)));
   };
-  // spheres, planes, meshes, a collider moves, Coulomb friction, pins move, multigrid, wind
-  CHECK(features("living") == ShaderFeatures{true, true, false, true, false, true, false, true});
-  CHECK(features("pinned2") == ShaderFeatures{false, false, false, false, false, false, false, false});
-  CHECK(features("hang_xpbd") == ShaderFeatures{false, false, false, false, true, false, false, false});
+  // spheres, planes, meshes, a collider moves, Coulomb friction, pins move, multigrid, wind, attachments
+  CHECK(features("living") == ShaderFeatures{true, true, false, true, false, true, false, true, false});
+  CHECK(features("pinned2") == ShaderFeatures{false, false, false, false, false, false, false, false, false});
+  CHECK(features("hang_xpbd") == ShaderFeatures{false, false, false, false, true, false, false, false, false});
   CHECK(features("hang_xpbd", {"simulation.solver=multigrid"}) ==
-        ShaderFeatures{false, false, false, false, true, false, true, false});  // (multigrid takes xpbd's friction)
-  CHECK(features("flag_pole") == ShaderFeatures{false, false, true, false, true, false, false, true});
+        ShaderFeatures{false, false, false, false, true, false, true, false, false});  // (multigrid takes xpbd's friction)
+  CHECK(features("flag_pole") == ShaderFeatures{false, false, true, false, true, false, false, true, false});
+  CHECK(features("cape") == ShaderFeatures{true, false, false, true, true, false, true, false, true});
 }

@@ -40,6 +40,15 @@ SHARED_FN VEC3 add_spring_force(VEC3 f, VEC3 e, REAL rest, REAL k) {
   return sum;
 }
 
+// f plus the pull of an attachment (docs/model.md, "Attachments"): a zero-length spring of
+// stiffness k from x to its anchor, `rel` (the start position less the collider's start origin)
+// plus `origin` (the collider's origin now). Its Hessian is k I.
+SHARED_FN VEC3 add_anchor_pull(VEC3 f, VEC3 x, VEC3 rel, VEC3 origin, REAL k) {
+  PRECISE VEC3 anchor = rel + origin;
+  PRECISE VEC3 r = f + (anchor - x) * k;
+  return r;
+}
+
 // f plus the pull k (len - rest) n of a spring along its unit direction n (spring_terms's).
 SHARED_FN VEC3 add_spring_pull(VEC3 f, VEC3 n, REAL len, REAL rest, REAL k) {
   PRECISE REAL magnitude = k * (len - rest);

@@ -54,7 +54,7 @@ size_t GpuState::buffer_bytes() const {
   for (const gl::Buffer* b : {&positions_, &displacement_, &forces_, &normals_, &springs_, &spheres_, &planes_,
                               &step_params_, &substep_control_, &positions_out_, &cell_count_, &cell_start_, &cell_entries_,
                               &sorted_positions_, &tethers_, &wind_forces_, &anchors_, &gather_start_, &gather_,
-                              &particles_, &materials_, &corner_start_, &corner_triangles_, &triangles_, &rest_positions_,
+                              &particles_, &materials_, &corner_start_, &corner_triangles_, &triangles_, &rest_positions_, &attachments_,
                               &multipliers_, &meshes_, &sdf_, &stretch_control_, &contacts_})
     total += b->size();
   if (!multigrid_) return total;
@@ -139,6 +139,7 @@ void GpuState::bind_all() const {
   sorted_positions_view_.bind(TEXTURE_SORTED_POSITIONS);
   tethers_view_.bind(TEXTURE_TETHERS);
   rest_positions_view_.bind(TEXTURE_REST_POSITIONS);
+  attachments_view_.bind(TEXTURE_ATTACHMENTS);
   multipliers_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_MULTIPLIERS);
   multipliers_view_.bind(TEXTURE_MULTIPLIERS);
   meshes_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_MESHES);

@@ -71,6 +71,7 @@ class GpuState {
   gl::Buffer gather_start_{"gather start"}, gather_{"gather"}, particles_{"particles"}, materials_{"materials"};
   gl::Buffer corner_start_{"corner start"}, corner_triangles_{"corner triangles"}, triangles_{"triangles"};
   gl::Buffer rest_positions_{"rest positions"};
+  gl::Buffer attachments_{"attachments"};  // Constants::attach (one texel of zeros without)
   gl::Buffer multipliers_{"multipliers"};  // xpbd: per spring, its direction and carried lambda
   // Mesh colliders: MeshCollider per mesh (rewritten per substep when one moves), and every
   // mesh's field, uploaded once (sdf_source_: the Constants::sdf it holds).
@@ -87,6 +88,7 @@ class GpuState {
   gl::BufferTexture planes_view_{"planes view"}, cell_start_view_{"cell start view"};
   gl::BufferTexture sorted_positions_view_{"sorted positions view"}, tethers_view_{"tethers view"};
   gl::BufferTexture rest_positions_view_{"rest positions view"};
+  gl::BufferTexture attachments_view_{"attachments view"};
   gl::BufferTexture multipliers_view_{"multipliers view"};
   gl::BufferTexture meshes_view_{"mesh colliders view"}, sdf_view_{"mesh fields view"};
   // The same buffer as integers (TEXTURE_MESHES_INT): MeshCollider::dims, which the float view could flush.

@@ -103,12 +103,20 @@ void GpuState::upload_materials(const Constants<float>& c) {
   for (const MaterialC<float>& mat : c.materials)
     materials.push_back({glm::vec4(mat.ks, mat.ks_bending, mat.alpha, mat.alpha_bending),
                          glm::vec4(mat.keep_velocity, float(mat.enabled[0]), float(mat.enabled[1]), float(mat.enabled[2]))});
+  // z: the particle's attachment's collider (kind + 4 index, exact in a float), 0 for none.
   std::vector<glm::vec4> particles;
-  for (size_t i = 0; i < c.mass.size(); ++i) particles.push_back({c.mass[i], float(model_.material[i]), 0.f, 0.f});
+  for (size_t i = 0; i < c.mass.size(); ++i)
+    particles.push_back({c.mass[i], float(model_.material[i]),
+                         c.has_attachments() ? float(c.attach_collider[i]) : 0.f, 0.f});
   gl::upload_vector(materials_, materials, GL_DYNAMIC_DRAW);
   gl::upload_vector(particles_, particles, GL_DYNAMIC_DRAW);
   materials_view_.attach(materials_, GL_RGBA32F);
   particles_view_.attach(particles_, GL_RGBA32F);
+  // The attachments' anchors and stiffness (a live edit may change a stiffness).
+  std::vector<glm::vec4> attach(c.attach.begin(), c.attach.end());
+  if (attach.empty()) attach.resize(1);
+  gl::upload_vector(attachments_, attach, GL_DYNAMIC_DRAW);
+  attachments_view_.attach(attachments_, GL_RGBA32F);
 }
 
 uint64_t GpuState::stretch_settling_passes() const {

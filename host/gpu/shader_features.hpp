@@ -23,6 +23,7 @@ struct ShaderFeatures {
   bool pins_moving = true;  // cloth.pinned_motion
   bool multigrid = true;    // the multigrid solver (predict's offsets, no multipliers, no tethers)
   bool wind = true;         // the wind (advance and predict read compute_wind_forces' output)
+  bool attachments = true;  // cloth.attachments (the forces and the multigrid solve read them)
 
   // What a run with these constants can reach.
   static ShaderFeatures of(const Constants<float>& c) {
@@ -37,6 +38,7 @@ struct ShaderFeatures {
     f.pins_moving = c.moving_pins();
     f.multigrid = c.multigrid;
     f.wind = c.wind_enabled;
+    f.attachments = c.has_attachments();
     return f;
   }
 
@@ -46,7 +48,7 @@ struct ShaderFeatures {
     return {{"COLLIDE_SPHERES", b(spheres)}, {"COLLIDE_PLANES", b(planes)}, {"COLLIDE_MESHES", b(meshes)},
             {"COLLIDERS_MOVE", b(moving)},   {"COULOMB_FRICTION", b(coulomb)},
             {"PINS_MOVE", b(pins_moving)},   {"MULTIGRID_SOLVER", b(multigrid)},
-            {"WIND_ENABLED", b(wind)}};
+            {"WIND_ENABLED", b(wind)},       {"ATTACHMENTS", b(attachments)}};
   }
 
   bool operator==(const ShaderFeatures&) const = default;

@@ -5,6 +5,8 @@
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
+#include <glm/vector_relational.hpp>
+#include <fmt/format.h>
 
 #include "colliders/mesh_collider.hpp"
 #include "scene/motion.hpp"
@@ -62,6 +64,53 @@ template <class R> void make_timeline(const Scene& scene, const ClothModel& mode
     if (tl.planes[k]) set_xyz(c.control.planes[k].point, interpolate(*tl.planes[k], 0.0));
   for (size_t k = 0; k < tl.meshes.size(); ++k)
     if (tl.meshes[k]) set_mesh_origin(c.control.meshes[k], Vec3<R>(interpolate(*tl.meshes[k], 0.0)));
+}
+
+// cloth.attachments: which particles follow which collider, and by how much (Constants::attach).
+template <class R> void make_attachments(const Scene& scene, const ClothModel& model, Constants<R>& c) {
+  const auto cloths = scene.cloths();
+  bool any = false;
+  for (const ClothParams* p : cloths) any = any || !p->attachments.empty();
+  if (!any) return;
+  c.attach.assign(size_t(model.count()), Vec4<R>(0));
+  c.attach_collider.assign(size_t(model.count()), 0u);
+  const bool array = cloths.size() > 1;
+  for (size_t part = 0; part < cloths.size(); ++part) {
+    const ClothPart& cp = model.parts[part];
+    for (size_t k = 0; k < cloths[part]->attachments.size(); ++k) {
+      const AttachmentParams& a = cloths[part]->attachments[k];
+      const ColliderRef ref = *find_collider(scene, a.collider);  // the loader checked it
+      glm::dvec3 origin;  // the collider's origin at t = 0
+      if (ref.kind == 1) {
+        const SphereParams& sp = scene.spheres[ref.index];
+        origin = sp.motion ? interpolate(sp.motion->keyframes, 0.0) : sp.origin;
+      } else if (ref.kind == 2) {
+        const PlaneParams& pl = scene.planes[ref.index];
+        origin = pl.motion ? interpolate(pl.motion->keyframes, 0.0) : pl.point;
+      } else {
+        const MeshColliderParams& me = scene.meshes[ref.index];
+        origin = me.motion ? interpolate(me.motion->keyframes, 0.0) : me.origin;
+      }
+      auto attach = [&](uint32_t i) {
+        if (model.pinned[i]) return;  // a pin stays a pin
+        c.attach[i] = Vec4<R>(Vec3<R>(model.initial[i] - origin), R(a.stiffness));
+        c.attach_collider[i] = uint32_t(ref.kind) + 4u * uint32_t(ref.index);
+      };
+      const std::string key = fmt::format("{}.attachments[{}]", array ? fmt::format("cloth[{}]", part) : "cloth", k);
+      for (size_t v = 0; v < a.vertices.size(); ++v) {
+        if (a.vertices[v] < 0 || uint32_t(a.vertices[v]) >= cp.count)
+          throw SceneError(fmt::format("{}: {}.vertices[{}]: vertex {} is out of range: the cloth has {} vertices "
+                                       "(0 to {})",
+                                       scene.source, key, v, a.vertices[v], cp.count, cp.count - 1));
+        attach(cp.first + uint32_t(a.vertices[v]));
+      }
+      if (a.box)
+        for (uint32_t i = cp.first; i < cp.first + cp.count; ++i)
+          if (glm::all(glm::greaterThanEqual(model.initial[i], a.box->min)) &&
+              glm::all(glm::lessThanEqual(model.initial[i], a.box->max)))
+            attach(i);
+    }
+  }
 }
 
 // Each mesh collider's field, appended to one array the backends share (GPU: one buffer).
@@ -200,6 +249,7 @@ Constants<R> make_constants(const Scene& scene, const ClothModel& model, std::sh
   make_meshes(scene, c);
   make_wind(scene, c);
   make_timeline(scene, model, c);
+  make_attachments(scene, model, c);
   // Each plane's front: the side the cloth's rest centre is on, where the plane is at t = 0.
   glm::dvec3 centre(0.0);
   for (auto& p : model.initial) centre += p;

@@ -117,12 +117,26 @@ template <class R> struct Constants : layout::StepParamsT<R> {
   // Moving pins: every pinned mass is at anchor + pin_offset at the end of each substep.
   // anchors: per particle, xyz the start position, w 1 for a pinned mass; empty without pinned_motion.
   std::vector<Vec4<R>> anchors;
+  // cloth.attachments (docs/model.md, "Attachments"): per particle, xyz its start position less
+  // its collider's origin at t = 0, w the stiffness (0: not attached), and the collider as
+  // kind + 4 index (kind 1 sphere, 2 plane, 3 mesh; 0 none). Both empty without attachments.
+  std::vector<Vec4<R>> attach;
+  std::vector<uint32_t> attach_collider;
   Timeline timeline;
   const layout::StepParamsT<R>& params() const { return *this; }  // the block, as uploaded
   bool has_colliders() const {
     return !control.spheres.empty() || !control.planes.empty() || !control.meshes.empty();
   }
   bool moving_pins() const { return !anchors.empty(); }
+  bool has_attachments() const { return !attach.empty(); }
+  // Where particle i's collider's origin is at the substep's end (attach_collider[i] != 0).
+  Vec3<R> attached_origin(size_t i) const {
+    const uint32_t code = attach_collider[i], k = code >> 2;
+    if ((code & 3u) == 1u) return Vec3<R>(control.spheres[k].origin_radius);
+    if ((code & 3u) == 2u) return Vec3<R>(control.planes[k].point);
+    const auto& m = control.meshes[k];
+    return Vec3<R>(m.row0.w, m.row1.w, m.row2.w);
+  }
   bool enabled(const Spring& s) const { return materials[s.material].enabled[int(s.type)]; }
   // Colour c of `m` runs at all: its type is enabled in some cloth (a colour is of one type).
   bool colour_enabled(const ClothModel& m, int c) const {

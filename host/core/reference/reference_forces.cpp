@@ -53,6 +53,8 @@ template <class R> void accumulate_forces(const ClothModel& m, const Constants<R
       const R k = c.materials[sp.material].stiffness(sp.type);
       f = shared::add_spring_force(f, Vec3<R>(s.pos[j]) - xi, rest, k);
     }
+    if (c.has_attachments() && c.attach[i].w != R(0))  // after the springs, as forces.glsl adds it
+      f = shared::add_anchor_pull(f, xi, Vec3<R>(c.attach[i]), c.attached_origin(i), c.attach[i].w);
     if (c.wind_enabled) f += Vec3<R>(s.wind[i]);  // after the springs, as advance.comp adds it
     s.force[i] = Vec4<R>(f, R(0));
   }

@@ -111,6 +111,8 @@ template <class R> void compute_residuals(const ClothModel& m, const Constants<R
       const Vec3<R> e = (Vec3<R>(s.pos[j]) + Vec3<R>(s.offset[j])) - xi;
       f = shared::add_spring_force(f, e, R(sp.rest), c.materials[sp.material].stiffness(sp.type));
     }
+    if (c.has_attachments() && c.attach[i].w != R(0))
+      f = shared::add_anchor_pull(f, xi, Vec3<R>(c.attach[i]), c.attached_origin(i), c.attach[i].w);
     s.residual[i] = Vec4<R>(f, c.mass[i]);
   }
 }
@@ -202,6 +204,11 @@ template <class R> void relax_vertices(const ClothModel& m, const Constants<R>& 
       if (!taut) continue;
       f = shared::add_spring_pull(f, n, len, R(sp.rest), k_s);
       add_spring_hessian(hess, n, sa, sd);
+    }
+    // An attachment: its pull and its block k I (docs/model.md, "Attachments").
+    if (c.has_attachments() && c.attach[i].w != R(0)) {
+      f = shared::add_anchor_pull(f, x, Vec3<R>(c.attach[i]), c.attached_origin(i), c.attach[i].w);
+      add_spring_hessian(hess, Vec3<R>(0), R(0), c.attach[i].w);
     }
     Vec3<R> step;
     if (solve3(hess, f, step)) {

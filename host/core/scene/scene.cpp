@@ -5,6 +5,7 @@
 #include <algorithm>
 
 #include <fmt/format.h>
+#include <glm/vector_relational.hpp>
 #include <nlohmann/json.hpp>
 
 #include "io/input_file.hpp"
@@ -120,6 +121,30 @@ Scene parse_scene(const std::string& text, const std::string& source, const std:
   for (MeshColliderParams& m : s.meshes)
     m.file_path = (file ? std::filesystem::path(source).parent_path() / m.file : std::filesystem::path(m.file))
                       .lexically_normal();
+  // Special case, across sections: an attachment names a collider of the scene, picks some
+  // vertices, and is not for xpbd (whose constraints the attachment's spring would fight).
+  for (size_t i = 0; i <= s.extra_cloths.size(); ++i) {
+    const ClothParams& c = i == 0 ? s.cloth : s.extra_cloths[i - 1];
+    const std::string cloth = array ? fmt::format("cloth[{}]", i) : std::string("cloth");
+    for (size_t k = 0; k < c.attachments.size(); ++k) {
+      const AttachmentParams& a = c.attachments[k];
+      const std::string key = fmt::format("{}.attachments[{}]", cloth, k);
+      if (!find_collider(s, a.collider))
+        throw SceneError(fmt::format("{}: {}.collider: expected a collider of the scene (\"sphere\", \"sphere[1]\", "
+                                     "\"plane[0]\", \"mesh[0]\", ...; it has {} sphere(s), {} plane(s), {} mesh(es)), "
+                                     "got \"{}\"",
+                                     source, key, s.spheres.size(), s.planes.size(), s.meshes.size(), printable(a.collider)));
+      if (a.box && !glm::all(glm::lessThanEqual(a.box->min, a.box->max)))
+        throw SceneError(fmt::format("{}: {}.box: expected min <= max in each of x, y, z", source, key));
+      if (a.vertices.empty() && !a.box)
+        throw SceneError(fmt::format("{}: {}: expected `vertices` or `box` (which vertices follow {})", source, key,
+                                     printable(a.collider)));
+      if (s.simulation.solver == Solver::Xpbd)
+        throw SceneError(fmt::format("{}: {}: attachments need simulation.solver \"classic\", \"multigrid\" or "
+                                     "\"fabric\", got \"xpbd\"",
+                                     source, key));
+    }
+  }
   // Special case, across two rows: XPBD's compliance is exact for one solve per substep (its
   // Lagrange multipliers start at zero every substep); a stiffer xpbd cloth needs more substeps.
   if (s.simulation.solver == Solver::Xpbd && s.simulation.constraint_iterations != 1)
@@ -147,6 +172,30 @@ Scene default_scene(const std::vector<std::string>& overrides) {
     "cloth": {"width": 1.0, "height": 1.0, "num_width_points": 50, "num_height_points": 50,
               "thickness": 0.0095, "orientation": 0, "pinned": [[0, 0], [49, 0]]}})";
   return parse_scene(kPinned2, "<built-in pinned2>", overrides);
+}
+
+std::optional<ColliderRef> find_collider(const Scene& scene, const std::string& key) {
+  const struct {
+    const char* name;
+    int kind;
+    size_t count;
+  } kinds[] = {{"sphere", 1, scene.spheres.size()}, {"plane", 2, scene.planes.size()}, {"mesh", 3, scene.meshes.size()}};
+  for (const auto& k : kinds) {
+    const std::string name = k.name;
+    if (key.rfind(name, 0) != 0) continue;
+    const std::string rest = key.substr(name.size());
+    size_t index = 0;
+    if (!rest.empty()) {
+      if (rest.size() < 3 || rest.front() != '[' || rest.back() != ']' || rest.size() > 12) return std::nullopt;
+      for (size_t c = 1; c + 1 < rest.size(); ++c) {
+        if (rest[c] < '0' || rest[c] > '9') return std::nullopt;
+        index = index * 10 + size_t(rest[c] - '0');
+      }
+    }
+    if (index >= k.count) return std::nullopt;
+    return ColliderRef{k.kind, index};
+  }
+  return std::nullopt;
 }
 
 std::string scene_to_json(const Scene& s) { return write_params(s).dump(2) + "\n"; }

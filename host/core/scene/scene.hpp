@@ -43,6 +43,20 @@ struct BoxParams {
   bool operator==(const BoxParams&) const = default;
 };
 
+// `cloth.attachments[k]` (docs/model.md, "Attachments"): cloth vertices tied to a collider by a
+// zero-length spring each, to where the vertex started plus the collider's move since t = 0, so
+// they follow the collider (a cape at the shoulders, a waistband). Either `vertices` (0-based:
+// a mesh cloth's in its file's order, a grid's row-major, y * num_width_points + x, the order of
+// the exported OBJ) or `box` (every vertex whose start position is inside) says which, or both.
+struct AttachmentParams {
+  std::string collider;                   // "sphere", "sphere[1]", "plane[0]", "mesh", "mesh[2]"
+  std::vector<int> vertices;
+  std::optional<BoxParams> box;
+  double stiffness = 1000;                // N/m per vertex
+
+  bool operator==(const AttachmentParams&) const = default;
+};
+
 // How a mesh cloth's mass (density x area) is spread over its vertices: `area`, each vertex a
 // third of the area of each triangle around it (a quarter of each quad); `uniform`, the total
 // shared equally, as the CS184 grid does (docs/model.md, "Mesh cloth").
@@ -64,6 +78,7 @@ struct ClothParams {
   double density = 150;   // kg/m^2
   double ks = 5000;       // N/m
   std::optional<MotionParams> pinned_motion;  // keys are offsets [dx, dy, dz] of every pinned mass
+  std::vector<AttachmentParams> attachments;   // vertices that follow a collider
   // A cloth from a mesh file instead of the grid (docs/model.md, "Mesh cloth"). `mesh` is the
   // path as the scene writes it, relative to the scene file; mesh_path is it resolved (set by
   // the loader; empty: the CS184 grid of num_width_points x num_height_points).
@@ -191,5 +206,13 @@ Scene parse_scene(const std::string& json_text, const std::string& source,
 Scene default_scene(const std::vector<std::string>& overrides = {});
 // The scene as JSON in the extended format (loads back to the same Scene).
 std::string scene_to_json(const Scene& scene);
+
+// A collider as a scene names it: "sphere", "sphere[1]", "plane", "plane[0]", "mesh[2]" (no
+// index: the first). kind 1 sphere, 2 plane, 3 mesh; empty when the scene has no such collider.
+struct ColliderRef {
+  int kind = 0;
+  size_t index = 0;
+};
+std::optional<ColliderRef> find_collider(const Scene& scene, const std::string& key);
 
 }  // namespace clothsim

@@ -142,6 +142,9 @@ const Param<ClothParams> kCloth[] = {
     row<&ClothParams::ks>({.key = "ks", .lo = 0, .expected = "a spring constant >= 0 (N/m)", .unit = "N/m",
                            .meaning = "spring constant; bending springs use 0.2 · ks",
                            .widget = drag(10.f, 0.0, 1e7, "%.0f")}),
+    row<&ClothParams::attachments>({.key = "attachments",
+                                    .meaning = "cloth vertices tied to a collider, which they follow (docs/model.md, "
+                                               "\"Attachments\"): a list of objects"}),
     row<&ClothParams::pinned_motion>({.key = "pinned_motion",
                                       .meaning = "moves every pinned mass: keys are offsets [dx, dy, dz] from "
                                                  "its start"}),
@@ -183,6 +186,22 @@ const Param<ClothParams> kCloth[] = {
 const Param<BoxParams> kBox[] = {
     row<&BoxParams::min>({.key = "min", .required = true, .unit = "m", .meaning = "lowest corner (each of x, y, z <= max's)"}),
     row<&BoxParams::max>({.key = "max", .required = true, .unit = "m", .meaning = "highest corner"}),
+};
+
+const Param<AttachmentParams> kAttachment[] = {
+    row<&AttachmentParams::collider>({.key = "collider", .required = true,
+                                      .expected = "a collider of the scene: \"sphere\", \"sphere[1]\", \"plane[0]\", "
+                                                  "\"mesh[0]\", ...",
+                                      .meaning = "the collider the vertices follow: sphere, plane or mesh, with [k] "
+                                                 "for the k-th of several"}),
+    row<&AttachmentParams::vertices>({.key = "vertices",
+                                      .meaning = "0-based indices of the attached vertices (a grid's row-major: "
+                                                 "y · num_width_points + x)"}),
+    row<&AttachmentParams::box>({.key = "box", .meaning = "every vertex whose start position is inside (inclusive)"}),
+    row<&AttachmentParams::stiffness>({.key = "stiffness", .lo = 1e-9, .hi = 1e9,
+                                       .expected = "a stiffness in [1e-9, 1e9] (N/m)", .unit = "N/m",
+                                       .meaning = "of each vertex's zero-length spring to its anchor",
+                                       .widget = drag(10.f, 1e-9, 1e9, "%.1f")}),
 };
 
 const Param<SphereParams> kSphere[] = {
@@ -325,5 +344,6 @@ template <> std::span<const Param<MotionParams>> param_rows<MotionParams>() { re
 template <> std::span<const Param<WindParams>> param_rows<WindParams>() { return kWind; }
 template <> std::span<const Param<GustParams>> param_rows<GustParams>() { return kGust; }
 template <> std::span<const Param<BoxParams>> param_rows<BoxParams>() { return kBox; }
+template <> std::span<const Param<AttachmentParams>> param_rows<AttachmentParams>() { return kAttachment; }
 
 }  // namespace clothsim
