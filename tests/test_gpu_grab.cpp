@@ -111,7 +111,7 @@ TEST_CASE("a live edit that adds colliders compiles the passes for them and runs
   GpuSimulator sim(s, m, test::source_path("compute"));
   CpuBackend<float> cpu(s, m);
   // No collider: none of the collider code is in the passes (shader_features.hpp).
-  CHECK(sim.passes().shader_features() == ShaderFeatures{false, false, false, false, false, false, false, false});
+  CHECK(sim.passes().shader_features() == ShaderFeatures{false, false, false, false, false, false, false, false, false});
   for (int f = 0; f < 5; ++f) {
     sim.step_frame();
     cpu.step_frame();
@@ -122,7 +122,7 @@ TEST_CASE("a live edit that adds colliders compiles the passes for them and runs
       R"(, "sphere": {"origin": [0.5, 0.78, 0.4], "radius": 0.2, "friction": 0.3},)"
       R"( "plane": {"point": [0, 0.55, 0], "normal": [0, 1, 0], "friction": 0.5})");
   sim.set_parameters(edited_scene);
-  CHECK(sim.passes().shader_features() == ShaderFeatures{true, true, false, false, false, false, false, false});
+  CHECK(sim.passes().shader_features() == ShaderFeatures{true, true, false, false, false, false, false, false, false});
   CpuBackend<float> edited(edited_scene, m);
   edited.state() = cpu.state();
   for (int f = 0; f < 25; ++f) {
