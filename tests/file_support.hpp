@@ -1,5 +1,5 @@
 // Small file chores of the tests that check what clothsim writes: a file's bytes, writing one,
-// a folder's names.
+// an OBJ's vertices, a folder's names.
 #pragma once
 
 #include <filesystem>
@@ -7,6 +7,9 @@
 #include <set>
 #include <sstream>
 #include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
 
 namespace clothsim::test {
 
@@ -19,6 +22,21 @@ inline std::string slurp(const std::filesystem::path& p) {
 
 inline void put_file(const std::filesystem::path& p, const std::string& bytes) {
   std::ofstream(p, std::ios::binary) << bytes;
+}
+
+// The `v x y z` lines of an OBJ, in order.
+inline std::vector<glm::dvec3> read_obj_vertices(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  std::vector<glm::dvec3> v;
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.rfind("v ", 0) != 0) continue;
+    std::istringstream ss(line.substr(2));
+    glm::dvec3 p;
+    ss >> p.x >> p.y >> p.z;
+    v.push_back(p);
+  }
+  return v;
 }
 
 // The names in a folder (not recursive).

@@ -3,39 +3,18 @@
 // keyed in time), and the output rules of any export (docs/export.md).
 #include <catch2/catch.hpp>
 
-#include <sys/wait.h>
-
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 
+#include "file_support.hpp"
+#include "output_support.hpp"
 #include "test_helpers.hpp"
 
 using namespace clothsim;
+using test::run_binary;
 namespace fs = std::filesystem;
 
 namespace {
-
-std::vector<glm::dvec3> obj_vertices(const fs::path& path) {
-  std::ifstream in(path);
-  std::vector<glm::dvec3> v;
-  std::string line;
-  while (std::getline(in, line)) {
-    if (line.rfind("v ", 0) != 0) continue;
-    std::istringstream ss(line.substr(2));
-    glm::dvec3 p;
-    ss >> p.x >> p.y >> p.z;
-    v.push_back(p);
-  }
-  return v;
-}
-
-int run_binary(const std::string& args) {
-  const std::string cmd = fmt::format("'{}' {} >/dev/null 2>&1", CLOTHSIM_BINARY, args);
-  const int status = std::system(cmd.c_str());
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
 
 // A 9x9 cloth falling past the pole of scenes/meshes/pole.obj laid along z (90 degrees about
 // x) and lifted 0.2 m over the first 0.2 s; 90 frames/s.
@@ -60,13 +39,13 @@ TEST_CASE("simulate --export-colliders writes each mesh collider where it stands
   REQUIRE(run_binary(fmt::format("simulate '{}' --backend cpu --frames 30 --export-colliders '{}' --export-every 10",
                                  scene, out)) == 0);
   // The file's vertices, rotated by hand: 90 degrees about x takes (x, y, z) to (x, -z, y).
-  const std::vector<glm::dvec3> file = obj_vertices(fs::path(CLOTHSIM_SOURCE_DIR) / "scenes/meshes/pole.obj");
+  const std::vector<glm::dvec3> file = test::read_obj_vertices(fs::path(CLOTHSIM_SOURCE_DIR) / "scenes/meshes/pole.obj");
   REQUIRE(file.size() > 10);
   for (int frame : {0, 10, 20, 30}) {
     const fs::path path = dir.path / "out" / "mesh0" / fmt::format("frame_{:04d}.obj", frame);
     INFO(path.string());
     REQUIRE(fs::exists(path));
-    const std::vector<glm::dvec3> v = obj_vertices(path);
+    const std::vector<glm::dvec3> v = test::read_obj_vertices(path);
     REQUIRE(v.size() == file.size());
     const double t = frame / 90.0;
     const glm::dvec3 origin(0.15, 0.5 + 0.2 * std::min(t / 0.2, 1.0), 0.15);

@@ -15,9 +15,11 @@
 #include "export/checkpoint.hpp"
 #include "export/frame_export.hpp"
 #include "export/point_cache.hpp"
+#include "file_support.hpp"
 #include "test_helpers.hpp"
 
 using namespace clothsim;
+using test::read_obj_vertices;
 namespace fs = std::filesystem;
 
 namespace {
@@ -25,20 +27,6 @@ namespace {
 struct TempDir : test::TempDir {
   explicit TempDir(const std::string& name) : test::TempDir("export", name) {}
 };
-
-std::vector<glm::dvec3> read_obj_vertices(const std::string& path) {
-  std::ifstream in(path);
-  std::vector<glm::dvec3> v;
-  std::string line;
-  while (std::getline(in, line)) {
-    if (line.rfind("v ", 0) != 0) continue;
-    std::istringstream ss(line.substr(2));
-    glm::dvec3 p;
-    ss >> p.x >> p.y >> p.z;
-    v.push_back(p);
-  }
-  return v;
-}
 
 double max_diff(const std::vector<glm::vec3>& a, const std::vector<glm::dvec3>& b) {
   REQUIRE(a.size() == b.size());

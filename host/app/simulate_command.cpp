@@ -171,26 +171,22 @@ void add_simulate_command(CLI::App& app, std::function<int()>& run) {
       };
       // Sequences are written as the frames come: the start state now, then every K-th frame.
       std::unique_ptr<FrameExport> frames;
-      auto export_guarded = [&](auto&& write) {
+      // A write that fails is exit 2 naming the option that asked for it.
+      auto guarded = [&](const char* option, auto&& write) {
         try {
           write();
         } catch (const std::runtime_error& e) {
-          throw ExitError(kExitBadInput, fmt::format("--export {}", e.what()));
+          throw ExitError(kExitBadInput, fmt::format("{} {}", option, e.what()));
         }
       };
+      auto export_guarded = [&](auto&& write) { guarded("--export", write); };
       if (sequence)
         export_guarded([&] {
           frames = open_frame_export(kind, o->export_path, model, start, o->export_every, backend->snapshot(),
                                      o->export_mesh);
         });
       std::unique_ptr<ColliderExport> collider_frames;
-      auto colliders_guarded = [&](auto&& write) {
-        try {
-          write();
-        } catch (const std::runtime_error& e) {
-          throw ExitError(kExitBadInput, fmt::format("--export-colliders {}", e.what()));
-        }
-      };
+      auto colliders_guarded = [&](auto&& write) { guarded("--export-colliders", write); };
       if (colliders)
         colliders_guarded([&] {
           collider_frames = std::make_unique<ColliderExport>(scene, o->colliders_path, start, o->export_every);

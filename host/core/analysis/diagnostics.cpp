@@ -104,31 +104,21 @@ ClothStats measure(const Scene& scene, const ClothModel& m, const ClothSnapshot&
 void write_obj(const std::string& path, const ClothModel& m, const ClothSnapshot& s) {
   // Written under a temporary name beside `path` and renamed once complete (output_file.hpp),
   // so `path` holds the old file or the whole new one, never a part.
-  PendingFile out(path);
-  std::FILE* f = std::fopen(out.temp().c_str(), "w");
-  if (!f) throw std::runtime_error(fmt::format("{}: cannot open for writing ({})", path, std::strerror(errno)));
-  // Closed on every path: fmt::print throws when a write fails (a full disk).
-  struct Closer {
-    std::FILE*& f;
-    ~Closer() { if (f) std::fclose(f); }
-  } closer{f};
-  if (m.is_grid())
-    fmt::print(f, "# clothsim cloth, {}x{} particles, row-major\n", m.nw, m.nh);
-  else
-    fmt::print(f, "# clothsim cloth, {} particles in {} cloth(s), each mesh in its file's vertex order\n", m.count(),
-               m.parts.size());
-  for (auto& p : s.pos) fmt::print(f, "v {:.9g} {:.9g} {:.9g}\n", p.x, p.y, p.z);
-  for (auto& t : m.uv) fmt::print(f, "vt {:.9g} {:.9g}\n", t.x, t.y);
-  for (int i = 0; i < m.count(); ++i) {
-    glm::dvec4 n = i < int(s.normal.size()) ? s.normal[i] : glm::dvec4(0, 1, 0, 0);
-    fmt::print(f, "vn {:.9g} {:.9g} {:.9g}\n", n.x, n.y, n.z);
-  }
-  for (auto& t : m.triangles)
-    fmt::print(f, "f {0}/{0}/{0} {1}/{1}/{1} {2}/{2}/{2}\n", t[0] + 1, t[1] + 1, t[2] + 1);
-  const bool ok = !std::ferror(f);
-  const bool closed = std::fclose(std::exchange(f, nullptr)) == 0;
-  if (!ok || !closed) throw std::runtime_error(fmt::format("{}: write failed", path));
-  out.commit();
+  write_text_file(path, [&](std::FILE* f) {
+    if (m.is_grid())
+      fmt::print(f, "# clothsim cloth, {}x{} particles, row-major\n", m.nw, m.nh);
+    else
+      fmt::print(f, "# clothsim cloth, {} particles in {} cloth(s), each mesh in its file's vertex order\n", m.count(),
+                 m.parts.size());
+    for (auto& p : s.pos) fmt::print(f, "v {:.9g} {:.9g} {:.9g}\n", p.x, p.y, p.z);
+    for (auto& t : m.uv) fmt::print(f, "vt {:.9g} {:.9g}\n", t.x, t.y);
+    for (int i = 0; i < m.count(); ++i) {
+      glm::dvec4 n = i < int(s.normal.size()) ? s.normal[i] : glm::dvec4(0, 1, 0, 0);
+      fmt::print(f, "vn {:.9g} {:.9g} {:.9g}\n", n.x, n.y, n.z);
+    }
+    for (auto& t : m.triangles)
+      fmt::print(f, "f {0}/{0}/{0} {1}/{1}/{1} {2}/{2}/{2}\n", t[0] + 1, t[1] + 1, t[2] + 1);
+  });
 }
 
 }  // namespace clothsim

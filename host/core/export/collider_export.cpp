@@ -4,12 +4,9 @@
 // it for the substep ending at t (set_substep_time evaluates the same keys).
 #include "export/collider_export.hpp"
 
-#include <cerrno>
 #include <cstdio>
-#include <cstring>
 #include <filesystem>
 #include <stdexcept>
-#include <utility>
 
 #include <fmt/format.h>
 
@@ -26,24 +23,15 @@ std::string frame_name(int64_t frame) { return fmt::format("frame_{:04d}.obj", f
 
 void write_collider_obj(const std::string& path, const ColliderMesh& mesh, const glm::dmat3& rotation,
                         const glm::dvec3& origin, const std::string& key, double time) {
-  PendingFile out(path);  // replaced only once complete (io/output_file.hpp)
-  std::FILE* f = std::fopen(out.temp().c_str(), "w");
-  if (!f) throw std::runtime_error(fmt::format("{}: cannot open for writing ({})", path, std::strerror(errno)));
-  struct Closer {
-    std::FILE*& f;
-    ~Closer() { if (f) std::fclose(f); }
-  } closer{f};
-  fmt::print(f, "# clothsim collider {} at t = {:.9g} s, {} triangles, scene coordinates\n", key, time,
-             mesh.surface.triangles.size());
-  for (const glm::dvec3& v : mesh.surface.positions) {
-    const glm::dvec3 p = rotation * v + origin;
-    fmt::print(f, "v {:.9g} {:.9g} {:.9g}\n", p.x, p.y, p.z);
-  }
-  for (const glm::uvec3& t : mesh.surface.triangles) fmt::print(f, "f {} {} {}\n", t.x + 1, t.y + 1, t.z + 1);
-  const bool ok = !std::ferror(f);
-  const bool closed = std::fclose(std::exchange(f, nullptr)) == 0;
-  if (!ok || !closed) throw std::runtime_error(fmt::format("{}: write failed", path));
-  out.commit();
+  write_text_file(path, [&](std::FILE* f) {  // replaced only once complete (io/output_file.hpp)
+    fmt::print(f, "# clothsim collider {} at t = {:.9g} s, {} triangles, scene coordinates\n", key, time,
+               mesh.surface.triangles.size());
+    for (const glm::dvec3& v : mesh.surface.positions) {
+      const glm::dvec3 p = rotation * v + origin;
+      fmt::print(f, "v {:.9g} {:.9g} {:.9g}\n", p.x, p.y, p.z);
+    }
+    for (const glm::uvec3& t : mesh.surface.triangles) fmt::print(f, "f {} {} {}\n", t.x + 1, t.y + 1, t.z + 1);
+  });
 }
 
 }  // namespace

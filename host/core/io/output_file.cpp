@@ -14,6 +14,7 @@
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -156,6 +157,22 @@ void forget_writer(pid_t pid) {
     pid_t mine = pid;
     if (w.compare_exchange_strong(mine, 0)) return;
   }
+}
+
+void write_text_file(const std::string& path, const std::function<void(std::FILE*)>& body) {
+  PendingFile out(path);
+  std::FILE* f = std::fopen(out.temp().c_str(), "w");
+  if (!f) throw std::runtime_error(fmt::format("{}: cannot open for writing ({})", path, std::strerror(errno)));
+  // Closed on every path: fmt::print throws when a write fails (a full disk).
+  struct Closer {
+    std::FILE*& f;
+    ~Closer() { if (f) std::fclose(f); }
+  } closer{f};
+  body(f);
+  const bool ok = !std::ferror(f);
+  const bool closed = std::fclose(std::exchange(f, nullptr)) == 0;
+  if (!ok || !closed) throw std::runtime_error(fmt::format("{}: write failed", path));
+  out.commit();
 }
 
 }  // namespace clothsim

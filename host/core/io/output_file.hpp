@@ -10,6 +10,8 @@
 
 #include <sys/types.h>
 
+#include <cstdio>
+#include <functional>
 #include <string>
 #include <utility>
 
@@ -38,6 +40,11 @@ void remove_temporaries_on_signals();
 // removes the temporaries, so it cannot create one again after. forget_writer when it ended.
 void register_writer(pid_t pid);
 void forget_writer(pid_t pid);
+
+// Writes the text file `path` whole: `body` prints into the stream of a PendingFile's
+// temporary; every write and the close are checked, then the temporary is renamed over `path`.
+// Throws std::runtime_error naming `path` (and nothing is left behind).
+void write_text_file(const std::string& path, const std::function<void(std::FILE*)>& body);
 
 // The temporary of one output: commit() renames it over the destination; destroyed without
 // commit (an exception, an early return), it removes the temporary.
