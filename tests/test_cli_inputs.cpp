@@ -161,6 +161,20 @@ TEST_CASE("out of host memory is exit 2 naming what was allocated and its size",
   CHECK_THAT(r.err, Catch::Contains("MiB"));
 }
 
+TEST_CASE("static refuses a scene with a mesh collider as it does spheres and planes: exit 2", "[cli][inputs]") {
+  TempFile dir("static_mesh");
+  fs::create_directories(dir.path);
+  write(dir.path / "mesh.json",
+        R"({"cloth": {"width": 1, "height": 1, "num_width_points": 3, "num_height_points": 3, "thickness": 0.01,
+            "orientation": 0, "pinned": [[0, 0]]},
+            "mesh": {"file": ")" + (kSource / "scenes/meshes/pole.obj").string() + R"(", "origin": [0, 0, 0]},
+            "simulation": {"self_collision": false}})");
+  const Result r = run({"static", (dir.path / "mesh.json").string()});
+  INFO(r.both());
+  CHECK(r.code == 2);
+  CHECK_THAT(r.err, Catch::Contains("no colliders"));
+}
+
 TEST_CASE("static on a cloth whose every particle is pinned says so and exits 0", "[cli][inputs]") {
   TempFile dir("pinned");
   fs::create_directories(dir.path);

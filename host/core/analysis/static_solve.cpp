@@ -106,7 +106,9 @@ struct Problem {
 
 StaticEquilibrium solve_static_equilibrium(const Scene& scene, const ClothModel& model, double tolerance,
                                            int max_iterations) {
-  if (!scene.spheres.empty() || !scene.planes.empty() || scene.wind || scene.simulation.self_collision)
+  // (A mesh collider and an attachment, whose anchor a collider carries, are colliders too.)
+  if (!scene.spheres.empty() || !scene.planes.empty() || !scene.meshes.empty() || scene.wind ||
+      scene.simulation.self_collision)
     throw std::invalid_argument("solve_static_equilibrium: only springs, pins and gravity (no colliders, wind or "
                                 "self-collision)");
   const Problem p(scene, model);
