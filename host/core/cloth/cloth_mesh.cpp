@@ -95,11 +95,8 @@ PartSprings append_mesh(ClothModel& m, const Scene& scene, const ClothParams& p,
     pinned[v] = 1;
   }
   if (p.pinned_box)
-    for (uint32_t v = 0; v < n; ++v) {
-      const glm::dvec3& q = x[v];
-      if (glm::all(glm::greaterThanEqual(q, p.pinned_box->min)) && glm::all(glm::lessThanEqual(q, p.pinned_box->max)))
-        pinned[v] = 1;
-    }
+    for (uint32_t v = 0; v < n; ++v)
+      if (p.pinned_box->contains(x[v])) pinned[v] = 1;
 
   for (uint32_t v = 0; v < n; ++v) {
     m.initial.push_back(x[v]);

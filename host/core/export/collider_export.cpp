@@ -37,9 +37,7 @@ void write_collider_obj(const std::string& path, const ColliderMesh& mesh, const
 }  // namespace
 
 std::string collider_folder(const std::string& dir, size_t k) {
-  std::string base = dir;
-  while (base.size() > 1 && base.back() == '/') base.pop_back();
-  return (fs::path(base) / fmt::format("mesh{}", k)).string();
+  return (fs::path(strip_slashes(dir)) / fmt::format("mesh{}", k)).string();
 }
 
 void plan_collider_export(OutputPlan& plan, const Scene& scene, const std::string& dir, int64_t start, int frames,
@@ -50,8 +48,7 @@ void plan_collider_export(OutputPlan& plan, const Scene& scene, const std::strin
 }
 
 ColliderExport::ColliderExport(const Scene& scene, const std::string& dir, int64_t start, int every)
-    : scene_(scene), dir_(dir), start_(start), every_(every) {
-  while (dir_.size() > 1 && dir_.back() == '/') dir_.pop_back();
+    : scene_(scene), dir_(strip_slashes(dir)), start_(start), every_(every) {
   for (size_t k = 0; k < scene.meshes.size(); ++k) {
     meshes_.push_back(load_collider_mesh(scene, k));
     const std::string folder = collider_folder(dir, k);
@@ -64,10 +61,9 @@ ColliderExport::ColliderExport(const Scene& scene, const std::string& dir, int64
 
 void ColliderExport::add(int64_t frame, double time) {
   for (size_t k = 0; k < meshes_.size(); ++k) {
-    const MeshColliderParams& p = scene_.meshes[k];
-    const glm::dvec3 origin = p.motion ? interpolate(p.motion->keyframes, time) : p.origin;
     write_collider_obj((fs::path(collider_folder(dir_, k)) / frame_name(frame)).string(), *meshes_[k],
-                       collider_rotation(p), origin, mesh_key(scene_, k), time);
+                       collider_rotation(scene_.meshes[k]), collider_origin(scene_, ColliderRef{3, k}, time),
+                       mesh_key(scene_, k), time);
   }
   if (written_++ == 0) first_ = frame;
   last_ = frame;

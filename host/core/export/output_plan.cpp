@@ -27,11 +27,6 @@ struct Identity {
   bool same(const Identity& o) const { return key == o.key || (inode && o.inode && *inode == *o.inode); }
 };
 
-std::string strip_slashes(std::string p) {
-  while (p.size() > 1 && p.back() == '/') p.pop_back();
-  return p;
-}
-
 Identity identify(const std::string& path) {
   Identity id;
   std::error_code ec;

@@ -18,6 +18,12 @@ struct OutputError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// `p` without its trailing slashes ("out//" is "out"; "/" stays "/").
+inline std::string strip_slashes(std::string p) {
+  while (p.size() > 1 && p.back() == '/') p.pop_back();
+  return p;
+}
+
 class OutputPlan {
  public:
   // A file the run reads (`what`: "the scene", "--load-state", "mesh[0].file", ...).

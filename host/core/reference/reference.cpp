@@ -5,7 +5,6 @@
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
-#include <glm/vector_relational.hpp>
 #include <fmt/format.h>
 
 #include "colliders/mesh_collider.hpp"
@@ -80,17 +79,7 @@ template <class R> void make_attachments(const Scene& scene, const ClothModel& m
     for (size_t k = 0; k < cloths[part]->attachments.size(); ++k) {
       const AttachmentParams& a = cloths[part]->attachments[k];
       const ColliderRef ref = *find_collider(scene, a.collider);  // the loader checked it
-      glm::dvec3 origin;  // the collider's origin at t = 0
-      if (ref.kind == 1) {
-        const SphereParams& sp = scene.spheres[ref.index];
-        origin = sp.motion ? interpolate(sp.motion->keyframes, 0.0) : sp.origin;
-      } else if (ref.kind == 2) {
-        const PlaneParams& pl = scene.planes[ref.index];
-        origin = pl.motion ? interpolate(pl.motion->keyframes, 0.0) : pl.point;
-      } else {
-        const MeshColliderParams& me = scene.meshes[ref.index];
-        origin = me.motion ? interpolate(me.motion->keyframes, 0.0) : me.origin;
-      }
+      const glm::dvec3 origin = collider_origin(scene, ref, 0.0);
       auto attach = [&](uint32_t i) {
         if (model.pinned[i]) return;  // a pin stays a pin
         c.attach[i] = Vec4<R>(Vec3<R>(model.initial[i] - origin), R(a.stiffness));
@@ -106,9 +95,7 @@ template <class R> void make_attachments(const Scene& scene, const ClothModel& m
       }
       if (a.box)
         for (uint32_t i = cp.first; i < cp.first + cp.count; ++i)
-          if (glm::all(glm::greaterThanEqual(model.initial[i], a.box->min)) &&
-              glm::all(glm::lessThanEqual(model.initial[i], a.box->max)))
-            attach(i);
+          if (a.box->contains(model.initial[i])) attach(i);
     }
   }
 }

@@ -24,6 +24,17 @@ inline glm::dvec3 interpolate(const Keyframes& keys, double t) {
   return keys.back().value;
 }
 
+// Where a collider's origin (a sphere's origin, a plane's point, a mesh's origin) is at time t:
+// its motion's keys if it has them, else where the scene puts it.
+inline glm::dvec3 collider_origin(const Scene& scene, const ColliderRef& ref, double t) {
+  auto at = [t](const std::optional<MotionParams>& motion, const glm::dvec3& fixed) {
+    return motion ? interpolate(motion->keyframes, t) : fixed;
+  };
+  if (ref.kind == 1) return at(scene.spheres[ref.index].motion, scene.spheres[ref.index].origin);
+  if (ref.kind == 2) return at(scene.planes[ref.index].motion, scene.planes[ref.index].point);
+  return at(scene.meshes[ref.index].motion, scene.meshes[ref.index].origin);
+}
+
 // The fractional part of t / period, in [0, 1): the gusts' phase in time, kept small so that
 // float resolution does not degrade over a long run.
 inline double gust_phase(double t, double period) {

@@ -5,7 +5,6 @@
 #include <algorithm>
 
 #include <fmt/format.h>
-#include <glm/vector_relational.hpp>
 #include <nlohmann/json.hpp>
 
 #include "io/input_file.hpp"
@@ -57,14 +56,40 @@ class KeyPathFinder : public nlohmann::json_sax<json> {
 
 // What the rows cannot say about a cloth, and where its mesh file is. `key` is its key path
 // ("cloth", or "cloth[1]" in an array).
-void finish_cloth(ClothParams& c, const std::string& source, const std::string& key) {
-  if (c.pinned_box) {
-    const glm::dvec3 lo = c.pinned_box->min, hi = c.pinned_box->max;
-    if (lo.x > hi.x || lo.y > hi.y || lo.z > hi.z)
-      throw SceneError(fmt::format("{}: {}.pinned_box: expected min <= max in each of x, y, z, got min [{}, {}, {}] "
-                                   "and max [{}, {}, {}]",
-                                   source, key, lo.x, lo.y, lo.z, hi.x, hi.y, hi.z));
+// A box's min <= max in each axis; `key` names the box ("cloth.pinned_box").
+void check_box(const std::optional<BoxParams>& box, const std::string& source, const std::string& key) {
+  if (!box) return;
+  const glm::dvec3 lo = box->min, hi = box->max;
+  if (lo.x > hi.x || lo.y > hi.y || lo.z > hi.z)
+    throw SceneError(fmt::format("{}: {}: expected min <= max in each of x, y, z, got min [{}, {}, {}] and max "
+                                 "[{}, {}, {}]",
+                                 source, key, lo.x, lo.y, lo.z, hi.x, hi.y, hi.z));
+}
+
+// Each attachment of cloth `c` (its key path `key`) names a collider of the scene, picks some
+// vertices, and is not for xpbd (whose constraints the attachment's spring would fight).
+void check_attachments(const Scene& s, const ClothParams& c, const std::string& source, const std::string& key) {
+  for (size_t k = 0; k < c.attachments.size(); ++k) {
+    const AttachmentParams& a = c.attachments[k];
+    const std::string at = fmt::format("{}.attachments[{}]", key, k);
+    if (!find_collider(s, a.collider))
+      throw SceneError(fmt::format("{}: {}.collider: expected a collider of the scene (\"sphere\", \"sphere[1]\", "
+                                   "\"plane[0]\", \"mesh[0]\", ...; it has {} sphere(s), {} plane(s), {} mesh(es)), "
+                                   "got \"{}\"",
+                                   source, at, s.spheres.size(), s.planes.size(), s.meshes.size(), printable(a.collider)));
+    check_box(a.box, source, at + ".box");
+    if (a.vertices.empty() && !a.box)
+      throw SceneError(fmt::format("{}: {}: expected `vertices` or `box` (which vertices follow {})", source, at,
+                                   printable(a.collider)));
+    if (s.simulation.solver == Solver::Xpbd)
+      throw SceneError(fmt::format("{}: {}: attachments need simulation.solver \"classic\", \"multigrid\" or "
+                                   "\"fabric\", got \"xpbd\"",
+                                   source, at));
   }
+}
+
+void finish_cloth(ClothParams& c, const std::string& source, const std::string& key) {
+  check_box(c.pinned_box, source, key + ".pinned_box");
   // Relative to the scene file's directory; a scene that is no file ("<built-in>", "<fuzz>"):
   // to the current directory.
   c.mesh_path.clear();
@@ -109,6 +134,7 @@ Scene parse_scene(const std::string& text, const std::string& source, const std:
     ClothParams& c = i == 0 ? s.cloth : s.extra_cloths[i - 1];
     const std::string key = array ? fmt::format("cloth[{}]", i) : std::string("cloth");
     finish_cloth(c, source, key);
+    check_attachments(s, c, source, key);
     if (c.is_mesh()) continue;
     particles += (long long)c.num_width_points * c.num_height_points;
     if (particles > kMaxParticles)
@@ -121,30 +147,6 @@ Scene parse_scene(const std::string& text, const std::string& source, const std:
   for (MeshColliderParams& m : s.meshes)
     m.file_path = (file ? std::filesystem::path(source).parent_path() / m.file : std::filesystem::path(m.file))
                       .lexically_normal();
-  // Special case, across sections: an attachment names a collider of the scene, picks some
-  // vertices, and is not for xpbd (whose constraints the attachment's spring would fight).
-  for (size_t i = 0; i <= s.extra_cloths.size(); ++i) {
-    const ClothParams& c = i == 0 ? s.cloth : s.extra_cloths[i - 1];
-    const std::string cloth = array ? fmt::format("cloth[{}]", i) : std::string("cloth");
-    for (size_t k = 0; k < c.attachments.size(); ++k) {
-      const AttachmentParams& a = c.attachments[k];
-      const std::string key = fmt::format("{}.attachments[{}]", cloth, k);
-      if (!find_collider(s, a.collider))
-        throw SceneError(fmt::format("{}: {}.collider: expected a collider of the scene (\"sphere\", \"sphere[1]\", "
-                                     "\"plane[0]\", \"mesh[0]\", ...; it has {} sphere(s), {} plane(s), {} mesh(es)), "
-                                     "got \"{}\"",
-                                     source, key, s.spheres.size(), s.planes.size(), s.meshes.size(), printable(a.collider)));
-      if (a.box && !glm::all(glm::lessThanEqual(a.box->min, a.box->max)))
-        throw SceneError(fmt::format("{}: {}.box: expected min <= max in each of x, y, z", source, key));
-      if (a.vertices.empty() && !a.box)
-        throw SceneError(fmt::format("{}: {}: expected `vertices` or `box` (which vertices follow {})", source, key,
-                                     printable(a.collider)));
-      if (s.simulation.solver == Solver::Xpbd)
-        throw SceneError(fmt::format("{}: {}: attachments need simulation.solver \"classic\", \"multigrid\" or "
-                                     "\"fabric\", got \"xpbd\"",
-                                     source, key));
-    }
-  }
   // Special case, across two rows: XPBD's compliance is exact for one solve per substep (its
   // Lagrange multipliers start at zero every substep); a stiffer xpbd cloth needs more substeps.
   if (s.simulation.solver == Solver::Xpbd && s.simulation.constraint_iterations != 1)

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include <glm/vec3.hpp>
+#include <glm/vector_relational.hpp>
 
 namespace clothsim {
 
@@ -40,6 +41,9 @@ struct BoxParams {
   glm::dvec3 min{0.0};
   glm::dvec3 max{0.0};
 
+  bool contains(const glm::dvec3& p) const {  // inclusive
+    return glm::all(glm::greaterThanEqual(p, min)) && glm::all(glm::lessThanEqual(p, max));
+  }
   bool operator==(const BoxParams&) const = default;
 };
 
