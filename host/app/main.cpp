@@ -21,6 +21,7 @@ int main(int argc, char** argv) {
   add_render_command(app, run);
   add_bench_command(app, run);
   add_static_command(app, run);
+  add_sweep_command(app, run);
 #ifdef CLOTHSIM_WITH_VIEWER
   add_viewer_options(app, run);
 #else

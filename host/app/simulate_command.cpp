@@ -1,6 +1,6 @@
 // `clothsim simulate SCENE --frames N [--backend gpu|cpu] [--export FILE.obj|FILE.pc2|DIR/]
 //  [--export-every K] [--export-mesh FILE.obj] [--export-colliders DIR/] [--load-state FILE]
-//  [--save-state FILE] [--stats]
+//  [--save-state FILE] [--stats] [--stats-json FILE]
 //  [--intersections-every K] [--stretch-every K]`
 // Every output replaces the file it names only once complete (docs/export.md).
 #include <algorithm>
@@ -17,6 +17,7 @@
 #include "colliders/mesh_collider.hpp"
 #include "export/collider_export.hpp"
 #include "export/output_plan.hpp"
+#include "run_stats.hpp"
 
 namespace clothsim {
 namespace {
@@ -55,7 +56,8 @@ void print_stats(const Scene& scene, const ClothStats& st, int frames, double wa
 // sequence from `start`, the frame the run begins at.
 OutputPlan plan_outputs(const Scene& scene, ExportKind kind, const std::string& export_path,
                         const std::string& export_mesh, const std::string& load_path, const std::string& save_path,
-                        const std::string& colliders_path, int64_t start, int frames, int every) {
+                        const std::string& colliders_path, const std::string& stats_path, int64_t start, int frames,
+                        int every) {
   OutputPlan plan;
   plan.inputs_of(scene);
   plan.input("the state of --load-state", load_path);
@@ -76,6 +78,7 @@ OutputPlan plan_outputs(const Scene& scene, ExportKind kind, const std::string& 
   }
   if (!colliders_path.empty()) plan_collider_export(plan, scene, colliders_path, start, frames, every);
   if (!save_path.empty()) plan.file("--save-state", save_path);
+  if (!stats_path.empty()) plan.file("--stats-json", stats_path);
   return plan;
 }
 
@@ -103,7 +106,7 @@ void add_simulate_command(CLI::App& app, std::function<int()>& run) {
     SceneOptions scene;
     int frames = 90;
     std::string backend = "gpu";
-    std::string export_path, export_mesh, load_path, save_path, colliders_path;
+    std::string export_path, export_mesh, load_path, save_path, colliders_path, stats_path;
     int export_every = 1;
     bool stats = false;
     int intersections_every = 0;
@@ -130,6 +133,8 @@ void add_simulate_command(CLI::App& app, std::function<int()>& run) {
   cmd->add_option("--load-state", o->load_path, "continue from a state saved by --save-state")->check(non_empty_path());
   cmd->add_option("--save-state", o->save_path, "save the final state (positions, displacements, time)");
   cmd->add_flag("--stats", o->stats, "print frames, timing, stretch, energy, clearances, self-intersections");
+  cmd->add_option("--stats-json", o->stats_path, "write the --stats figures to FILE as JSON (docs/python.md lists the keys)")
+      ->check(non_empty_path());
   cmd->add_option("--intersections-every", o->intersections_every,
                   "every K-th frame print the exact self-intersection count (CPU, reads the frame back)")
       ->check(positive_number());
@@ -152,7 +157,7 @@ void add_simulate_command(CLI::App& app, std::function<int()>& run) {
                                                    "export", scene.source));
       auto plan = [&](int64_t start) {
         return plan_outputs(scene, kind, o->export_path, o->export_mesh, o->load_path, o->save_path, o->colliders_path,
-                            start, o->frames, o->export_every);
+                            o->stats_path, start, o->frames, o->export_every);
       };
       check_outputs(plan(0));  // before anything is built: a bad output fails at once
       const ClothModel model = build_cloth(scene);
@@ -255,6 +260,8 @@ void add_simulate_command(CLI::App& app, std::function<int()>& run) {
           fmt::print("self-intersections {} (pairs of non-adjacent triangles)\n", count_self_intersections(model, snap));
         if (kind == ExportKind::Obj) export_obj(snap, "");
       }
+      if (!o->stats_path.empty())
+        guarded("--stats-json", [&] { write_stats_json(o->stats_path, stats_json(scene, model, *backend, o->frames, wall)); });
       if (!o->save_path.empty()) save_state(o->save_path, scene, model, *backend);
       return kExitOk;
     };

@@ -17,6 +17,10 @@ class GlContext {
 
   // Makes this context current on the calling thread.
   virtual void make_current() = 0;
+  // Leaves the calling thread with no current context, so another thread may make this one
+  // current (a context is current on at most one thread): the Python module does this after
+  // every call, since Python may call it from any thread.
+  virtual void release() {}
   // How the context was made, for messages: "EGL surfaceless (Mesa)", "EGL device 0", ...
   virtual std::string description() const = 0;
 

@@ -71,6 +71,10 @@ class EglContext final : public GlContext {
     }
   }
 
+  void release() override {
+    if (eglGetCurrentContext() == context_) eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+  }
+
   std::string description() const override { return description_; }
 
  private:

@@ -12,9 +12,10 @@
 
 namespace clothsim {
 
-double vertical_offset(uint32_t i, double amplitude) {
-  // splitmix64 finaliser: a well-mixed, portable hash of the index.
-  uint64_t z = uint64_t(i) + 0x9E3779B97F4A7C15ull;
+double vertical_offset(uint32_t i, double amplitude, uint32_t seed) {
+  // splitmix64 finaliser: a well-mixed, portable hash of the index (and the seed, in the high
+  // word, so seed 0 is the classic draw).
+  uint64_t z = uint64_t(i) + (uint64_t(seed) << 32) + 0x9E3779B97F4A7C15ull;
   z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
   z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
   z ^= z >> 31;
@@ -199,7 +200,7 @@ static ClothModel build_cloth_model(const Scene& scene) {
     } else {
       part.nw = p.num_width_points;
       part.nh = p.num_height_points;
-      parts.push_back(append_grid(m, p, k));
+      parts.push_back(append_grid(m, p, k, uint32_t(scene.simulation.seed)));
     }
     part.count = uint32_t(m.count()) - part.first;
     part.triangle_count = uint32_t(m.triangles.size()) - part.first_triangle;

@@ -104,8 +104,9 @@ struct PartSprings {
 inline constexpr uint32_t kEndOfList = UINT32_MAX;
 void finish_model(ClothModel& model, const std::vector<PartSprings>& parts);
 void build_tethers(ClothModel& model);  // called by finish_model
-// The CS184 grid of `params` appended to `model` as cloth `material` (cloth_grid.cpp).
-PartSprings append_grid(ClothModel& model, const ClothParams& params, uint32_t material);
+// The CS184 grid of `params` appended to `model` as cloth `material` (cloth_grid.cpp), its
+// jitter drawn with `seed` (simulation.seed).
+PartSprings append_grid(ClothModel& model, const ClothParams& params, uint32_t material, uint32_t seed = 0);
 // A mesh cloth appended likewise (cloth_mesh.cpp).
 PartSprings append_mesh(ClothModel& model, const Scene& scene, const ClothParams& params, uint32_t material);
 
@@ -115,8 +116,9 @@ double particle_mass(const ClothParams& params);
 std::vector<double> particle_masses(const Scene& scene, const ClothModel& model);
 
 // The z offset of a vertical cloth's particle i, in [-amplitude, amplitude]: a hash of the
-// index, so the same cloth comes out on every machine and both backends (no std:: distribution).
-double vertical_offset(uint32_t i, double amplitude);
+// index and the seed, so the same cloth comes out on every machine and both backends (no std::
+// distribution); seed 0 is the classic draw.
+double vertical_offset(uint32_t i, double amplitude, uint32_t seed = 0);
 // The amplitude for a grid spacing: 1e-3 m (the classic), at most 5 % of the spacing.
 double jitter_amplitude(double spacing);
 

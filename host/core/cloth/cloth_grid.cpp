@@ -7,7 +7,7 @@
 
 namespace clothsim {
 
-PartSprings append_grid(ClothModel& m, const ClothParams& p, uint32_t material) {
+PartSprings append_grid(ClothModel& m, const ClothParams& p, uint32_t material, uint32_t seed) {
   const int nw = p.num_width_points, nh = p.num_height_points;
   const uint32_t base = uint32_t(m.count());
   auto index = [&](int x, int y) { return base + uint32_t(y * nw + x); };
@@ -17,11 +17,11 @@ PartSprings append_grid(ClothModel& m, const ClothParams& p, uint32_t material) 
   for (int y = 0; y < nh; ++y)
     for (int x = 0; x < nw; ++x) {
       // The jitter hashes the index within this cloth, so a grid is the same cloth wherever it
-      // comes in the scene.
+      // comes in the scene. The classic horizontal grid is flat; with a seed it is jittered too.
       const uint32_t local = uint32_t(y * nw + x);
       m.initial.push_back(p.orientation == Orientation::Horizontal
-                              ? glm::dvec3(x * sx, 1.0, y * sy)
-                              : glm::dvec3(x * sx, y * sy, vertical_offset(local, jitter)));
+                              ? glm::dvec3(x * sx, 1.0 + (seed ? vertical_offset(local, jitter, seed) : 0.0), y * sy)
+                              : glm::dvec3(x * sx, y * sy, vertical_offset(local, jitter, seed)));
       m.uv.push_back({double(x) / (nw - 1), double(y) / (nh - 1)});
       m.area.push_back(area);
       m.pinned.push_back(0);

@@ -51,6 +51,31 @@ double triangle_area(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3&
   return 0.5 * std::sqrt(n.x * n.x + n.y * n.y + n.z * n.z);
 }
 
+// simulation.seed > 0: every vertex moved along its area-weighted normal by the seeded hash,
+// at most the grids' amplitude for the mean edge (jitter_amplitude), before the rest lengths
+// are measured, so the perturbation is a shape, not a stress. `m.triangles` from `base` on are
+// this mesh's.
+void jitter_along_normals(const ClothModel& m, uint32_t base, uint32_t seed, std::vector<glm::dvec3>& x) {
+  std::vector<glm::dvec3> normal(x.size(), glm::dvec3(0.0));
+  double edges = 0;
+  size_t count = 0;
+  for (size_t t = 0; t < m.triangles.size(); ++t) {
+    const auto& tri = m.triangles[t];
+    if (tri[0] < base) continue;
+    const glm::dvec3 &a = x[tri[0] - base], &b = x[tri[1] - base], &c = x[tri[2] - base];
+    const glm::dvec3 n = glm::cross(b - a, c - a);  // twice the area along the normal
+    for (uint32_t v : tri) normal[v - base] += n;
+    edges += glm::length(b - a) + glm::length(c - b) + glm::length(a - c);
+    count += 3;
+  }
+  if (count == 0) return;
+  const double amplitude = jitter_amplitude(edges / double(count));
+  for (size_t v = 0; v < x.size(); ++v) {
+    const double len = glm::length(normal[v]);
+    if (len > 0) x[v] += normal[v] / len * vertical_offset(uint32_t(v), amplitude, seed);
+  }
+}
+
 }  // namespace
 
 PartSprings append_mesh(ClothModel& m, const Scene& scene, const ClothParams& p, uint32_t material) {
@@ -97,6 +122,8 @@ PartSprings append_mesh(ClothModel& m, const Scene& scene, const ClothParams& p,
   if (p.pinned_box)
     for (uint32_t v = 0; v < n; ++v)
       if (p.pinned_box->contains(x[v])) pinned[v] = 1;
+
+  if (const uint32_t seed = uint32_t(scene.simulation.seed); seed != 0) jitter_along_normals(m, base, seed, x);
 
   for (uint32_t v = 0; v < n; ++v) {
     m.initial.push_back(x[v]);

@@ -140,6 +140,8 @@ struct MeshColliderParams {
 struct SimulationParams {
   double frames_per_sec = 90;
   int simulation_steps = 30;
+  // The initial perturbation (docs/model.md, "Seed"): 0 the classic cloth, N > 0 another draw of it.
+  int seed = 0;
   glm::dvec3 gravity{0, -9.8, 0};
   double max_stretch = 0.1;
   double max_speed = 0;  // m/s: no free mass moves further than max_speed * dt in a substep's integration; 0 = no limit
