@@ -14,7 +14,7 @@ import os
 from . import _clothsim
 from ._clothsim import DivergenceError
 
-__all__ = ["Simulation", "DivergenceError", "sweep", "override_strings"]
+__all__ = ["Simulation", "DivergenceError", "sweep", "override_strings", "read_pc2"]
 
 
 def override_strings(overrides):
@@ -120,6 +120,22 @@ class Simulation:
 
     def __repr__(self):
         return f"<clothsim.Simulation {self._s.source}: {self.particles} particles, frame {self.frame}, {self.backend}>"
+
+
+def read_pc2(path):
+    """A PC2 point cache (what --export FILE.pc2 and each sweep run write) as a numpy array of
+    shape (samples, points, 3), float32."""
+    import numpy as np
+
+    with open(path, "rb") as f:
+        data = f.read()
+    if len(data) < 32 or data[:12] != b"POINTCACHE2\0":
+        raise ValueError(f"{path}: not a PC2 point cache (no POINTCACHE2 header)")
+    points, samples = int.from_bytes(data[16:20], "little"), int.from_bytes(data[28:32], "little")
+    if len(data) < 32 + 12 * points * samples:
+        raise ValueError(f"{path}: {points} points x {samples} samples need {32 + 12 * points * samples} bytes, "
+                         f"the file has {len(data)}")
+    return np.frombuffer(data, dtype="<f4", offset=32, count=3 * points * samples).reshape(samples, points, 3)
 
 
 def sweep(*args, **kwargs):

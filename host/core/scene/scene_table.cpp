@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-
 #include "scene/scene_table.hpp"
 
 namespace clothsim {
@@ -258,11 +257,8 @@ const Param<SimulationParams> kSimulation[] = {
     row<&SimulationParams::simulation_steps>({.key = "simulation_steps", .lo = 1, .hi = 100000,
                                               .meaning = "substeps per frame; dt = 1 / frames_per_sec / simulation_steps",
                                               .widget = drag(1.f, 1, 1000, "%d")}),
-    row<&SimulationParams::seed>({.key = "seed", .lo = 0, .hi = 2147483647,
-                                  .meaning = "the initial perturbation: 0 is the classic cloth (a vertical grid's ±1 mm "
-                                             "jitter); N > 0 draws that jitter again with N and gives it to every cloth "
-                                             "(out of a grid's plane, along a mesh cloth's normals): sweeps' --seeds",
-                                  .widget = kReadOnly}),
+    row<&SimulationParams::seed>({.key = "seed", .lo = 0, .hi = 2147483647, .meaning = "initial jitter: 0 classic, "
+                                  "N > 0 redrawn for every cloth (--seeds)", .widget = kReadOnly}),
     row<&SimulationParams::gravity>({.key = "gravity", .unit = "m/s^2", .meaning = "acceleration of every mass",
                                      .widget = drag(0.05f, 0, 0, "%.3f")}),
     row<&SimulationParams::max_stretch>({.key = "max_stretch", .lo = 0, .expected = "a stretch ratio >= 0",
