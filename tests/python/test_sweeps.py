@@ -146,3 +146,38 @@ def test_a_sweep_whose_worker_is_killed_completes_on_rerun_with_nothing_lost_or_
         simulate(os.path.join(out, "runs", r["id"], "scene.json"), "--frames", "120", "--backend", "cpu",
                  "--export", str(again))
         assert again.read_bytes() == pc2(out, r["id"])
+
+
+def test_an_existing_scheduler_runs_the_sweep(workdir):
+    """--scheduler: a Dask cluster started by hand (as on many machines), here a scheduler and one worker."""
+    info = workdir / "scheduler.json"
+    dask = [sys.executable, "-m"]
+    scheduler = subprocess.Popen(dask + ["distributed.cli.dask_scheduler", "--host", "127.0.0.1", "--port", "0",
+                                         "--no-dashboard", "--scheduler-file", str(info)],
+                                 stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    worker = None
+    try:
+        deadline = time.time() + 60
+        while not info.exists() and time.time() < deadline:
+            time.sleep(0.1)
+        time.sleep(0.2)  # the file is written whole before it is read
+        address = json.loads(info.read_text())["address"]
+        worker = subprocess.Popen(dask + ["distributed.cli.dask_worker", address, "--nthreads", "1", "--no-dashboard",
+                                          "--local-directory", str(workdir / "worker")],
+                                  stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        out = str(workdir / "remote")
+        p = cli_sweep(SPHERE, *[f"--vary={k}={v}" for k, v in SMALL.items()], "--vary=cloth.ks=500,4000",
+                      "--frames", "30", "--out", out, "--scheduler", address, "--backend", "cpu")
+        stdout, stderr = p.communicate(timeout=120)
+        assert p.returncode == 0, stderr
+        assert "2 runs: 2 ok" in stdout
+        for r in manifest(out):
+            again = workdir / f"{r['id']}.pc2"
+            simulate(os.path.join(out, "runs", r["id"], "scene.json"), "--frames", "30", "--backend", "cpu",
+                     "--export", str(again))
+            assert again.read_bytes() == pc2(out, r["id"])
+    finally:
+        for proc in (worker, scheduler):
+            if proc:
+                proc.terminate()
+                proc.wait(timeout=30)
