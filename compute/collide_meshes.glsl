@@ -88,7 +88,7 @@ bool mesh_normal(MeshField m, vec3 grad, out vec3 n) { return world_normal(m.row
 
 // A mass outside the offset surface that moved by rel further than its clearance: true if its
 // path (sampled every half node spacing, at most 8 samples) went through a closed mesh's wall
-// or an open mesh's shell, with t - x the way back to the sample before (passed_through_mesh
+// or an open mesh's wall, hole or shell, with t - x the way back to the sample before (passed_through_mesh
 // in host/core/reference/reference_mesh_collisions.cpp says how).
 bool passed_through_mesh(MeshField m, vec3 p, float phi, vec3 rel, out vec3 t_minus_x) {
   t_minus_x = vec3(0.0);
@@ -114,7 +114,7 @@ bool passed_through_mesh(MeshField m, vec3 p, float phi, vec3 rel, out vec3 t_mi
       crossed = in_grid && phi_q < 0.0;
     } else if (in_grid) {
       float slope = dot3(grad, step_all);
-      crossed = crossed_shell(prev_in_grid, prev_slope, slope, prev_phi, phi_q, spacing, m.crossing);
+      crossed = crossed_open_mesh(k, prev_in_grid, prev_slope, slope, prev_phi, phi_q, spacing, m.crossing);
       prev_phi = phi_q;
       prev_slope = slope;
     }

@@ -63,7 +63,8 @@ template <class R> void exercise(const char* type) {
   expect(world_normal(ex, up, ez, grad, n) && n == ex, "world_normal", type);
   expect(stays_clear_of_mesh(R(0.5), R(2), R(1)), "stays_clear_of_mesh", type);
   expect(path_samples(R(10), R(1)) == 8, "path_samples at most 8", type);
-  expect(!crossed_shell(false, R(-1), R(1), R(0), R(0), R(1), R(0)), "crossed_shell", type);
+  expect(!crossed_open_mesh(1, false, R(-1), R(1), R(0), R(0), R(1), R(0)), "crossed_open_mesh", type);
+  expect(crossed_open_mesh(1, false, R(0), R(0), R(0), R(-1), R(1), R(0)), "crossed_open_mesh inside", type);
   push_out_of_mesh(up, R(1), x, d);
 
   expect(gust_wave(R(0.25)) == R(1), "gust_wave peaks at a quarter", type);

@@ -76,14 +76,19 @@ SHARED_FN int path_samples(REAL moved, REAL inv_voxel) {
   return int(min(REAL(8), halves));
 }
 
-// An open mesh's shell (its field unsigned) lies between two neighbouring samples, the first
-// approaching the surface and the second leaving it (the field's slope along the path from < 0
-// to > 0), whose distances add up to less than their spacing plus twice `crossing`.
-SHARED_FN bool crossed_shell(bool prev_in_grid, REAL prev_slope, REAL slope, REAL prev_phi, REAL phi, REAL spacing,
-                             REAL crossing) {
+// Sample k of an open mesh's path crossed it. Its field is signed by the winding number
+// (colliders/sdf.hpp): a sample past its zero level set (inside one of its closed parts, or past
+// the level set that closes a hole) crossed as in a closed mesh; the path's start is not tested
+// (it may begin inside, where the last substep left it). Where the field stays unsigned (a thin
+// open sheet), its shell lies between two neighbouring samples, the first approaching the
+// surface and the second leaving it (the field's slope along the path from < 0 to > 0), whose
+// distances add up to less than their spacing plus twice `crossing`.
+SHARED_FN bool crossed_open_mesh(int k, bool prev_in_grid, REAL prev_slope, REAL slope, REAL prev_phi, REAL phi,
+                                 REAL spacing, REAL crossing) {
   PRECISE REAL both = prev_phi + phi;
   PRECISE REAL reach = spacing + REAL(2) * crossing;
-  return prev_in_grid && prev_slope < REAL(0) && slope > REAL(0) && both < reach;
+  bool inside = k > 0 && phi < REAL(0);
+  return inside || (prev_in_grid && prev_slope < REAL(0) && slope > REAL(0) && both < reach);
 }
 
 // A mass `depth` (> 0.1 mm) inside the offset surface goes out along the normal n, without friction.

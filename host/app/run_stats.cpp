@@ -42,6 +42,7 @@ nlohmann::json stats_json(const Scene& scene, const ClothModel& model, Backend& 
   j["sphere_clearance_m"] = numbers(st.sphere_clearance);
   j["plane_clearance_m"] = numbers(st.plane_clearance);
   j["mesh_clearance_m"] = numbers(st.mesh_clearance);
+  j["mesh_inside_masses"] = st.mesh_inside;
   j["finite"] = st.finite;
   j["self_intersections"] = count_self_intersections(model, snap);
   return j;

@@ -22,7 +22,8 @@
 namespace clothsim {
 namespace {
 
-void print_stats(const Scene& scene, const ClothStats& st, int frames, double wall, const Backend& backend) {
+void print_stats(const Scene& scene, const ClothModel& model, const ClothStats& st, int frames, double wall,
+                 const Backend& backend) {
   const int substeps = frames * scene.simulation.simulation_steps;
   fmt::print("frames            {}\n", frames);
   fmt::print("substeps          {}\n", substeps);
@@ -47,6 +48,9 @@ void print_stats(const Scene& scene, const ClothStats& st, int frames, double wa
   for (size_t k = 0; k < st.mesh_clearance.size(); ++k)
     fmt::print("mesh[{}] clearance   {:.6f} m (to its surface; thickness {} m)\n", k, st.mesh_clearance[k],
                scene.meshes[k].thickness);
+  for (size_t k = 0; k < st.mesh_inside.size(); ++k)
+    fmt::print("mesh[{}] inside      {} of {} masses (winding number above 1/2)\n", k, st.mesh_inside[k],
+               model.count());
   // Names a mesh file that the scene file named: printed escaped.
   for (const std::string& line : collider_mesh_report()) fmt::print("mesh collider     {}\n", printable(line));
   fmt::print("finite            {}\n", st.finite ? "yes" : "NO (a value became NaN/Inf)");
@@ -255,7 +259,7 @@ void add_simulate_command(CLI::App& app, std::function<int()>& run) {
       if (collider_frames) fmt::print("wrote {}\n", collider_frames->summary());
       if (o->stats || kind == ExportKind::Obj) {
         const ClothSnapshot snap = backend->snapshot();
-        if (o->stats) print_stats(scene, measure(scene, model, snap, backend->time()), o->frames, wall, *backend);
+        if (o->stats) print_stats(scene, model, measure(scene, model, snap, backend->time()), o->frames, wall, *backend);
         if (o->stats)  // exact, on the CPU: only asked for here
           fmt::print("self-intersections {} (pairs of non-adjacent triangles)\n", count_self_intersections(model, snap));
         if (kind == ExportKind::Obj) export_obj(snap, "");

@@ -1,6 +1,7 @@
 #include "analysis/diagnostics.hpp"
 
 #include "colliders/mesh_collider.hpp"
+#include "colliders/winding.hpp"
 #include "reference/reference_detail.hpp"
 
 #include <algorithm>
@@ -97,6 +98,14 @@ ClothStats measure(const Scene& scene, const ClothModel& m, const ClothSnapshot&
       if (sample_mesh_at(mc, mesh->sdf.values.data(), xyz(p), phi, grad)) best = std::min(best, phi);
     }
     st.mesh_clearance.push_back(best);
+    // Inside by the exact rule, not the field: the generalised winding number of the surface
+    // (winding.hpp), which a hole in the mesh or a mass between field nodes cannot fool.
+    const FastWindingNumber winding(mesh->surface, 3.0);  // within about 0.01 of the exact sum
+    const glm::dmat3 to_local = glm::transpose(collider_rotation(mp));
+    const glm::dvec3 origin = mp.motion ? interpolate(mp.motion->keyframes, time) : mp.origin;
+    size_t inside = 0;
+    for (auto& p : s.pos) inside += std::abs(winding(to_local * (xyz(p) - origin))) > 0.5;
+    st.mesh_inside.push_back(inside);
   }
   return st;
 }

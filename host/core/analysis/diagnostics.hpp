@@ -31,6 +31,7 @@ struct ClothStats {
   std::vector<double> sphere_clearance;  // min |x - o| - r per sphere (negative: inside)
   std::vector<double> plane_clearance;   // min signed distance on the plane's front (the cloth's starting side), per plane
   std::vector<double> mesh_clearance;    // min field distance to the surface per mesh collider (negative: inside; at most its band)
+  std::vector<size_t> mesh_inside;       // masses inside each mesh collider by its winding number (> 1/2), holes and all
   double max_speed = 0;          // m/s
   bool finite = true;
   double total_energy() const { return kinetic + gravitational + spring; }

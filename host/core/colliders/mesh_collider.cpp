@@ -137,8 +137,9 @@ std::shared_ptr<const ColliderMesh> load_collider_mesh(const Scene& scene, size_
   }
   if (!out->sdf.closed)
     fmt::print(stderr,
-               "note: {}: {}.file: {} has {} boundary edges (an open surface): it collides as a shell of "
-               "thickness {} m around its surface, with no inside (docs/model.md, \"Mesh colliders\")\n",
+               "note: {}: {}.file: {} has {} boundary edges (an open surface): its inside is where its winding "
+               "number is above 1/2, which closes its holes; where it is a thin sheet it collides as a shell of "
+               "thickness {} m (docs/model.md, \"Mesh colliders\")\n",
                scene.source, key, p.file_path.string(), out->sdf.boundary_edges, p.thickness);
   g_loaded.emplace(memo, out);
   return out;
@@ -168,7 +169,7 @@ std::vector<std::string> collider_mesh_report() {
                                     : fmt::format("built in {:.2f} s{}", m->build_seconds,
                                                   m->cache.empty() ? "" : ", kept in " + m->cache.string());
     lines.push_back(fmt::format("{}: {} triangles, {} field {}x{}x{} nodes of {:.2f} mm ({:.1f} MiB), {}",
-                                m->file.string(), m->surface.triangles.size(), g.closed ? "signed" : "unsigned (open)",
+                                m->file.string(), m->surface.triangles.size(), g.closed ? "signed" : "winding-signed (open)",
                                 g.dims.x, g.dims.y, g.dims.z, g.voxel * 1000, double(g.bytes()) / (1 << 20), how));
   }
   return lines;

@@ -14,6 +14,7 @@
 #include <fmt/format.h>
 #include <glm/geometric.hpp>
 
+#include "colliders/winding.hpp"
 #include "io/output_file.hpp"
 
 namespace clothsim {
@@ -166,9 +167,8 @@ SdfGrid build_sdf(const SurfaceMesh& mesh, double voxel) {
   }
 
   g.values.assign(n, float(g.band));
-  if (!g.closed) {  // unsigned: the shell around an open surface
-    for (size_t k = 0; k < n; ++k)
-      if (nearest[k] >= 0) g.values[k] = float(std::sqrt(dist2[k]));
+  if (!g.closed) {  // an open surface: the distance, signed by the winding number
+    sign_by_winding(mesh, g, nearest, dist2);
     return g;
   }
   // The band's sign: the pseudo-normal of the nearest feature (face, edge or vertex).
@@ -230,16 +230,10 @@ double brute_force_distance(const SurfaceMesh& mesh, const dvec3& p) {
 }
 
 double winding_number(const SurfaceMesh& mesh, const dvec3& p) {
-  // Each triangle's signed solid angle seen from p (Van Oosterom and Strackee 1983).
-  double sum = 0;
-  for (const glm::uvec3& t : mesh.triangles) {
-    const dvec3 a = mesh.positions[t[0]] - p, b = mesh.positions[t[1]] - p, c = mesh.positions[t[2]] - p;
-    const double la = glm::length(a), lb = glm::length(b), lc = glm::length(c);
-    const double num = glm::dot(a, glm::cross(b, c));
-    const double den = la * lb * lc + glm::dot(a, b) * lc + glm::dot(b, c) * la + glm::dot(c, a) * lb;
-    sum += 2 * std::atan2(num, den);
-  }
-  return sum / (4 * std::numbers::pi);
+  double sum = 0;  // each triangle's signed solid angle seen from p, every one visited
+  for (const glm::uvec3& t : mesh.triangles)
+    sum += triangle_winding(mesh.positions[t[0]] - p, mesh.positions[t[1]] - p, mesh.positions[t[2]] - p);
+  return sum;
 }
 
 double brute_force_signed_distance(const SurfaceMesh& mesh, const dvec3& p) {
@@ -266,7 +260,7 @@ uint64_t mesh_hash(const SurfaceMesh& mesh) {
 namespace {
 
 constexpr char kCacheMagic[16] = "clothsim sdf\n";
-constexpr uint32_t kCacheVersion = 2;  // 2: a checksum after the grid
+constexpr uint32_t kCacheVersion = 3;  // 2: a checksum after the grid; 3: open meshes signed by winding
 
 struct CacheHeader {
   char magic[16];

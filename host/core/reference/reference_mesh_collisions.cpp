@@ -63,9 +63,9 @@ template <class R> bool world_normal(const MeshColliderT<R>& m, const Vec3<R>& g
 // A mass outside the offset surface at the end of the substep that moved by rel (relative to
 // the mesh) further than its clearance: its path is sampled every half node spacing (at most 8
 // samples). A closed mesh: a sample inside it means the mass went through a wall within the
-// substep. An open mesh (its field unsigned): two neighbouring samples, the first approaching
-// the surface and the second leaving it (the field's slope along the path from < 0 to > 0),
-// whose distances add up to less than their spacing plus twice `crossing`, straddle the shell.
+// substep. An open mesh (its field signed by the winding number): a sample past the start
+// inside it, or two neighbouring samples that straddle the shell of a thin sheet, where the
+// field stays unsigned (shared::crossed_open_mesh).
 // Either way t - x is the way back to the sample before, on the side it came from.
 template <class R>
 bool passed_through_mesh(const MeshColliderT<R>& m, const float* sdf, const Vec3<R>& p, R phi, const Vec3<R>& rel,
@@ -91,7 +91,7 @@ bool passed_through_mesh(const MeshColliderT<R>& m, const float* sdf, const Vec3
       crossed = in_grid && phi_q < R(0);
     } else if (in_grid) {
       const R slope = dot3(grad, step_all);
-      crossed = shared::crossed_shell(prev_in_grid, prev_slope, slope, prev_phi, phi_q, spacing, m.material.z);
+      crossed = shared::crossed_open_mesh(k, prev_in_grid, prev_slope, slope, prev_phi, phi_q, spacing, m.material.z);
       prev_phi = phi_q;
       prev_slope = slope;
     }
