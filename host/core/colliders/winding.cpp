@@ -133,22 +133,34 @@ void sign_by_winding(const SurfaceMesh& mesh, SdfGrid& g, const std::vector<int3
       if (t >= 0 && t <= 1) return t;
     return linear;
   };
+  std::vector<double> d(g.nodes());
   for_each_slice(nz, [&](int z) {
     for (int y = 0; y < ny; ++y)
       for (int x = 0; x < nx; ++x) {
         const size_t k = index(x, y, z);
-        double d = nearest[k] >= 0 ? std::sqrt(dist2[k]) : g.band;
-        for (const glm::ivec3& s : step)
-          for (int dir : {-1, 1}) {
-            const glm::ivec3 o = glm::ivec3(x, y, z) + s * dir;
-            if (o.x < 0 || o.y < 0 || o.z < 0 || o.x >= nx || o.y >= ny || o.z >= nz) continue;
-            const size_t ok = index(o.x, o.y, o.z);
-            if (inside[ok] == inside[k]) continue;
-            d = std::min(d, g.voxel * crossing(k, ok, x, y, z, o));
-          }
-        g.values[k] = float(inside[k] ? -d : d);
+        d[k] = nearest[k] >= 0 ? std::sqrt(dist2[k]) : g.band;
+        neighbours(x, y, z, [&](const glm::ivec3& o, size_t ok) {
+          if (inside[ok] != inside[k]) d[k] = std::min(d[k], g.voxel * crossing(k, ok, x, y, z, o));
+        });
       }
   });
+  // The level set's distance carried out across the band (a node is at most one spacing further
+  // than its neighbour on its side), so that the field stays a distance: neighbours differ by
+  // at most a spacing, which the contact list's slope bound relies on (sdf_slopes).
+  for (int pass = 0; pass < int(std::ceil(kSdfBandVoxels)); ++pass) {
+    std::vector<double> next(d);
+    for_each_slice(nz, [&](int z) {
+      for (int y = 0; y < ny; ++y)
+        for (int x = 0; x < nx; ++x) {
+          const size_t k = index(x, y, z);
+          neighbours(x, y, z, [&](const glm::ivec3&, size_t ok) {
+            if (inside[ok] == inside[k]) next[k] = std::min(next[k], d[ok] + g.voxel);
+          });
+        }
+    });
+    d.swap(next);
+  }
+  for (size_t k = 0; k < g.nodes(); ++k) g.values[k] = float(inside[k] ? -d[k] : d[k]);
 }
 
 double triangle_winding(const dvec3& a, const dvec3& b, const dvec3& c) {
