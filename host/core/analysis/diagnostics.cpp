@@ -101,10 +101,8 @@ ClothStats measure(const Scene& scene, const ClothModel& m, const ClothSnapshot&
     // Inside by the exact rule, not the field: the generalised winding number of the surface
     // (winding.hpp), which a hole in the mesh or a mass between field nodes cannot fool.
     const FastWindingNumber winding(mesh->surface, 3.0);  // within about 0.01 of the exact sum
-    const glm::dmat3 to_local = glm::transpose(collider_rotation(mp));
-    const glm::dvec3 origin = mp.motion ? interpolate(mp.motion->keyframes, time) : mp.origin;
     size_t inside = 0;
-    for (auto& p : s.pos) inside += std::abs(winding(to_local * (xyz(p) - origin))) > 0.5;
+    for (auto& p : s.pos) inside += std::abs(winding(mesh_local_point(mc, xyz(p)))) > 0.5;
     st.mesh_inside.push_back(inside);
   }
   return st;

@@ -120,7 +120,7 @@ SdfGrid build_sdf(const SurfaceMesh& mesh, double voxel) {
   place_grid(mesh, voxel, g);
   const size_t n = g.nodes();
   const int nx = g.dims.x, ny = g.dims.y, nz = g.dims.z;
-  auto index = [&](int x, int y, int z) { return size_t(x) + size_t(nx) * (size_t(y) + size_t(ny) * size_t(z)); };
+  auto index = [&](int x, int y, int z) { return g.index(x, y, z); };
   PseudoNormals pn = pseudo_normals(mesh);
   for (const auto& [key, count] : pn.uses) g.boundary_edges += count == 1;
   // A mesh wound inside out (clockwise seen from outside: its enclosed volume negative) gets

@@ -41,7 +41,8 @@ struct SdfGrid {
 
   size_t nodes() const { return size_t(dims.x) * size_t(dims.y) * size_t(dims.z); }
   size_t bytes() const { return nodes() * sizeof(float); }
-  float at(int x, int y, int z) const { return values[size_t(x) + size_t(dims.x) * (size_t(y) + size_t(dims.y) * size_t(z))]; }
+  size_t index(int x, int y, int z) const { return size_t(x) + size_t(dims.x) * (size_t(y) + size_t(dims.y) * size_t(z)); }
+  float at(int x, int y, int z) const { return values[index(x, y, z)]; }
 };
 
 // The band in voxels: wide enough that no six-connected path of nodes crosses the surface

@@ -38,6 +38,8 @@ template <class R> void collide_with_mesh(const Constants<R>& c, const MeshColli
 template <class R> void keep_out_of_mesh(const Constants<R>& c, const MeshColliderT<R>& m, Vec3<R>& x, Vec3<R>& d);
 // The field of `m` at local point p (sdf: Constants::sdf): false outside its grid.
 template <class R> bool sample_mesh_field(const MeshColliderT<R>& m, const float* sdf, const Vec3<R>& p, R& phi, Vec3<R>& grad);
+// World point x in the collider's own frame (its field's and its surface's).
+template <class R> Vec3<R> mesh_local_point(const MeshColliderT<R>& m, const Vec3<R>& x);
 // The same at world point x (where m.origin puts the mesh).
 template <class R> bool sample_mesh_at(const MeshColliderT<R>& m, const float* sdf, const Vec3<R>& x, R& phi, Vec3<R>& grad);
 // A mesh collider's constants from its scene entry and its field, placed at p.origin; offset:

@@ -35,8 +35,12 @@ template <class R> bool sample_mesh_field(const MeshColliderT<R>& m, const float
   return true;
 }
 
+template <class R> Vec3<R> mesh_local_point(const MeshColliderT<R>& m, const Vec3<R>& x) {
+  return to_local(m, x - mesh_origin(m));
+}
+
 template <class R> bool sample_mesh_at(const MeshColliderT<R>& m, const float* sdf, const Vec3<R>& x, R& phi, Vec3<R>& grad) {
-  return sample_mesh_field(m, sdf, to_local(m, x - mesh_origin(m)), phi, grad);
+  return sample_mesh_field(m, sdf, mesh_local_point(m, x), phi, grad);
 }
 
 template <class R> MeshColliderT<R> make_mesh_collider(const MeshColliderParams& p, const SdfGrid& g, uint32_t offset) {
@@ -139,6 +143,7 @@ template <class R> void collide_with_mesh(const Constants<R>& c, const MeshColli
 
 #define CLOTHSIM_INSTANTIATE(R)                                                                          \
   template bool sample_mesh_field<R>(const MeshColliderT<R>&, const float*, const Vec3<R>&, R&, Vec3<R>&);        \
+  template Vec3<R> mesh_local_point<R>(const MeshColliderT<R>&, const Vec3<R>&);                                  \
   template bool sample_mesh_at<R>(const MeshColliderT<R>&, const float*, const Vec3<R>&, R&, Vec3<R>&);           \
   template MeshColliderT<R> make_mesh_collider<R>(const MeshColliderParams&, const SdfGrid&, uint32_t);           \
   template void keep_out_of_mesh<R>(const Constants<R>&, const MeshColliderT<R>&, Vec3<R>&, Vec3<R>&);           \
