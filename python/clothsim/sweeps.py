@@ -178,25 +178,26 @@ def sweep(scene, vary, frames, out, seeds=0, workers=None, scheduler=None, backe
     summary = {"runs": len(runs), "skipped": len(runs) - len(todo), "ok": 0, "failed": 0, "lost": 0,
                "manifest": writer.manifest}
     bar = Progress(len(todo), progress)
-    tasks, scenes = [], {}
+    tasks = []
     for run in todo:
         sets = override_strings(run["values"])
         try:
-            scenes[run["id"]] = _clothsim.resolve_scene(scene_arg, is_text, sets)
+            scene_text = _clothsim.resolve_scene(scene_arg, is_text, sets)
         except ValueError as e:  # a bad value: recorded as the command line would end, exit 2
             writer.record(run, {"exit_code": 2, "message": str(e), "files": {"log.txt": f"error: {e}\n".encode()},
                                 "wall_time_s": 0.0}, None)
             summary["failed"] += 1
+            bar.update(summary["failed"], summary["failed"])
             continue
-        tasks.append({"id": run["id"], "scene": scenes[run["id"]], "frames": frames, "backend": backend,
+        tasks.append({"id": run["id"], "scene": scene_text, "frames": frames, "backend": backend,
                       "export_every": export_every, "binary": os.path.abspath(binary)})
     if tasks:
-        _run_on_dask(tasks, {r["id"]: r for r in todo}, scenes, writer, summary, bar, workers, scheduler)
+        _run_on_dask(tasks, {r["id"]: r for r in todo}, writer, summary, bar, workers, scheduler)
     bar.finish()
     return summary
 
 
-def _run_on_dask(tasks, by_id, scenes, writer, summary, bar, workers, scheduler):
+def _run_on_dask(tasks, runs, writer, summary, bar, workers, scheduler):
     import logging
     from distributed import Client, LocalCluster, as_completed
 
@@ -208,7 +209,8 @@ def _run_on_dask(tasks, by_id, scenes, writer, summary, bar, workers, scheduler)
         client = Client(cluster)
     try:
         futures = [client.submit(simulate, t, key=f"clothsim-run-{t['id']}", pure=False) for t in tasks]
-        done = 0
+        scenes = {t["id"]: t["scene"] for t in tasks}
+        done = summary["failed"]  # the bad values, recorded before any run
         for future in as_completed(futures):
             try:
                 result = future.result()
@@ -217,7 +219,7 @@ def _run_on_dask(tasks, by_id, scenes, writer, summary, bar, workers, scheduler)
                 print(f"sweep: run {future.key[len('clothsim-run-'):]} not finished ({type(e).__name__}: {e}); "
                       "a rerun of the sweep does it", file=sys.stderr)
                 continue
-            line = writer.record(by_id[result["id"]], result, scenes[result["id"]])
+            line = writer.record(runs[result["id"]], result, scenes[result["id"]])
             summary["ok" if line["status"] == "ok" else "failed"] += 1
             done += 1
             bar.update(done, summary["failed"])

@@ -2,10 +2,8 @@
 PYTHONPATH to build/python, CLOTHSIM_BINARY to clothsim-headless and CLOTHSIM_SOURCE to the tree).
 They run only where an OpenGL 4.3 context exists (gpu_test.sh checks first), so the GPU is assumed."""
 import os
-import struct
 import subprocess
 
-import numpy as np
 import pytest
 
 SOURCE = os.environ.get("CLOTHSIM_SOURCE", os.path.join(os.path.dirname(__file__), "..", ".."))
@@ -27,16 +25,6 @@ def simulate(*args):
     p = subprocess.run([BINARY, "simulate", *args], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     assert p.returncode == 0, p.stderr
     return p
-
-
-def read_pc2(path):
-    """The frames of a PC2 point cache: (samples, points, 3) float32."""
-    with open(path, "rb") as f:
-        data = f.read()
-    assert data[:12] == b"POINTCACHE2\0"
-    points, = struct.unpack_from("<i", data, 16)
-    samples, = struct.unpack_from("<i", data, 28)
-    return np.frombuffer(data, dtype="<f4", offset=32).reshape(samples, points, 3)
 
 
 @pytest.fixture

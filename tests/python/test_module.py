@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 import clothsim
-from conftest import BINARY, SMALL, SPHERE, read_pc2, sets, simulate
+from conftest import BINARY, SMALL, SPHERE, sets, simulate
 
 
 @pytest.mark.parametrize("backend", ["cpu", "gpu"])
@@ -21,7 +21,7 @@ def test_positions_after_10_frames_equal_the_command_lines_export(backend, workd
     assert x.shape == (35, 3) and x.dtype == np.float64 and s.frame == 10
     pc2 = workdir / "run.pc2"
     simulate(SPHERE, "--frames", "10", "--backend", backend, "--export", str(pc2), *sets(SMALL))
-    cache = read_pc2(pc2)
+    cache = clothsim.read_pc2(pc2)
     assert cache.shape == (11, 35, 3)
     # The point cache holds float32: the module's doubles, rounded, are those bits exactly.
     assert np.array_equal(x.astype(np.float32), cache[10])
