@@ -7,6 +7,7 @@
 
 #include "particle_views.glsl"
 #include "shared/mesh_field.glsl"
+#include "shared/skinning.glsl"
 
 struct MeshField {
   vec3 rows[3];
@@ -17,6 +18,7 @@ struct MeshField {
   float inv_voxel;
   ivec4 dims;  // w: the offset of node (0, 0, 0) in sdf_view
   float slope;  // the sampled field's Lipschitz bound in the world (mesh_leaves_alone_after)
+  ivec4 skin;   // a skinned collider: x its first group of clusters, y its groups (0: rigid)
 };
 
 MeshField mesh_field(int k) {
@@ -40,7 +42,75 @@ MeshField mesh_field(int k) {
   m.inv_voxel = grid.w;
   m.dims = dims;
   m.slope = bound.x;
+  m.skin = texelFetch(meshes_int_view, MESH_TEXELS * k + 8);
   return m;
+}
+
+// A skinned collider's search (skinned_mesh_at in host/core/reference/reference_skinning.cpp):
+// the groups, then the clusters, whose boxes are nearer x than the best triangle so far (at
+// first `reach`), then their triangles; -1 where none is within reach.
+bool skinned_near(uint box, vec3 x, float best) {
+  return box_distance2(x, texelFetch(skinned_view, int(box)).xyz, texelFetch(skinned_view, int(box) + 1).xyz) < best;
+}
+int nearest_skinned_triangle(MeshField m, vec3 x, float reach, out vec3 bary) {
+  uint n = params.skin_vertices, boxes = 3u * n, group_boxes = boxes + 2u * params.skin_clusters;
+  uint clusters_at = n + params.skin_triangles, groups_at = clusters_at + params.skin_clusters;
+  float best = reach * reach;
+  int found = -1;
+  bary = vec3(0.0);
+  for (int g = m.skin.x; g < m.skin.x + m.skin.y; ++g) {
+    if (!skinned_near(group_boxes + 2u * uint(g), x, best)) continue;
+    uvec4 group = texelFetch(skin_indices_view, int(groups_at) + g);
+    for (uint k = group.x; k < group.x + group.y; ++k) {
+      if (!skinned_near(boxes + 2u * k, x, best)) continue;
+      uvec4 cluster = texelFetch(skin_indices_view, int(clusters_at + k));
+      for (uint t = cluster.x; t < cluster.x + cluster.y; ++t) {
+        uvec4 tri = texelFetch(skin_indices_view, int(n + t));
+        vec3 b3;
+        vec3 q = closest_on_triangle(x, texelFetch(skinned_view, int(tri.x)).xyz, texelFetch(skinned_view, int(tri.y)).xyz,
+                                     texelFetch(skinned_view, int(tri.z)).xyz, b3);
+        float d2 = dot3(x - q, x - q);
+        if (d2 < best) {
+          best = d2;
+          found = int(t);
+          bary = b3;
+        }
+      }
+    }
+  }
+  return found;
+}
+
+// Mesh collider m as it meets a mass at x that moved by d (mesh_at in
+// host/core/reference/reference.hpp): a skinned one takes the frame of its nearest triangle
+// (skinned_frame); false where no triangle is within reach (nothing to collide with).
+bool mesh_at(inout MeshField m, vec3 x, vec3 d) {
+  if (!SKINNED_MESHES || m.skin.y == 0) return true;
+  vec3 bary;
+  int t = nearest_skinned_triangle(m, x, skinned_reach(m.inv_voxel, m.thickness, d), bary);
+  if (t < 0) return false;
+  uint n = params.skin_vertices;
+  uvec4 tri = texelFetch(skin_indices_view, int(n) + t);
+  vec3 origin, motion;
+  skinned_frame(texelFetch(skinned_view, int(tri.x)).xyz, texelFetch(skinned_view, int(tri.y)).xyz,
+                texelFetch(skinned_view, int(tri.z)).xyz, texelFetch(skinned_view, int(n + tri.x)).xyz,
+                texelFetch(skinned_view, int(n + tri.y)).xyz, texelFetch(skinned_view, int(n + tri.z)).xyz,
+                texelFetch(skinned_view, int(2u * n + tri.x)).xyz, texelFetch(skinned_view, int(2u * n + tri.y)).xyz,
+                texelFetch(skinned_view, int(2u * n + tri.z)).xyz, bary, x, d, m.rows[0], m.rows[1], m.rows[2], origin,
+                motion);
+  m.origin = origin;
+  m.motion = motion;
+  return true;
+}
+
+// Whether a skinned collider leaves a mass at x, moved by d, alone: no box within its reach,
+// where mesh_at finds no triangle and the response does nothing.
+bool skinned_leaves_alone(MeshField m, vec3 x, vec3 d) {
+  uint group_boxes = 3u * params.skin_vertices + 2u * params.skin_clusters;
+  float reach = skinned_reach(m.inv_voxel, m.thickness, d);
+  for (int g = m.skin.x; g < m.skin.x + m.skin.y; ++g)
+    if (skinned_near(group_boxes + 2u * uint(g), x, reach * reach)) return false;
+  return true;
 }
 
 vec3 mesh_local(MeshField m, vec3 v) { return to_local(m.rows[0], m.rows[1], m.rows[2], v); }
@@ -145,6 +215,7 @@ void keep_out_of_mesh(MeshField m, inout vec3 x, inout vec3 d) {
 // contact list's decision (may_collide) is the one the full response makes. `clearance` takes
 // the min with this mesh's bound for mesh_leaves_alone_after (predict's is kept).
 bool mesh_leaves_alone(MeshField m, vec3 x, vec3 d, inout float clearance) {
+  if (SKINNED_MESHES && m.skin.y > 0) return skinned_leaves_alone(m, x, d);  // `clearance` bounds the rigid ones alone
   vec3 p = mesh_local(m, x - m.origin);
   float phi;
   vec3 grad;
@@ -169,6 +240,7 @@ bool mesh_leaves_alone(MeshField m, vec3 x, vec3 d, inout float clearance) {
 // and decides: a listed mass it leaves alone costs time, never bits. A clearance of 0 (a pass
 // that does not keep it, a pinned mass) lists every mass inside the grid.
 bool mesh_leaves_alone_after(MeshField m, vec3 x, vec3 d, float clearance) {
+  if (SKINNED_MESHES && m.skin.y > 0) return skinned_leaves_alone(m, x, d);
   vec3 p = mesh_local(m, x - m.origin), g;
   if (!inside_mesh_grid(m, p, g)) return true;
   precise float scale = ((length3(x) + length3(m.origin)) + length3(m.grid_min)) + (abs(clearance) + 0.01);
@@ -180,6 +252,7 @@ bool mesh_leaves_alone_after(MeshField m, vec3 x, vec3 d, float clearance) {
 // One mesh collider.
 void collide_with_mesh(int k, bool friction, inout vec3 x, inout vec3 d) {
   MeshField m = mesh_field(k);
+  if (!mesh_at(m, x, d)) return;
   vec3 p = mesh_local(m, x - m.origin);
   float phi;
   vec3 grad, n;

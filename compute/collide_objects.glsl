@@ -155,7 +155,7 @@ void keep_out_of_colliders(inout vec3 x, inout vec3 d) {
   }
   for (int k = 0; k < mesh_count(); ++k) {
     MeshField m = mesh_field(k);
-    keep_out_of_mesh(m, x, d);
+    if (mesh_at(m, x, d)) keep_out_of_mesh(m, x, d);
   }
 }
 

@@ -33,6 +33,9 @@
 #ifndef ATTACHMENTS
 #define ATTACHMENTS true
 #endif
+#ifndef SKINNED_MESHES
+#define SKINNED_MESHES (params.skin_vertices != 0u)
+#endif
 #ifndef MULTIGRID_SOLVER
 #define MULTIGRID_SOLVER (params.multigrid != 0u)
 #endif

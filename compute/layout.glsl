@@ -92,6 +92,11 @@ using uint = uint32_t;
 // The contact list (compute/contact_list.glsl): a ContactListHeader, then a uint per listed
 // mass; on the scan's data point, which the scan binds again before its next use.
 #define BINDING_CONTACT_LIST BINDING_SCAN_DATA
+// Skinned mesh colliders (docs/model.md, "Skinned and animated colliders"): skin_colliders
+// writes the skinned vertices, and fit_collider_boxes the boxes (TEXTURE_SKINNED says where),
+// through the scan's sums point, binding its buffer there before each use as the scan and the settling
+// passes do.
+#define BINDING_SKINNED BINDING_SCAN_SUMS
 // Texture units of the read-only texel views (GL_TEXTURE_BUFFER) of the simulation's buffers,
 // through which the hot passes read (compute/particle_views.glsl says why). Above the units
 // the renderer uses (0-2: fabric, height map, sky), so drawing a frame leaves them bound.
@@ -121,6 +126,12 @@ using uint = uint32_t;
 // cloth.attachments (Constants::attach): per particle xyz its start position less its collider's
 // start origin, w the stiffness (0: none); the collider's code is the particle texel's z.
 #define TEXTURE_ATTACHMENTS 36       // RGBA32F, per particle (1 texel without attachments)
+// Skinned mesh colliders (one texel each without): the skinned vertices and the clusters' boxes
+// (BINDING_SKINNED), every skinned collider's vertices, triangles and clusters in turn.
+#define TEXTURE_SKINNED 37           // RGBA32F: per vertex now, then at the substep's start, then in the bind pose; then per cluster, then per group, its box's lo and hi
+#define TEXTURE_SKIN_INDICES 38      // RGBA32UI: per vertex its bones; per triangle its vertices; per cluster x its first triangle, y its count; per group x its first cluster, y its count
+#define TEXTURE_SKIN_WEIGHTS 39      // RGBA32F, per vertex: its bones' weights
+#define TEXTURE_SKIN_PALETTE 40      // RGBA32F, per palette entry 3 rows (xyz the linear part, w the translation): at the substep's start, then at its end
 // The multigrid hierarchy (Hierarchy in host/core/cloth/hierarchy.hpp), static over a run, and the views of its scratch.
 #define TEXTURE_MG_VERTICES 27       // RGBA32UI, per coarse vertex + 1: x its particle, y its first child, z its first parent, w its first spring (entries of TEXTURE_MG_LISTS)
 #define TEXTURE_MG_LISTS 28          // RGBA32UI, MultigridEntry: the children, then the parents, the springs, the particles' parents
@@ -135,7 +146,7 @@ using uint = uint32_t;
 #define MATERIAL_TEXELS 2
 #define SPHERE_TEXELS 3
 #define PLANE_TEXELS 3
-#define MESH_TEXELS 8
+#define MESH_TEXELS 9
 // Uniform block bindings: the parameter block (uploaded at construction and on live edits) and
 // the substep's control (uploaded every substep when something moves).
 #define BINDING_STEP_PARAMS 0
@@ -203,6 +214,7 @@ SCALAR_STRUCT(MeshCollider) {
   VEC4 motion;     // xyz m over this substep, w = 1 - friction
   VEC4 material;   // x friction (xpbd's Coulomb mu), y thickness (m), z crossing, w 1 closed, 0 open
   VEC4 bound;      // x the field's slope bound in the world (sdf_slopes; the GPU's contact list), yzw unused
+  ivec4 skin;      // a skinned collider: x its first group of clusters, y its groups (0: rigid), zw unused (TEXTURE_MESHES_INT)
 };
 
 // Per-vertex extras of a drawn mesh: a collider's uv and tangent; the cloth's uv, and in uv.zw the particles
@@ -265,7 +277,12 @@ struct ShadowFrame {
   F(UINT, multigrid)           /* 1 = the multigrid solve (multigrid, fabric) */            \
   F(UINT, adaptive_start)      /* 1 = fabric: the multigrid solve starts where the last substep's acceleration says */ \
   F(UINT, sweep_friction)      /* 1 = fabric: the push-out after the multigrid sweep takes Coulomb friction */ \
-  F(REAL, max_move)            /* m, simulation.max_speed * dt: integration's move limit per substep (0: none) */
+  F(REAL, max_move)            /* m, simulation.max_speed * dt: integration's move limit per substep (0: none) */ \
+  F(UINT, skin_vertices)       /* every skinned collider's vertices (TEXTURE_SKINNED's sections) */ \
+  F(UINT, skin_triangles)      /* and triangles */                                          \
+  F(UINT, skin_clusters)       /* and clusters of triangles */                              \
+  F(UINT, skin_groups)         /* and groups of clusters */                                 \
+  F(UINT, skin_palette)        /* and palette entries (bones) */
 #define STEP_PARAMS_DECLARE(type, name) type name;
 // std140 rounds the block's size up to 16 bytes; alignas makes sizeof agree (for REAL = float:
 // StepParamsT<double> is the double reference's, never uploaded).

@@ -57,7 +57,7 @@ bool touches_colliders(vec3 x) {
     float phi;
     vec3 grad;
     precise float within = m.thickness + reach;
-    if (sample_mesh_field(m, mesh_local(m, x - m.origin), phi, grad) && phi < within) return true;
+    if (mesh_at(m, x, vec3(0.0)) && sample_mesh_field(m, mesh_local(m, x - m.origin), phi, grad) && phi < within) return true;
   }
   return false;
 }

@@ -29,6 +29,8 @@ layout(binding = TEXTURE_MESHES) uniform samplerBuffer meshes_view;
 layout(binding = TEXTURE_MESHES_INT) uniform isamplerBuffer meshes_int_view;
 layout(binding = TEXTURE_SDF) uniform samplerBuffer sdf_view;
 layout(binding = TEXTURE_ATTACHMENTS) uniform samplerBuffer attachments_view;
+layout(binding = TEXTURE_SKINNED) uniform samplerBuffer skinned_view;
+layout(binding = TEXTURE_SKIN_INDICES) uniform usamplerBuffer skin_indices_view;
 
 vec4 position_of(int i) { return texelFetch(positions_view, i); }
 vec4 displacement_of(int i) { return texelFetch(displacement_view, i); }

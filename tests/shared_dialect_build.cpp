@@ -67,6 +67,29 @@ template <class R> void exercise(const char* type) {
   expect(crossed_open_mesh(1, false, R(0), R(0), R(0), R(-1), R(1), R(0)), "crossed_open_mesh inside", type);
   push_out_of_mesh(up, R(1), x, d);
 
+  // Skinning: a bone that moves by +x, a triangle's nearest point and frame, and a skinned
+  // frame that is the identity where nothing moved.
+  using W = glm::vec<4, R>;
+  const R o(0), i(1);
+  const V moved = add_bone(zero, i, W(i, o, o, i), W(o, i, o, o), W(o, o, i, o), up);
+  expect(moved == V(i, i, o), "add_bone translates", type);
+  expect(box_distance2(V(R(2), o, o), zero, ex) == i, "box_distance2", type);
+  expect(min3(ex, up) == zero && max3(ex, up) == V(i, i, o), "min3 and max3", type);
+  expect(skinned_reach(R(1), R(0), zero) == R(3), "skinned_reach: three nodes", type);
+  V bary;
+  const R q(0.25);
+  const V near = closest_on_triangle(V(q, i, q), zero, ex, ez, bary);
+  expect(near == V(q, o, q) && bary == V(R(0.5), q, q), "closest_on_triangle inside the face", type);
+  expect(closest_on_triangle(V(R(-1), i, R(-1)), zero, ex, ez, bary) == zero, "closest_on_triangle at a vertex", type);
+  expect(at_barycentric(zero, ex, up, V(R(0.5), q, q)) == V(q, q, o), "at_barycentric", type);
+  V u, v, w, r0, r1, r2, origin, motion;
+  triangle_frame(zero, ex, up, u, v, w);
+  expect(u == ex && w == ez, "triangle_frame", type);
+  frame_rows(u, v, w, u, v, w, r0, r1, r2);
+  expect(r0 == ex && r1 == up && r2 == ez, "frame_rows of one frame: the identity", type);
+  skinned_frame(zero, ex, up, zero, ex, up, zero, ex, up, ex, ez, zero, r0, r1, r2, origin, motion);
+  expect(origin == zero && motion == zero, "skinned_frame where nothing moved", type);
+
   expect(gust_wave(R(0.25)) == R(1), "gust_wave peaks at a quarter", type);
   const V air = air_velocity(true, ex, up, R(0), ez, R(1), zero, ex, up);
   t = triangle_wind_share(zero, ex, up, zero, air, R(1), R(1), R(1));

@@ -98,6 +98,10 @@ template <class R> class CpuBackend final : public Backend {
   // The moving parts (colliders, pins, gusts) set for the substep that starts now.
   void prepare_substep() {
     if (constants_.timeline.moves()) set_substep_time(constants_, time_);
+    if (!constants_.timeline.skins.empty()) {  // the twins of skin_colliders.comp and fit_collider_boxes.comp
+      skin_colliders(constants_.control, constants_);
+      fit_collider_boxes(constants_.control, constants_);
+    }
   }
   double time() const override { return time_; }
 

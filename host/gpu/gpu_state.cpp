@@ -55,7 +55,8 @@ size_t GpuState::buffer_bytes() const {
                               &step_params_, &substep_control_, &positions_out_, &cell_count_, &cell_start_, &cell_entries_,
                               &sorted_positions_, &tethers_, &wind_forces_, &anchors_, &gather_start_, &gather_,
                               &particles_, &materials_, &corner_start_, &corner_triangles_, &triangles_, &rest_positions_, &attachments_,
-                              &multipliers_, &meshes_, &sdf_, &stretch_control_, &contacts_})
+                              &multipliers_, &meshes_, &sdf_, &stretch_control_, &contacts_, &skinned_, &skin_indices_,
+                              &skin_weights_, &skin_palette_})
     total += b->size();
   if (!multigrid_) return total;
   const GpuMultigrid& g = *multigrid_;
@@ -105,6 +106,10 @@ void GpuState::upload_multipliers(std::vector<Vec4<float>> multipliers) {
   meshes_view_.attach(meshes_, GL_RGBA32F);
   meshes_int_view_.attach(meshes_, GL_RGBA32I);
   sdf_view_.attach(sdf_, GL_RGBA32F);
+  skinned_view_.attach(skinned_, GL_RGBA32F);
+  skin_indices_view_.attach(skin_indices_, GL_RGBA32UI);
+  skin_weights_view_.attach(skin_weights_, GL_RGBA32F);
+  skin_palette_view_.attach(skin_palette_, GL_RGBA32F);
 }
 
 void GpuState::bind_all() const {
@@ -147,6 +152,10 @@ void GpuState::bind_all() const {
   meshes_int_view_.bind(TEXTURE_MESHES_INT);
   sdf_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_SDF);
   sdf_view_.bind(TEXTURE_SDF);
+  skinned_view_.bind(TEXTURE_SKINNED);
+  skin_indices_view_.bind(TEXTURE_SKIN_INDICES);
+  skin_weights_view_.bind(TEXTURE_SKIN_WEIGHTS);
+  skin_palette_view_.bind(TEXTURE_SKIN_PALETTE);
   bind_multigrid();
 }
 
@@ -172,6 +181,10 @@ void GpuState::attach_views() {
   meshes_view_.attach(meshes_, GL_RGBA32F);
   meshes_int_view_.attach(meshes_, GL_RGBA32I);
   sdf_view_.attach(sdf_, GL_RGBA32F);
+  skinned_view_.attach(skinned_, GL_RGBA32F);
+  skin_indices_view_.attach(skin_indices_, GL_RGBA32UI);
+  skin_weights_view_.attach(skin_weights_, GL_RGBA32F);
+  skin_palette_view_.attach(skin_palette_, GL_RGBA32F);
 }
 
 void GpuState::swap_positions() {

@@ -32,6 +32,8 @@ class GpuState {
   uint64_t stretch_settling_passes() const;
   // The masses the last advance or predict listed for collide_objects (a read-back).
   std::vector<uint32_t> contact_list() const;
+  // The skinned colliders' vertices and boxes, as Control::skinned holds them (a read-back).
+  std::vector<Vec4<float>> download_skinned() const;
 
  private:
   friend class GpuPasses;     // runs its passes on these buffers
@@ -47,6 +49,9 @@ class GpuState {
   void upload_anchors(const Constants<float>& c);  // one dummy element without pinned_motion
   void upload_rest_positions(const Constants<float>& c);  // Constants::rest, or one dummy texel
   void upload_materials(const Constants<float>& c);  // the materials, every particle's mass and material
+  // The skinned colliders (gpu_skinning.cpp): the palette, every substep; their lists and bind
+  // pose when the constants bring another set (one dummy texel each without).
+  void upload_skins(const Constants<float>& c);
 
   // Binds every simulation buffer and view, on binding points and texture units no one else
   // uses (layout.glsl): at the start of every step, and for a pass called on its own (tests,
@@ -99,7 +104,13 @@ class GpuState {
   // The settling passes' control (StretchControl, then a StretchDispatch per colour; made once,
   // so its count holds).
   gl::Buffer stretch_control_{"stretch control"};
-  gl::Buffer contacts_{"contact list"};  // ContactListHeader, then a uint per listed mass
+  gl::Buffer contacts_{"contact list"};
+  // Skinned mesh colliders (TEXTURE_SKINNED and its three inputs; layout.glsl).
+  gl::Buffer skinned_{"skinned colliders"}, skin_indices_{"skin indices"}, skin_weights_{"skin weights"};
+  gl::Buffer skin_palette_{"skin palette"};
+  const Vec4<float>* skin_source_ = nullptr;  // the Control::skinned its lists came with
+  gl::BufferTexture skinned_view_{"skinned view"}, skin_indices_view_{"skin indices view"};
+  gl::BufferTexture skin_weights_view_{"skin weights view"}, skin_palette_view_{"skin palette view"};  // ContactListHeader, then a uint per listed mass
   gl::Buffer no_offsets_{"no multigrid offsets"};  // one element, bound in their place without multigrid
 };
 

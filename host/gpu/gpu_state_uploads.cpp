@@ -50,6 +50,7 @@ void GpuState::upload_control(Constants<float>& c) {
   if (substep_control_.size() == sizeof block) substep_control_.upload(0, sizeof block, &block);
   else substep_control_.allocate(sizeof block, &block, GL_DYNAMIC_DRAW);
   upload_colliders(c);
+  upload_skins(c);
 }
 
 void GpuState::upload_colliders(Constants<float>& c) {

@@ -26,6 +26,10 @@ void GpuPasses::run(PassId pass, PassArgs a) {
     case PassId::collide_objects:
       if (!constants_.has_colliders()) return;
       break;
+    case PassId::skin_colliders:
+    case PassId::fit_collider_boxes:  // they write through the scan's point: bound again before each use
+      state_.skinned_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_SKINNED);
+      break;
     case PassId::solve_length_constraints:
       if (a.colour >= 0) return colour_pass(pass, a.colour);
       return length_constraint_passes(constants_.iterations);

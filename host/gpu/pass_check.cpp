@@ -195,6 +195,24 @@ void check_settling_passes(const ClothModel& model, const Constants<float>& c, S
 
 namespace {
 
+// The skinned colliders' two passes on the GPU, for the substep the CPU has just skinned for
+// (prepare_substep ran their twins, skin_colliders and fit_collider_boxes, on its palette):
+// the vertices at the substep's end and start, then every box.
+void check_skinning_passes(const Constants<float>& c, GpuSimulator& gpu, std::vector<PassError>& out) {
+  const auto section = [](const std::vector<Vec4<float>>& v, size_t from) {
+    return std::vector<Vec4<float>>(v.begin() + std::ptrdiff_t(std::min(from, v.size())), v.end());
+  };
+  const size_t n = c.skin_vertices;
+  gpu.run(PassId::skin_colliders);
+  std::vector<Vec4<float>> g = gpu.state().download_skinned(), cpu = c.control.skinned;
+  g.resize(std::min(g.size(), 2 * n)), cpu.resize(2 * n);
+  const Deviation vertices = deviation(g, cpu);
+  out.push_back({"skin_colliders", vertices.max, vertices.bitwise});
+  gpu.run(PassId::fit_collider_boxes);
+  const Deviation boxes = deviation(section(gpu.state().download_skinned(), 3 * n), section(c.control.skinned, 3 * n));
+  out.push_back({"fit_collider_boxes", boxes.max, boxes.bitwise});
+}
+
 // One pass on both sides from the CPU's current state; leaves the CPU after the pass.
 struct PassCheck {
   const ClothModel& model;
@@ -323,6 +341,7 @@ std::vector<PassError> check_passes(const Scene& scene, const ClothModel& model,
   State<float>& s = cpu.state();
   std::vector<PassError> out;
   PassCheck k{model, c, s, gpu, out};
+  if (c.skin_vertices > 0) check_skinning_passes(c, gpu, out);
   check_classic_passes(k);
   check_xpbd_passes(k);
   if (c.multigrid) check_multigrid_passes(model, c, s, gpu, out);

@@ -21,7 +21,7 @@ namespace clothsim {
 
 // Every pass, in the table's (the substep's) order; the enumerator is the row's index.
 enum class PassId : uint8_t {
-  compute_wind_forces, advance, predict, collide_listed, count_cells, scan_cells, fill_cells, sort_cells,
+  skin_colliders, fit_collider_boxes, compute_wind_forces, advance, predict, collide_listed, count_cells, scan_cells, fill_cells, sort_cells,
   resolve_self_contacts, solve_length_constraints, solve_distance_constraints, compute_residuals,
   restrict_residuals, cycle_small_levels, prolong_corrections, smooth_corrections, prolong_to_cloth, relax_vertices,
   collide_listed_frictionless, stretch_fixed_passes, arm_stretch_pass, stretch_watched_passes, limit_speed, compute_normals,
@@ -32,6 +32,8 @@ inline constexpr size_t kPassCount = size_t(PassId::count_);
 // How many workgroups one dispatch of the pass has.
 enum class Domain : uint8_t {
   particles,       // one invocation per particle
+  skinned_vertices,  // one per skinned collider vertex (Constants::skin_vertices)
+  skin_groups,     // one per group of clusters of the skinned colliders (Constants::skin_groups)
   hash_table,      // one per bucket of the spatial hash
   colour,          // u_first, u_count: a colour's springs (an empty colour: no dispatch, no barrier)
   range,           // u_first, u_count: a coarse level or colour, a fine colour (empty: no dispatch, the barrier stays)
@@ -58,13 +60,15 @@ enum Feature : uint16_t {
   kCheckOnly = 256,  // run only by the pass checks (a row no substep runs)
   kPerFrame = 512,   // once per frame, after the substeps
   kSpeedLimit = 1024,  // simulation.max_speed above 0
+  kSkinned = 2048,     // a skinned mesh collider (mesh.animation)
 };
 
 // A scene's features (`listed`: collide_objects runs over the contact list).
 inline uint16_t features_of(const Constants<float>& c, bool listed) {
   return uint16_t((c.wind_enabled ? kWind : 0) | (c.xpbd ? kXpbd : kClassic) | (c.multigrid ? kMultigrid : 0) |
                   (c.self_collision ? kSelf : 0) | (listed ? kListed : 0) | (c.stretch_passes_max > 0 ? kStretch : 0) |
-                  (c.stretch_passes_max > c.stretch_passes ? kSettling : 0) | (c.max_move > 0.f ? kSpeedLimit : 0));
+                  (c.stretch_passes_max > c.stretch_passes ? kSettling : 0) | (c.max_move > 0.f ? kSpeedLimit : 0) |
+                  (c.skin_vertices > 0 ? kSkinned : 0));
 }
 
 // How many dispatches of the row one substep issues (dispatches_per_substep, pass_check).
@@ -127,6 +131,13 @@ constexpr Twin kComputeNormals = [](const ClothModel& m, const Constants<float>&
 // name, file, build, program_of, domain, barrier, listed_barrier, need, unless, count, flag uniform,
 // group, stage (GpuSimulator::step's entry and bench's row), who reads next.
 inline constexpr PassRow kPasses[] = {
+    {P::skin_colliders, "skin_colliders", "skin_colliders", B::always, P::skin_colliders, D::skinned_vertices, kSsbo,
+     0, kSkinned, 0, C::once, nullptr, "skin_colliders", true,
+     "fit_collider_boxes reads the skinned vertices through the same storage buffer"},
+    {P::fit_collider_boxes, "fit_collider_boxes", "fit_collider_boxes", B::always, P::fit_collider_boxes,
+     D::skin_groups, kComputeReads, 0, kSkinned, 0, C::once, nullptr, "skin_colliders", true,
+     "the collisions read the skinned vertices and the boxes through their views (and skin_colliders' writes, "
+     "before this barrier, with them)"},
     {P::compute_wind_forces, "compute_wind_forces", "compute_wind_forces", B::always, P::compute_wind_forces,
      D::particles, kSsbo, 0, kWind, 0, C::once, nullptr, nullptr, true,
      "advance or predict (or accumulate_forces) add the wind forces next", &compute_wind_forces<float>, K::wind},

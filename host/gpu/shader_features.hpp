@@ -24,6 +24,7 @@ struct ShaderFeatures {
   bool multigrid = true;    // the multigrid solver (predict's offsets, no multipliers, no tethers)
   bool wind = true;         // the wind (advance and predict read compute_wind_forces' output)
   bool attachments = true;  // cloth.attachments (the forces and the multigrid solve read them)
+  bool skinned = true;      // a skinned mesh collider (mesh.animation)
 
   // What a run with these constants can reach.
   static ShaderFeatures of(const Constants<float>& c) {
@@ -39,6 +40,8 @@ struct ShaderFeatures {
     f.multigrid = c.multigrid;
     f.wind = c.wind_enabled;
     f.attachments = c.has_attachments();
+    f.skinned = c.skin_vertices > 0;
+    f.moving = f.moving || f.skinned;
     return f;
   }
 
@@ -48,7 +51,8 @@ struct ShaderFeatures {
     return {{"COLLIDE_SPHERES", b(spheres)}, {"COLLIDE_PLANES", b(planes)}, {"COLLIDE_MESHES", b(meshes)},
             {"COLLIDERS_MOVE", b(moving)},   {"COULOMB_FRICTION", b(coulomb)},
             {"PINS_MOVE", b(pins_moving)},   {"MULTIGRID_SOLVER", b(multigrid)},
-            {"WIND_ENABLED", b(wind)},       {"ATTACHMENTS", b(attachments)}};
+            {"WIND_ENABLED", b(wind)},       {"ATTACHMENTS", b(attachments)},
+            {"SKINNED_MESHES", b(skinned)}};
   }
 
   bool operator==(const ShaderFeatures&) const = default;

@@ -35,6 +35,7 @@ using mesh_import_detail::read_obj_positions;
 struct Instance {
   const aiMesh* mesh;
   glm::dmat4 transform;
+  const aiNode* node;
 };
 
 // Depth first, a node's meshes before its children, children in order. An explicit stack:
@@ -51,7 +52,7 @@ std::vector<Instance> collect_instances(const aiScene& scene) {
       for (int c = 0; c < 4; ++c) local[c][r] = node->mTransformation[r][c];  // row major to glm's columns
     const glm::dmat4 world = parent * local;
     for (unsigned i = 0; i < node->mNumMeshes; ++i)
-      if (node->mMeshes[i] < scene.mNumMeshes) out.push_back({scene.mMeshes[node->mMeshes[i]], world});
+      if (node->mMeshes[i] < scene.mNumMeshes) out.push_back({scene.mMeshes[node->mMeshes[i]], world, node});
     for (unsigned c = node->mNumChildren; c-- > 0;) stack.emplace_back(node->mChildren[c], world);
   }
   return out;
@@ -171,7 +172,7 @@ bool zero_area(const std::vector<glm::dvec3>& p, const uint32_t* c, size_t n) {
 
 }  // namespace
 
-PolyMesh load_mesh(const std::filesystem::path& file, const std::string& what, bool manifold) {
+PolyMesh load_mesh(const std::filesystem::path& file, const std::string& what, bool manifold, const MeshInspector& inspect) {
   const Context cx{file, what};
   // stat first: Assimp would block on a FIFO or read /dev/zero without end.
   uint64_t size = 0;
@@ -228,6 +229,12 @@ PolyMesh load_mesh(const std::filesystem::path& file, const std::string& what, b
     }
   }
   if (weld) particle = weld_vertices(cx, instances, out.positions);
+  if (inspect) {
+    std::vector<MeshUse> uses;
+    for (size_t m = 0; m < instances.size(); ++m)
+      uses.push_back({instances[m].mesh, instances[m].node, instances[m].transform, particle[m]});
+    inspect(*scene, uses, out.positions.size());
+  }
 
   if (all_uv) {  // the first uv met per particle
     out.uv.assign(out.positions.size(), glm::dvec2(0.0));

@@ -39,11 +39,18 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <functional>
+#include <span>
 #include <string>
 #include <vector>
 
 #include <glm/vec2.hpp>
+#include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
+
+struct aiMesh;
+struct aiNode;
+struct aiScene;
 
 namespace clothsim {
 
@@ -56,12 +63,25 @@ struct PolyMesh {
   std::vector<std::vector<uint32_t>> faces;  // each 3 (triangle) or 4 (quad) particle indices, in the file's winding
 };
 
+// One use of an aiMesh by a node of the file: the node's transform accumulated from the root,
+// and the particle each of its vertices became (welded as above).
+struct MeshUse {
+  const aiMesh* mesh;
+  const aiNode* node;
+  glm::dmat4 transform;
+  std::vector<uint32_t> particle;
+};
+// Called while the file is loaded, with Assimp's scene, its mesh uses in the order above and the
+// particle count: what a skinned collider reads beyond the surface (colliders/skin.hpp).
+using MeshInspector = std::function<void(const aiScene&, std::span<const MeshUse>, size_t particles)>;
+
 // Loads FILE with Assimp. `what` names the scene and key for messages, e.g.
 // "scenes/disc.json: cloth.mesh". Throws SceneError (scene.hpp) "<what>: <file>: <problem>"
 // for: a missing or unreadable file, a format Assimp cannot read (with Assimp's message), no
 // faces, a non-finite coordinate, an edge shared by more than two faces (naming its two
 // vertices, 0-based; only with `manifold`, which a cloth needs and a collider does not),
 // more than kMaxMeshVertices particles.
-PolyMesh load_mesh(const std::filesystem::path& file, const std::string& what, bool manifold = true);
+PolyMesh load_mesh(const std::filesystem::path& file, const std::string& what, bool manifold = true,
+                   const MeshInspector& inspect = {});
 
 }  // namespace clothsim

@@ -14,6 +14,7 @@
 #include <fmt/format.h>
 
 #include "cloth/mesh_import.hpp"
+#include "io/input_file.hpp"
 
 namespace clothsim {
 namespace {
@@ -21,6 +22,11 @@ namespace {
 struct Key {
   std::string file;
   double scale, voxel_size;
+  std::string animation;
+  double time_scale;
+  bool loop;
+  std::string point_cache, sequence;
+  double cache_rate;
   auto operator<=>(const Key&) const = default;
 };
 
@@ -84,17 +90,58 @@ glm::dmat3 collider_rotation(const MeshColliderParams& p) {
                     glm::dvec3(t * k.x * k.z + s * k.y, t * k.y * k.z - s * k.x, c + t * k.z * k.z));
 }
 
+std::vector<glm::dvec3> posed_positions(const ColliderMesh& mesh, const MeshColliderParams& p, const glm::dvec3& origin,
+                                        double t) {
+  const glm::dmat3 rotation = collider_rotation(p);
+  std::vector<glm::dvec3> out;
+  out.reserve(mesh.surface.positions.size());
+  const std::vector<glm::dmat4> bones = mesh.skin ? mesh.skin->palette_at(t) : std::vector<glm::dmat4>{};
+  for (size_t v = 0; v < mesh.surface.positions.size(); ++v) {
+    glm::dvec3 q = mesh.surface.positions[v];
+    if (mesh.skin) {  // B on the scaled vertex: its linear part as it is, its translation scaled
+      glm::dvec3 sum(0.0);
+      for (int k = 0; k < kBonesPerVertex; ++k) {
+        const glm::dmat4& b = bones[mesh.skin->bones[v][k]];
+        sum += mesh.skin->weights[v][k] * (glm::dmat3(b) * q + p.scale * glm::dvec3(b[3]));
+      }
+      q = sum;
+    }
+    out.push_back(rotation * q + origin);
+  }
+  return out;
+}
+
 std::shared_ptr<const ColliderMesh> load_collider_mesh(const Scene& scene, size_t index) {
   const MeshColliderParams& p = scene.meshes.at(index);
   const std::string key = mesh_key(scene, index);
   std::lock_guard lock(g_mutex);
-  const Key memo{p.file_path.string(), p.scale, p.voxel_size};
+  const double rate = p.cache_frames_per_sec > 0 ? p.cache_frames_per_sec : scene.simulation.frames_per_sec;
+  const Key memo{p.file_path.string(), p.scale, p.voxel_size, p.animation, p.time_scale, p.loop,
+                 p.point_cache_path.string(), p.sequence_path.string(), rate};
   if (auto it = g_loaded.find(memo); it != g_loaded.end()) return it->second;
 
   auto out = std::make_shared<ColliderMesh>();
   out->file = p.file_path;
-  const PolyMesh poly = load_mesh(p.file_path, fmt::format("{}: {}.file", scene.source, key), /*manifold=*/false);
+  MeshInspector read_bones;
+  if (!p.animation.empty())
+    read_bones = [&](const aiScene& file, std::span<const MeshUse> uses, size_t vertices) {
+      auto skin = std::make_shared<Skin>(read_skin(file, uses, vertices, p.animation,
+                                                   fmt::format("{}: {}.animation: {}", scene.source, key, printable(p.file_path.string()))));
+      skin->time_scale = p.time_scale;
+      skin->loop = p.loop;
+      out->skin = std::move(skin);
+    };
+  const PolyMesh poly = load_mesh(p.file_path, fmt::format("{}: {}.file", scene.source, key), /*manifold=*/false, read_bones);
   out->surface = surface_of(poly, p.scale);
+  if (!p.point_cache.empty() || !p.sequence.empty()) {
+    const bool pc2 = !p.point_cache.empty();
+    const std::string what = fmt::format("{}: {}.{}", scene.source, key, pc2 ? "point_cache" : "sequence");
+    auto skin = std::make_shared<Skin>(pc2 ? read_point_cache(poly.positions, p.point_cache_path, rate, what)
+                                           : read_obj_sequence(poly.positions, p.sequence_path, rate, what));
+    skin->time_scale = p.time_scale;
+    skin->loop = p.loop;
+    out->skin = std::move(skin);
+  }
   const double extent = longest_extent(out->surface);
   if (!(extent > 0))
     throw SceneError(fmt::format("{}: {}.file: {}: the mesh is a point (no extent to collide with)", scene.source, key,

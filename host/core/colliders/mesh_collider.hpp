@@ -12,6 +12,7 @@
 
 #include "scene/scene.hpp"
 #include "colliders/sdf.hpp"
+#include "colliders/skin.hpp"
 
 namespace clothsim {
 
@@ -22,6 +23,9 @@ struct ColliderMesh {
   double build_seconds = 0;  // building the field (0 when it came from the cache)
   std::filesystem::path cache;  // the cache file read or written; empty: none (a build under a second)
   bool from_cache = false;
+  // A skinned collider (mesh.animation): its bones and animation; null for a rigid one. Its
+  // surface and field are the bind pose's.
+  std::shared_ptr<const Skin> skin;
 };
 
 // A build that takes longer than this keeps its field in a cache file in field_cache_folder().
@@ -45,6 +49,12 @@ std::shared_ptr<const std::vector<float>> concatenated_fields(const std::vector<
 
 // The collider's rotation: about the unit rotation_axis by rotation_degrees (right-handed).
 glm::dmat3 collider_rotation(const MeshColliderParams& p);
+
+// The collider's vertices in scene coordinates with its origin at `origin` and, for a skinned
+// one, posed at scene time t: rotation R v + origin (v the file's vertex scaled), or
+// origin + R sum_k w_k (B_k(t) v) over the vertex's bones, in double (export, --stats, drawing).
+std::vector<glm::dvec3> posed_positions(const ColliderMesh& mesh, const MeshColliderParams& p, const glm::dvec3& origin,
+                                        double t);
 
 // The key path of collider `index` in `scene` ("mesh" for a lone object, else "mesh[i]").
 std::string mesh_key(const Scene& scene, size_t index);

@@ -1,7 +1,8 @@
-// --export-colliders (collider_export.hpp). A mesh collider moves by translation only (its
-// `motion` keys its origin; docs/model.md, "Mesh colliders"): at time t its vertices are
+// --export-colliders (collider_export.hpp). A rigid mesh collider moves by translation only
+// (its `motion` keys its origin; docs/model.md, "Mesh colliders"): at time t its vertices are
 // R v + origin(t), R its fixed rotation, v the file's vertex scaled, as the simulation places
-// it for the substep ending at t (set_substep_time evaluates the same keys).
+// it for the substep ending at t (set_substep_time evaluates the same keys); a skinned one is
+// posed by its animation at t too (posed_positions).
 #include "export/collider_export.hpp"
 
 #include <cstdio>
@@ -21,13 +22,12 @@ namespace fs = std::filesystem;
 
 std::string frame_name(int64_t frame) { return fmt::format("frame_{:04d}.obj", frame); }
 
-void write_collider_obj(const std::string& path, const ColliderMesh& mesh, const glm::dmat3& rotation,
+void write_collider_obj(const std::string& path, const ColliderMesh& mesh, const MeshColliderParams& params,
                         const glm::dvec3& origin, const std::string& key, double time) {
   write_text_file(path, [&](std::FILE* f) {  // replaced only once complete (io/output_file.hpp)
     fmt::print(f, "# clothsim collider {} at t = {:.9g} s, {} triangles, scene coordinates\n", key, time,
                mesh.surface.triangles.size());
-    for (const glm::dvec3& v : mesh.surface.positions) {
-      const glm::dvec3 p = rotation * v + origin;
+    for (const glm::dvec3& p : posed_positions(mesh, params, origin, time)) {
       fmt::print(f, "v {:.9g} {:.9g} {:.9g}\n", p.x, p.y, p.z);
     }
     for (const glm::uvec3& t : mesh.surface.triangles) fmt::print(f, "f {} {} {}\n", t.x + 1, t.y + 1, t.z + 1);
@@ -62,7 +62,7 @@ ColliderExport::ColliderExport(const Scene& scene, const std::string& dir, int64
 void ColliderExport::add(int64_t frame, double time) {
   for (size_t k = 0; k < meshes_.size(); ++k) {
     write_collider_obj((fs::path(collider_folder(dir_, k)) / frame_name(frame)).string(), *meshes_[k],
-                       collider_rotation(scene_.meshes[k]), collider_origin(scene_, ColliderRef{3, k}, time),
+                       scene_.meshes[k], collider_origin(scene_, ColliderRef{3, k}, time),
                        mesh_key(scene_, k), time);
   }
   if (written_++ == 0) first_ = frame;

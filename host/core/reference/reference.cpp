@@ -17,7 +17,7 @@ bool Timeline::moves() const {
   for (auto& k : spheres) if (k) return true;
   for (auto& k : planes) if (k) return true;
   for (auto& k : meshes) if (k) return true;
-  return pins.has_value() || gust_period > 0;
+  return !skins.empty() || pins.has_value() || gust_period > 0;
 }
 
 namespace {
@@ -109,9 +109,11 @@ template <class R> void make_meshes(const Scene& scene, Constants<R>& c) {
     const std::shared_ptr<const ColliderMesh> mesh = load_collider_mesh(scene, k);
     loaded.push_back(mesh);
     c.control.meshes.push_back(make_mesh_collider<R>(scene.meshes[k], mesh->sdf, offset));
+    c.timeline.mesh_origins.push_back(scene.meshes[k].origin);
     offset += uint32_t(mesh->sdf.values.size());
   }
   c.sdf = concatenated_fields(loaded);
+  make_skins(scene, loaded, c);
 }
 
 }  // namespace
@@ -140,6 +142,7 @@ template <class R> void set_substep_time(Constants<R>& c, double t) {
       set_mesh_origin(now.meshes[k], Vec3<R>(at));
       now.meshes[k].motion = motion(*tl.meshes[k], at, now.meshes[k].motion.w);
     }
+  if (!tl.skins.empty()) set_skin_palette(c, t, t1);
   if (tl.pins) now.pin_offset = Vec3<R>(interpolate(*tl.pins, t1));
   if (tl.gust_period > 0) now.gust_phase = R(gust_phase(t, tl.gust_period));
 }
@@ -249,6 +252,11 @@ Constants<R> make_constants(const Scene& scene, const ClothModel& model, std::sh
   c.plane_count = uint32_t(c.control.planes.size());
   c.mesh_count = uint32_t(c.control.meshes.size());
   c.pins_moving = c.moving_pins();
+  if (!c.timeline.skins.empty()) {  // the skinned colliders at t = 0, still
+    set_skin_palette(c, 0.0, 0.0);
+    skin_colliders(c.control, c);
+    fit_collider_boxes(c.control, c);
+  }
   return c;
 }
 

@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include <glm/mat3x3.hpp>
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
@@ -50,9 +51,23 @@ template <class R> void set_mesh_origin(MeshColliderT<R>& m, const Vec3<R>& o) {
 // C_d, times 1/2 (the cross product of two edges is twice the area), times 1/3 (each corner
 // gathers a third); lift likewise.
 
+struct Skin;
+
+// A skinned mesh collider's timeline (reference_skinning.cpp): its bones' palette entries
+// palette_first.. in Control::palette, and how its file's frame is placed in the scene.
+struct SkinnedTimeline {
+  std::shared_ptr<const Skin> skin;
+  size_t mesh = 0;           // its index among the mesh colliders
+  uint32_t palette_first = 0;
+  double scale = 1;
+  glm::dmat3 rotation{1.0};
+};
+
 // What moves with time, in double: evaluated once per substep by set_substep_time into Control.
 struct Timeline {
   std::vector<std::optional<Keyframes>> spheres, planes, meshes;  // by collider, in file order
+  std::vector<glm::dvec3> mesh_origins;                   // by mesh collider: its origin without keys
+  std::vector<SkinnedTimeline> skins;                     // the skinned mesh colliders
   std::optional<Keyframes> pins;                          // offsets of the pinned masses
   double gust_period = 0;                                 // 0: no gusts
   double dt = 0;
@@ -84,6 +99,11 @@ template <class R> struct Control : layout::SubstepControlT<R> {
   std::vector<SphereColliderT<R>> spheres;
   std::vector<PlaneColliderT<R>> planes;
   std::vector<MeshColliderT<R>> meshes;
+  // Skinned mesh colliders (docs/model.md, "Skinned and animated colliders"): the palette's
+  // matrices (3 rows each, TEXTURE_SKIN_PALETTE) at the substep's start, then at its end; and
+  // what skin_colliders makes of them (TEXTURE_SKINNED): every skinned vertex at the end, at
+  // the start, in the bind pose, then every cluster's box (lo, hi) at the end, then every group's.
+  std::vector<Vec4<R>> palette, skinned;
   const layout::SubstepControlT<R>& block() const { return *this; }  // as uploaded
 };
 
@@ -97,8 +117,22 @@ template <class R> struct Control : layout::SubstepControlT<R> {
 // rest distance from `rest` (the model's rest positions, rounded to R once).
 // multigrid: the multigrid solver, whose solve replaces xpbd's sweep (docs/model.md) and whose
 // hierarchy (hierarchy.hpp) is built once here.
+// The skinned mesh colliders' fixed lists (TEXTURE_SKIN_INDICES, TEXTURE_SKIN_WEIGHTS), every
+// skinned collider's in turn: per vertex its bones and weights, per triangle its vertices (w its
+// mesh collider), per cluster of at most kClusterTriangles triangles near one another its
+// first triangle and count (x, y), per group of at most kGroupClusters clusters its first
+// cluster and count: a two-level tree of boxes, refitted every substep, that a mass's search
+// for its nearest triangle descends.
+template <class R> struct SkinLists {
+  std::vector<glm::uvec4> bones, triangles, clusters, groups;
+  std::vector<Vec4<R>> weights;
+};
+inline constexpr uint32_t kClusterTriangles = 32;
+inline constexpr uint32_t kGroupClusters = 8;
+
 template <class R> struct Constants : layout::StepParamsT<R> {
   Control<R> control;  // what set_substep_time writes
+  SkinLists<R> skin;
   std::vector<Vec3<R>> rest;
   std::vector<MaterialC<R>> materials;  // by cloth, Scene::cloths() order
   std::vector<R> mass;  // kg, per particle (particle_masses: follows a live density edit)
@@ -158,6 +192,24 @@ Constants<R> make_constants(const Scene& scene, const ClothModel& model,
 // offset at t + dt (advance moves them there), the gusts' phase at t (when the forces are
 // computed). A no-op for a scene in which nothing moves (!c.timeline.moves()).
 template <class R> void set_substep_time(Constants<R>& c, double t);
+
+// Skinned mesh colliders (reference_skinning.cpp): skin_colliders and fit_collider_boxes are the
+// CPU twins of compute/skin_colliders.comp (every skinned vertex from the palette) and
+// compute/fit_collider_boxes.comp (each group's clusters' boxes, then the group's), run by the
+// CPU backend after set_substep_time; skinned_mesh_at gives a mass at x (moved d) the
+// frame of its nearest triangle within reach (skinned_frame in compute/shared/skinning.glsl),
+// false where none is.
+template <class R> void skin_colliders(Control<R>& control, const Constants<R>& c);
+template <class R> void fit_collider_boxes(Control<R>& control, const Constants<R>& c);
+template <class R> bool skinned_mesh_at(const Constants<R>& c, const MeshColliderT<R>& m, const Vec3<R>& x,
+                                        const Vec3<R>& d, MeshColliderT<R>& frame);
+// Mesh collider m as it meets a mass at x that moved by d: m itself when rigid, its frame at x
+// (in `scratch`) when skinned, null where a skinned one has no triangle within reach.
+template <class R> const MeshColliderT<R>* mesh_at(const Constants<R>& c, const MeshColliderT<R>& m, const Vec3<R>& x,
+                                                   const Vec3<R>& d, MeshColliderT<R>& scratch) {
+  if (m.skin.y == 0) return &m;
+  return skinned_mesh_at(c, m, x, d, scratch) ? &scratch : nullptr;
+}
 
 // What changes during a run: positions (w = inverse mass, 0 = pinned), the displacement of
 // the last substep (d = x - x_prev, w unused), forces and normals, all vec4 like the GPU

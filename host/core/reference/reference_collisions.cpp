@@ -85,13 +85,17 @@ template <class R> void collide_particle(const Constants<R>& c, Vec3<R>& x, Vec3
     respond_to_plane(coulomb, normal, front, friction ? keep : R(1), mu, motion, dist, side, x, d);
     if (side == front) keep_in_front_of_plane(point, normal, front, x, d);
   }
-  for (const MeshColliderT<R>& m : c.control.meshes) collide_with_mesh(c, m, friction, x, d);
+  MeshColliderT<R> frame;  // a skinned collider's, at this mass
+  for (const MeshColliderT<R>& m : c.control.meshes)
+    if (const MeshColliderT<R>* at = mesh_at(c, m, x, d, frame)) collide_with_mesh(c, *at, friction, x, d);
 }
 
 template <class R> void keep_out_of_colliders(const Constants<R>& c, Vec3<R>& x, Vec3<R>& d) {
   for (const SphereColliderT<R>& sp : c.control.spheres) keep_out_of_sphere(Vec3<R>(sp.origin_radius), sp.origin_radius.w, x, d);
   for (const PlaneColliderT<R>& pl : c.control.planes) keep_in_front_of_plane(Vec3<R>(pl.point), Vec3<R>(pl.normal), pl.point.w, x, d);
-  for (const MeshColliderT<R>& m : c.control.meshes) keep_out_of_mesh(c, m, x, d);
+  MeshColliderT<R> frame;
+  for (const MeshColliderT<R>& m : c.control.meshes)
+    if (const MeshColliderT<R>* at = mesh_at(c, m, x, d, frame)) keep_out_of_mesh(c, *at, x, d);
 }
 
 template <class R> void collide_objects(const Constants<R>& c, State<R>& s) {

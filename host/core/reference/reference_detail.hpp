@@ -46,5 +46,13 @@ template <class R> bool sample_mesh_at(const MeshColliderT<R>& m, const float* s
 // its first node in the array the field is read from (Constants::sdf).
 template <class R> MeshColliderT<R> make_mesh_collider(const MeshColliderParams& p, const SdfGrid& g, uint32_t offset);
 
+// Skinned mesh colliders (reference_skinning.cpp): their lists, clusters and timelines from the
+// loaded meshes (after their MeshColliders are made), and the palette at times start and end
+// (Control::palette's two halves).
+struct ColliderMesh;
+template <class R>
+void make_skins(const Scene& scene, const std::vector<std::shared_ptr<const ColliderMesh>>& loaded, Constants<R>& c);
+template <class R> void set_skin_palette(Constants<R>& c, double start, double end);
+
 
 }  // namespace clothsim

@@ -67,10 +67,12 @@ template <class R> bool touches_colliders(const Constants<R>& c, const Vec3<R>& 
     if (shared::near_sphere(x, Vec3<R>(sp.origin_radius), sp.origin_radius.w, reach)) return true;
   for (const PlaneColliderT<R>& pl : c.control.planes)
     if (shared::near_plane(x, Vec3<R>(pl.point), Vec3<R>(pl.normal), pl.point.w, reach)) return true;  // w: front
+  MeshColliderT<R> frame;  // a skinned collider's, at x (no move: d = 0)
   for (const MeshColliderT<R>& m : c.control.meshes) {
     R phi;
     Vec3<R> grad;
-    if (sample_mesh_at(m, c.sdf->data(), x, phi, grad) && phi < m.material.y + reach) return true;  // y: thickness
+    const MeshColliderT<R>* at = mesh_at(c, m, x, Vec3<R>(0), frame);
+    if (at && sample_mesh_at(*at, c.sdf->data(), x, phi, grad) && phi < m.material.y + reach) return true;  // y: thickness
   }
   return false;
 }

@@ -67,6 +67,8 @@ struct ParamInfo {
   // A rule the range cannot say (the plane normal), run by the loader right after a vec3 row is
   // read: may adjust the value, and returns the "expected ..." message of a bad one, else nullptr.
   const char* (*after_read)(glm::dvec3&) = nullptr;
+  // A text row that also takes a non-negative integer, kept as its digits (mesh.animation).
+  bool index_or_name = false;
 };
 
 class ParamVisitor;

@@ -144,9 +144,22 @@ Scene parse_scene(const std::string& text, const std::string& source, const std:
   }
   // A mesh collider's file, relative to the scene file like a mesh cloth's.
   const bool file = !source.empty() && source[0] != '<';
-  for (MeshColliderParams& m : s.meshes)
-    m.file_path = (file ? std::filesystem::path(source).parent_path() / m.file : std::filesystem::path(m.file))
-                      .lexically_normal();
+  auto resolve = [&](const std::string& f) {
+    return (file ? std::filesystem::path(source).parent_path() / f : std::filesystem::path(f)).lexically_normal();
+  };
+  for (size_t k = 0; k < s.meshes.size(); ++k) {
+    MeshColliderParams& m = s.meshes[k];
+    m.file_path = resolve(m.file);
+    if (!m.point_cache.empty()) m.point_cache_path = resolve(m.point_cache);
+    if (!m.sequence.empty()) m.sequence_path = resolve(m.sequence);
+    // One source of motion for the vertices: bones, a point cache or an OBJ sequence.
+    const int sources = !m.animation.empty() + !m.point_cache.empty() + !m.sequence.empty();
+    if (sources > 1)
+      throw SceneError(fmt::format("{}: {}: expected at most one of animation, point_cache and sequence (what moves "
+                                   "the vertices), got {}",
+                                   source, s.meshes.size() == 1 ? std::string("mesh") : fmt::format("mesh[{}]", k),
+                                   sources));
+  }
   // Special case, across two rows: XPBD's compliance is exact for one solve per substep (its
   // Lagrange multipliers start at zero every substep); a stiffer xpbd cloth needs more substeps.
   if (s.simulation.solver == Solver::Xpbd && s.simulation.constraint_iterations != 1)

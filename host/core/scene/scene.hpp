@@ -133,6 +133,17 @@ struct MeshColliderParams {
   std::optional<MotionParams> motion;  // keys are origins; replaces `origin` while present
   double voxel_size = 0;   // m; 0: the mesh's longest extent / 128 (sdf.hpp)
   double thickness = 0.002;  // m: masses are kept this far outside the surface
+  // A skinned, animated collider (colliders/skin.hpp): the name or index of one of the file's
+  // animations ("": a rigid collider), played at time_scale, looping or held at its end.
+  std::string animation;
+  double time_scale = 1;
+  bool loop = true;
+  // Or the vertices from a point cache: a PC2 file, or a folder of OBJ files (one a frame) over
+  // `file`'s vertices, at cache_frames_per_sec (0: the scene's frames_per_sec). Resolved paths
+  // set by the loader.
+  std::string point_cache, sequence;
+  std::filesystem::path point_cache_path, sequence_path;
+  double cache_frames_per_sec = 0;
 
   bool operator==(const MeshColliderParams&) const = default;
 };

@@ -143,6 +143,10 @@ class Reader final : public ParamVisitor {
     const std::string expected = *info.expected ? info.expected : "a string";
     const json* v = r_.get(info, expected);
     if (!v) return;
+    if (info.index_or_name && v->is_number_unsigned()) {
+      m = std::to_string(v->get<uint64_t>());
+      return;
+    }
     // A --set value that is not JSON is a string as typed: it may not be UTF-8, which
     // scene_to_json could not write. A NUL is no part of a file name.
     bool ok = v->is_string() && !v->get_ref<const std::string&>().empty() &&

@@ -247,6 +247,28 @@ const Param<MeshColliderParams> kMeshCollider[] = {
                                           .widget = kReadOnly}),
     row<&MeshColliderParams::thickness>({.key = "thickness", .lo = 0, .expected = "a thickness >= 0 (metres)",
                                          .unit = "m", .meaning = "masses are kept this far outside the surface"}),
+    row<&MeshColliderParams::animation>({.key = "animation", .expected = "an animation's name or index",
+                                         .meaning = "a skinned collider: the file's bones move its vertices through "
+                                                    "this animation (its name, or its index from 0); absent: rigid",
+                                         .widget = kReadOnly, .index_or_name = true}),
+    row<&MeshColliderParams::time_scale>({.key = "time_scale", .lo = 0, .hi = 1e6,
+                                          .expected = "a time scale in [0, 1e6]",
+                                          .meaning = "animation seconds per scene second (0 holds the first pose)",
+                                          .widget = kReadOnly}),
+    row<&MeshColliderParams::loop>({.key = "loop", .meaning = "the animation (or cache) starts over at its end; false: "
+                                                             "it holds its last pose", .widget = kReadOnly}),
+    row<&MeshColliderParams::point_cache>({.key = "point_cache", .expected = "a path to a PC2 file",
+                                           .meaning = "a deforming collider: a PC2 point cache of `file`'s vertices "
+                                                      "(Blender's Mesh Cache), relative to the scene file",
+                                           .widget = kReadOnly}),
+    row<&MeshColliderParams::sequence>({.key = "sequence", .expected = "a path to a folder of OBJ files",
+                                        .meaning = "a deforming collider: a folder of OBJ files of `file`'s vertices, "
+                                                   "one a frame in name order (--export-colliders writes one)",
+                                        .widget = kReadOnly}),
+    row<&MeshColliderParams::cache_frames_per_sec>({.key = "cache_frames_per_sec", .lo = 0, .hi = 1e6,
+                                                    .expected = "frames per second in [0, 1e6]", .unit = "1/s",
+                                                    .meaning = "the point cache's or sequence's frame rate; 0: the "
+                                                               "scene's frames_per_sec", .widget = kReadOnly}),
 };
 
 const Param<SimulationParams> kSimulation[] = {

@@ -1,0 +1,194 @@
+// The reference's skinned mesh colliders (docs/model.md, "Skinned and animated colliders"): the
+// fixed lists and clusters (make_skins), the palette at a substep (set_skin_palette), the
+// skinning passes' twins (skin_colliders, fit_collider_boxes) and a mass's frame (skinned_mesh_at). The formulas are
+// compute/shared/skinning.glsl's; compute/skin_colliders.comp and compute/collide_meshes.glsl
+// run the same loops on the GPU.
+#include <algorithm>
+#include <limits>
+
+#include "colliders/mesh_collider.hpp"
+#include "scene/motion.hpp"
+#include "reference/reference.hpp"
+#include "reference/reference_detail.hpp"
+#include "../../../compute/shared/skinning.glsl"
+
+namespace clothsim {
+namespace {
+
+// 30-bit Morton code of p in the box [lo, lo + size] (10 bits an axis).
+uint32_t morton(const glm::dvec3& p, const glm::dvec3& lo, const glm::dvec3& size) {
+  auto spread = [](uint32_t v) {
+    v = (v | (v << 16)) & 0x030000FFu;
+    v = (v | (v << 8)) & 0x0300F00Fu;
+    v = (v | (v << 4)) & 0x030C30C3u;
+    return (v | (v << 2)) & 0x09249249u;
+  };
+  auto cell = [](double at, double from, double span) {
+    return span > 0 ? uint32_t(std::clamp((at - from) / span * 1023.0, 0.0, 1023.0)) : 0u;
+  };
+  return spread(cell(p.x, lo.x, size.x)) | (spread(cell(p.y, lo.y, size.y)) << 1) | (spread(cell(p.z, lo.z, size.z)) << 2);
+}
+
+}  // namespace
+
+template <class R>
+void make_skins(const Scene& scene, const std::vector<std::shared_ptr<const ColliderMesh>>& loaded, Constants<R>& c) {
+  std::vector<Vec4<R>> rest;
+  uint32_t palette = 0;
+  for (size_t k = 0; k < loaded.size(); ++k) {
+    const ColliderMesh& mesh = *loaded[k];
+    if (!mesh.skin) continue;
+    const Skin& skin = *mesh.skin;
+    const MeshColliderParams& p = scene.meshes[k];
+    const uint32_t first_vertex = uint32_t(rest.size());
+    for (size_t v = 0; v < mesh.surface.positions.size(); ++v) {
+      rest.push_back(Vec4<R>(Vec3<R>(mesh.surface.positions[v]), R(0)));
+      c.skin.bones.push_back(skin.bones[v] + glm::uvec4(palette));
+      c.skin.weights.push_back(Vec4<R>(skin.weights[v]));
+    }
+    // Triangles near one another in the bind pose make a cluster (Morton order of centroids),
+    // whose box skin_colliders refits every substep.
+    const auto& tris = mesh.surface.triangles;
+    glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
+    for (const glm::dvec3& q : mesh.surface.positions) lo = glm::min(lo, q), hi = glm::max(hi, q);
+    std::vector<std::pair<uint32_t, uint32_t>> order;
+    for (uint32_t t = 0; t < tris.size(); ++t) {
+      const auto& ps = mesh.surface.positions;
+      order.push_back({morton((ps[tris[t].x] + ps[tris[t].y] + ps[tris[t].z]) / 3.0, lo, hi - lo), t});
+    }
+    std::stable_sort(order.begin(), order.end(), [](auto& a, auto& b) { return a.first < b.first; });
+    const size_t first_cluster = c.skin.clusters.size(), first_group = c.skin.groups.size();
+    for (size_t i = 0; i < order.size(); i += kClusterTriangles)
+      c.skin.clusters.push_back({uint32_t(c.skin.triangles.size() + i), uint32_t(std::min<size_t>(kClusterTriangles, order.size() - i)), 0, 0});
+    for (size_t i = first_cluster; i < c.skin.clusters.size(); i += kGroupClusters)
+      c.skin.groups.push_back({uint32_t(i), uint32_t(std::min<size_t>(kGroupClusters, c.skin.clusters.size() - i)), 0, 0});
+    for (const auto& [code, t] : order)
+      c.skin.triangles.push_back(glm::uvec4(tris[t] + glm::uvec3(first_vertex), uint32_t(k)));
+    c.control.meshes[k].skin = glm::ivec4(int(first_group), int(c.skin.groups.size() - first_group), 0, 0);
+    c.timeline.skins.push_back({mesh.skin, k, palette, p.scale, collider_rotation(p)});
+    palette += uint32_t(skin.palette_node.size());
+  }
+  if (rest.empty()) return;
+  c.skin_vertices = uint32_t(rest.size());
+  c.skin_triangles = uint32_t(c.skin.triangles.size());
+  c.skin_clusters = uint32_t(c.skin.clusters.size());
+  c.skin_groups = uint32_t(c.skin.groups.size());
+  c.skin_palette = palette;
+  c.control.palette.assign(size_t(6) * palette, Vec4<R>(0));
+  c.control.skinned.assign(3 * rest.size() + 2 * (c.skin.clusters.size() + c.skin.groups.size()), Vec4<R>(0));
+  std::copy(rest.begin(), rest.end(), c.control.skinned.begin() + 2 * std::ptrdiff_t(rest.size()));
+}
+
+template <class R> void set_skin_palette(Constants<R>& c, double start, double end_time) {
+  const Timeline& tl = c.timeline;
+  for (const SkinnedTimeline& s : tl.skins) {
+    for (int end = 0; end < 2; ++end) {
+      const double at = end ? end_time : start;
+      const glm::dvec3 origin = tl.meshes[s.mesh] ? interpolate(*tl.meshes[s.mesh], at) : tl.mesh_origins[s.mesh];
+      const std::vector<glm::dmat4> bones = s.skin->palette_at(at);
+      for (size_t j = 0; j < bones.size(); ++j) {
+        // origin + rotation (scale B r_file): the linear part rotation B3, the translation
+        // origin + rotation (scale b), on the scaled rest positions.
+        const glm::dmat3 linear = s.rotation * glm::dmat3(bones[j]);
+        const glm::dvec3 move = origin + s.rotation * (s.scale * glm::dvec3(bones[j][3]));
+        const size_t base = 3 * (size_t(end) * c.skin_palette + s.palette_first + j);
+        for (int r = 0; r < 3; ++r) c.control.palette[base + size_t(r)] = Vec4<R>(R(linear[0][r]), R(linear[1][r]), R(linear[2][r]), R(move[r]));
+      }
+    }
+  }
+}
+
+template <class R> void skin_colliders(Control<R>& control, const Constants<R>& c) {
+  const size_t n = c.skin_vertices, palette = c.skin_palette;
+  const std::vector<Vec4<R>>& pal = control.palette;
+  for (size_t i = 0; i < n; ++i) {
+    const Vec3<R> r(control.skinned[2 * n + i]);
+    const glm::uvec4 b = c.skin.bones[i];
+    const Vec4<R> w = c.skin.weights[i];
+    Vec3<R> now(0), start(0);
+    for (int k = 0; k < kBonesPerVertex; ++k) {
+      const size_t s = 3 * size_t(b[k]), e = 3 * (palette + b[k]);
+      now = shared::add_bone(now, w[k], pal[e], pal[e + 1], pal[e + 2], r);
+      start = shared::add_bone(start, w[k], pal[s], pal[s + 1], pal[s + 2], r);
+    }
+    control.skinned[i] = Vec4<R>(now, R(0));
+    control.skinned[n + i] = Vec4<R>(start, R(0));
+  }
+}
+
+template <class R> void fit_collider_boxes(Control<R>& control, const Constants<R>& c) {
+  const size_t n = c.skin_vertices, boxes = 3 * n, groups = boxes + 2 * c.skin.clusters.size();
+  std::vector<Vec4<R>>& sk = control.skinned;
+  for (size_t g = 0; g < c.skin.groups.size(); ++g) {
+    Vec3<R> glo, ghi;
+    for (uint32_t k = c.skin.groups[g].x; k < c.skin.groups[g].x + c.skin.groups[g].y; ++k) {
+      const glm::uvec4 cl = c.skin.clusters[k];
+      Vec3<R> lo, hi;
+      for (uint32_t t = cl.x; t < cl.x + cl.y; ++t)
+        for (int corner = 0; corner < 3; ++corner) {
+          const Vec3<R> q(sk[c.skin.triangles[t][corner]]);
+          const bool first = t == cl.x && corner == 0;
+          lo = first ? q : shared::min3(lo, q);
+          hi = first ? q : shared::max3(hi, q);
+        }
+      sk[boxes + 2 * k] = Vec4<R>(lo, R(0));
+      sk[boxes + 2 * k + 1] = Vec4<R>(hi, R(0));
+      glo = k == c.skin.groups[g].x ? lo : shared::min3(glo, lo);
+      ghi = k == c.skin.groups[g].x ? hi : shared::max3(ghi, hi);
+    }
+    sk[groups + 2 * g] = Vec4<R>(glo, R(0));
+    sk[groups + 2 * g + 1] = Vec4<R>(ghi, R(0));
+  }
+}
+
+template <class R>
+bool skinned_mesh_at(const Constants<R>& c, const MeshColliderT<R>& m, const Vec3<R>& x, const Vec3<R>& d,
+                     MeshColliderT<R>& frame) {
+  const std::vector<Vec4<R>>& sk = c.control.skinned;
+  const size_t n = c.skin_vertices;
+  const R reach = shared::skinned_reach(m.grid.w, m.material.y, d);
+  R best = reach * reach;
+  int found = -1;
+  Vec3<R> bary(0);
+  const size_t boxes = 3 * n, group_boxes = boxes + 2 * c.skin.clusters.size();
+  auto near = [&](size_t box) { return shared::box_distance2(x, Vec3<R>(sk[box]), Vec3<R>(sk[box + 1])) < best; };
+  for (int g = m.skin.x; g < m.skin.x + m.skin.y; ++g) {
+    if (!near(group_boxes + 2 * size_t(g))) continue;
+    const glm::uvec4 gr = c.skin.groups[size_t(g)];
+    for (uint32_t k = gr.x; k < gr.x + gr.y; ++k) {
+      if (!near(boxes + 2 * size_t(k))) continue;
+      const glm::uvec4 cl = c.skin.clusters[k];
+      for (uint32_t t = cl.x; t < cl.x + cl.y; ++t) {
+        const glm::uvec4 tri = c.skin.triangles[t];
+        Vec3<R> b3;
+        const Vec3<R> q = shared::closest_on_triangle(x, Vec3<R>(sk[tri.x]), Vec3<R>(sk[tri.y]), Vec3<R>(sk[tri.z]), b3);
+        const R d2 = dot3(x - q, x - q);
+        if (d2 < best) best = d2, found = int(t), bary = b3;
+      }
+    }
+  }
+  if (found < 0) return false;
+  const glm::uvec4 tri = c.skin.triangles[size_t(found)];
+  auto at = [&](size_t section, uint32_t v) { return Vec3<R>(sk[section * n + v]); };
+  Vec3<R> r0, r1, r2, origin, motion;
+  shared::skinned_frame(at(0, tri.x), at(0, tri.y), at(0, tri.z), at(1, tri.x), at(1, tri.y), at(1, tri.z), at(2, tri.x),
+                        at(2, tri.y), at(2, tri.z), bary, x, d, r0, r1, r2, origin, motion);
+  frame = m;
+  frame.row0 = Vec4<R>(r0, origin.x);
+  frame.row1 = Vec4<R>(r1, origin.y);
+  frame.row2 = Vec4<R>(r2, origin.z);
+  frame.motion = Vec4<R>(motion, m.motion.w);
+  return true;
+}
+
+#define CLOTHSIM_INSTANTIATE(R)                                                                                        \
+  template void make_skins<R>(const Scene&, const std::vector<std::shared_ptr<const ColliderMesh>>&, Constants<R>&); \
+  template void set_skin_palette<R>(Constants<R>&, double, double);                                                          \
+  template void skin_colliders<R>(Control<R>&, const Constants<R>&);                                                \
+  template void fit_collider_boxes<R>(Control<R>&, const Constants<R>&);                                            \
+  template bool skinned_mesh_at<R>(const Constants<R>&, const MeshColliderT<R>&, const Vec3<R>&, const Vec3<R>&,     \
+                                   MeshColliderT<R>&);
+CLOTHSIM_INSTANTIATE(float)
+CLOTHSIM_INSTANTIATE(double)
+
+}  // namespace clothsim

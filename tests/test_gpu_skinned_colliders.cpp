@@ -1,0 +1,45 @@
+// The GPU twin of tests/test_skinned_colliders.cpp: a cloth on a skinned box that rises, slides
+// and turns gives the reference's floats pass by pass (skin_colliders and fit_collider_boxes
+// among them) and over a whole run, bit for bit on llvmpipe, on each solver.
+#include "backend.hpp"
+#include "cloth/cloth.hpp"
+#include "gpu_pass_fixtures.hpp"
+#include "skinned_fixtures.hpp"
+
+TEST_CASE("skinned colliders on the GPU: the skinning, every pass and a whole ride as the reference",
+          "[gpu][skinned][long]") {
+  REQUIRE_GL_CONTEXT();
+  test::TempDir dir("gpu_skinned", "ride");
+  const glm::quat turn = glm::angleAxis(0.3f, glm::vec3(0, 1, 0));
+  const std::string file = test::write_skinned_box(
+      dir.path, "box", 0.1f, {{0.f, 0.1f, 0.4f}, {}, {glm::quat(1, 0, 0, 0), glm::quat(1, 0, 0, 0), turn}});
+  for (const char* solver : {"classic", "xpbd", "fabric"}) {
+    INFO(solver);
+    const Scene s = parse_scene(fmt::format(R"({{
+      "cloth": {{"width": 0.1, "height": 0.1, "num_width_points": 5, "num_height_points": 5, "thickness": 0.004,
+                 "orientation": 0, "density": 0.15, "ks": 500, "damping": 0.5}},
+      "mesh": {{"file": "{}", "origin": [0.05, 0.9, 0.05], "friction": 0.5, "thickness": 0.004, "animation": 0,
+                "motion": {{"keyframes": [[0, [0.05, 0.9, 0.05]], [0.4, [0.05, 0.95, 0.07]]]}}}},
+      "simulation": {{"solver": "{}", "self_collision": false}}
+    }})", file, solver), dir / "scene.json");
+    const ClothModel model = build_cloth(s);
+    {
+      GpuSimulator gpu(s, model, pass_fixtures::compute_dir());
+      for (const PassError& e : check_passes(s, model, gpu, 12)) {
+        INFO(e.pass << ": max |GPU - CPU| = " << e.max_error << " m");
+        if (gl::gl_renderer_is_llvmpipe()) CHECK(e.bitwise);
+        else CHECK(e.max_error <= pass_fixtures::kPassTolerance);
+      }
+    }
+    GpuSimulator gpu(s, model, pass_fixtures::compute_dir());
+    CpuBackend<float> cpu(s, model);
+    State<float> out;
+    for (int f = 0; f < 45; ++f) gpu.step_frame(), cpu.step_frame();
+    gpu.download(out);
+    pass_fixtures::check_same("positions", out.pos, cpu.state().pos, pass_fixtures::kRunTolerance);
+    pass_fixtures::check_same("displacements", out.disp, cpu.state().disp, pass_fixtures::kRunTolerance);
+    pass_fixtures::check_same("skinned vertices and boxes", gpu.state().download_skinned(), cpu.constants().control.skinned,
+                              pass_fixtures::kRunTolerance);
+  }
+  CHECK_NO_GL_ERRORS();
+}

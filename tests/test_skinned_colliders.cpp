@@ -1,0 +1,151 @@
+// Skinned, animated mesh colliders (issue 45, item 1; docs/model.md, "Skinned and animated
+// colliders"): a glTF box on one bone (skinned_fixtures.hpp). Linear blend skinning through
+// Assimp against the closed form of the bone's motion; the reference's skinning twin against
+// the double-precision pose; a cloth that rests on the box rides up with it at the offset the
+// field keeps and is carried sideways by friction (and not without it); and the loader's messages.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <string>
+
+#include "backend.hpp"
+#include "colliders/mesh_collider.hpp"
+#include "colliders/winding.hpp"
+#include "skinned_fixtures.hpp"
+#include "test_helpers.hpp"
+
+using namespace clothsim;
+
+namespace {
+
+constexpr double kThickness = 0.004;
+
+// A 5x5 cloth of 0.1 m at y = 1 over a box of half-size 0.1 whose top is at 0.95, the box's
+// bone keyed by `keys` (translations from where it starts).
+Scene cloth_on_box(const test::TempDir& dir, const test::BoneKeys& keys, const std::string& solver, double friction,
+                   const std::string& extra = "") {
+  const std::string file = test::write_skinned_box(dir.path, "box", 0.1f, keys);
+  return parse_scene(fmt::format(R"({{
+  "cloth": {{"width": 0.1, "height": 0.1, "num_width_points": 5, "num_height_points": 5, "thickness": 0.004,
+             "orientation": 0, "density": 0.15, "ks": 500, "damping": 0.5}},
+  "mesh": {{"file": "{}", "origin": [0.05, 0.85, 0.05], "friction": {}, "thickness": {}, "animation": "move",
+            "loop": false{}}},
+  "simulation": {{"solver": "{}", "self_collision": false}}
+}})",
+                                 file, friction, kThickness, extra, solver),
+                     dir / "scene.json");
+}
+
+// Rises 0.1 m between 0.5 s and 1.5 s (after the cloth has landed), then holds (not looping).
+test::BoneKeys rise() { return {{0.f, 0.5f, 1.5f}, {{0, 0, 0}, {0, 0, 0}, {0, 0.1f, 0}}, {}}; }
+// Slides 0.05 m along x between 0.5 s and 1.5 s.
+test::BoneKeys slide() { return {{0.f, 0.5f, 1.5f}, {{0, 0, 0}, {0, 0, 0}, {0.05f, 0, 0}}, {}}; }
+
+std::string scene_error(const test::TempDir& dir, const std::string& mesh) {
+  try {
+    const Scene s = parse_scene(fmt::format(R"({{"cloth": {{"width": 0.1, "height": 0.1, "num_width_points": 5,
+      "num_height_points": 5, "thickness": 0.004, "orientation": 0}}, "mesh": {}}})", mesh), dir / "bad.json");
+    const ClothModel m = build_cloth(s);
+    CpuBackend<double> cpu(s, m);
+  } catch (const SceneError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+}  // namespace
+
+TEST_CASE("a skinned box's vertices follow its bone's keys: a quarter turn's half is 45 degrees, slerped",
+          "[skinned]") {
+  test::TempDir dir("skinned", "turn");
+  const glm::quat quarter = glm::angleAxis(float(M_PI / 2), glm::vec3(0, 1, 0));
+  const std::string file = test::write_skinned_box(dir.path, "turn", 0.1f, {{0.f, 1.f}, {}, {glm::quat(1, 0, 0, 0), quarter}});
+  const Scene s = parse_scene(fmt::format(R"({{"cloth": {{"width": 0.1, "height": 0.1, "num_width_points": 5,
+      "num_height_points": 5, "thickness": 0.004, "orientation": 0}},
+      "mesh": {{"file": "{}", "scale": 2, "origin": [1, 2, 3], "animation": 0}}}})", file), dir / "turn.json");
+  // Looping (the default): 1.25 s is 0.25 s into the second turn.
+  const auto mesh = load_collider_mesh(s, 0);
+  REQUIRE(mesh->skin);
+  CHECK(mesh->skin->animation == "move");
+  CHECK(mesh->skin->duration_seconds() == Approx(1.0));
+  for (double t : {0.0, 0.25, 0.5, 0.75, 1.25}) {
+    const std::vector<glm::dvec3> posed = posed_positions(*mesh, s.meshes[0], glm::dvec3(1, 2, 3), t);
+    const double a = std::fmod(t, 1.0) * M_PI / 2;  // the bone's angle about y at t (constant speed: slerp)
+    for (size_t v = 0; v < posed.size(); ++v) {
+      const glm::dvec3 r = mesh->surface.positions[v];  // scaled by 2
+      const glm::dvec3 expected(std::cos(a) * r.x + std::sin(a) * r.z + 1, r.y + 2, -std::sin(a) * r.x + std::cos(a) * r.z + 3);
+      INFO("t " << t << " vertex " << v);
+      CHECK(glm::length(posed[v] - expected) < 1e-6);
+    }
+  }
+}
+
+TEST_CASE("the reference skins each substep as the double-precision pose of the same keys", "[skinned]") {
+  test::TempDir dir("skinned", "twin");
+  const Scene s = cloth_on_box(dir, rise(), "xpbd", 0.5);
+  const ClothModel m = build_cloth(s);
+  CpuBackend<double> cpu(s, m);
+  const auto mesh = load_collider_mesh(s, 0);
+  for (int f = 0; f < 100; ++f) {
+    cpu.step_frame();
+    if (f % 25 != 0) continue;
+    // The last substep's end is `time()`: its skinned vertices are where posed_positions puts them.
+    const std::vector<glm::dvec3> posed = posed_positions(*mesh, s.meshes[0], s.meshes[0].origin, cpu.time());
+    for (size_t v = 0; v < posed.size(); ++v) CHECK(glm::length(glm::dvec3(cpu.constants().control.skinned[v]) - posed[v]) < 1e-12);
+  }
+}
+
+TEST_CASE("a cloth resting on a skinned box rides up with it and stays its thickness above the top", "[skinned]") {
+  test::TempDir dir("skinned", "ride");
+  const std::string solver = GENERATE("classic", "xpbd", "fabric");
+  const Scene s = cloth_on_box(dir, rise(), solver, 0.5);
+  const ClothModel m = build_cloth(s);
+  CpuBackend<double> cpu(s, m);
+  const auto mesh = load_collider_mesh(s, 0);
+  size_t inside = 0;
+  for (int f = 1; f <= 270; ++f) {  // 3 s: the box rose from 0.5 s to 1.5 s
+    cpu.step_frame();
+    if (f % 10 != 0) continue;
+    const SurfaceMesh posed{posed_positions(*mesh, s.meshes[0], s.meshes[0].origin, cpu.time()), mesh->surface.triangles};
+    for (const auto& p : cpu.state().pos) inside += std::abs(winding_number(posed, glm::dvec3(p))) > 0.5;
+  }
+  const double top = 0.95 + 0.1;
+  double worst = 0;
+  for (const auto& p : cpu.state().pos) worst = std::max(worst, std::abs(p.y - (top + kThickness)));
+  INFO(solver << ": worst |y - (top + thickness)| = " << worst * 1e3 << " mm");
+  CHECK(worst < 5e-4);
+  CHECK(inside == 0);
+}
+
+TEST_CASE("a skinned box that slides carries the cloth on it by friction, and leaves it without", "[skinned]") {
+  test::TempDir dir("skinned", "slide");
+  auto carried = [&](double friction) {
+    const Scene s = cloth_on_box(dir, slide(), "xpbd", friction);
+    const ClothModel m = build_cloth(s);
+    CpuBackend<double> cpu(s, m);
+    for (int f = 0; f < 225; ++f) cpu.step_frame();  // 2.5 s: the slide ended at 1.5 s
+    double moved = 0;
+    for (size_t i = 0; i < m.initial.size(); ++i) moved += cpu.state().pos[i].x - m.initial[i].x;
+    return moved / double(m.initial.size());
+  };
+  const double sticking = carried(1.0), sliding = carried(0.0);
+  INFO("mean x moved: mu = 1 " << sticking * 1e3 << " mm, mu = 0 " << sliding * 1e3 << " mm (the box: 50 mm)");
+  CHECK(std::abs(sticking - 0.05) < 0.002);
+  CHECK(std::abs(sliding) < 0.002);
+}
+
+TEST_CASE("a skinned collider that names no animation of its file is refused with the names it has", "[skinned]") {
+  test::TempDir dir("skinned", "errors");
+  const std::string box = test::write_skinned_box(dir.path, "box", 0.1f, rise());
+  CHECK_THAT(scene_error(dir, fmt::format(R"({{"file": "{}", "animation": "run"}})", box)),
+             Catch::Contains("mesh.animation") && Catch::Contains("no animation \"run\"") && Catch::Contains("0 \"move\""));
+  CHECK_THAT(scene_error(dir, fmt::format(R"({{"file": "{}", "animation": 3}})", box)),
+             Catch::Contains("mesh.animation") && Catch::Contains("no animation \"3\""));
+  const std::string obj = dir / "tri.obj";
+  std::ofstream(obj) << "v 0 0 0\nv 1 0 0\nv 0 0 1\nf 1 2 3\n";
+  CHECK_THAT(scene_error(dir, fmt::format(R"({{"file": "{}", "animation": "walk"}})", obj)),
+             Catch::Contains("mesh.animation") && Catch::Contains("has no animations"));
+  CHECK_THAT(scene_error(dir, fmt::format(R"({{"file": "{}", "animation": 0, "time_scale": -1}})", box)),
+             Catch::Contains("mesh.time_scale"));
+  CHECK(scene_error(dir, fmt::format(R"({{"file": "{}", "animation": 0, "loop": false}})", box)) == "(no error)");
+}
