@@ -29,6 +29,7 @@ void restrict_vertex(uint g) {
   // Pinned, held, held by a collider, or in a fold: fixed in the coarse problem (w -1 says so).
   vec4 p = position_of(int(v.x));
   precise vec3 start = p.xyz + offset_of(int(v.x));
+  g_self = int(v.x);
   if (p.w == 0.0 ||
       (has_colliders() && touches_colliders(start)) ||
       folded(g, v)) {

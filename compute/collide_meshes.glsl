@@ -46,70 +46,81 @@ MeshField mesh_field(int k) {
   return m;
 }
 
-// A skinned collider's search (skinned_mesh_at in host/core/reference/reference_skinning.cpp):
-// the groups, then the clusters, whose boxes are nearer x than the best triangle so far (at
-// first `reach`), then their triangles; -1 where none is within reach.
-bool skinned_near(uint box, vec3 x, float best) {
-  return box_distance2(x, texelFetch(skinned_view, int(box)).xyz, texelFetch(skinned_view, int(box) + 1).xyz) < best;
+// A skinned collider's nearest triangle to a mass (skinned_mesh_at and mesh_at in
+// host/core/reference/reference_skinning.hpp): the substep's first collision of the mass
+// (g_search) looks for it, the least (distance, index) within reach, from the triangle its slot
+// holds (found the same without it, only sooner), descending the groups and clusters whose boxes
+// are not clearly further than the best so far, and keeps it in the slot; every later collision
+// of the substep reuses the slot's (none: no contact). g_self < 0 (a pass that does not say
+// whose collisions run): a search, kept nowhere.
+layout(std430, binding = BINDING_NEAREST) buffer Nearest { uint nearest[]; };
+int g_self = -1;         // the mass whose collisions run: set by the passes that know it
+bool g_search = false;   // and whether this is its substep's first collision
+
+uint skin_slot(MeshField m) { return uint(g_self) * params.skin_meshes + uint(m.skin.z); }
+bool skinned_beyond(uint box, vec3 x, float best) {
+  return box_beyond(box_distance2(x, texelFetch(skinned_view, int(box)).xyz, texelFetch(skinned_view, int(box) + 1).xyz), best);
 }
-int nearest_skinned_triangle(MeshField m, vec3 x, float reach, out vec3 bary) {
+void visit_skinned_triangle(uint t, vec3 x, inout float best, inout uint found) {
+  uvec4 tri = texelFetch(skin_indices_view, int(params.skin_vertices + t));
+  vec3 b3;
+  vec3 q = closest_on_triangle(x, texelFetch(skinned_view, int(tri.x)).xyz, texelFetch(skinned_view, int(tri.y)).xyz,
+                               texelFetch(skinned_view, int(tri.z)).xyz, b3);
+  float d2 = dot3(x - q, x - q);
+  if (nearer(d2, t, best, found)) {
+    best = d2;
+    found = t;
+  }
+}
+uint search_skinned_triangle(MeshField m, vec3 x, float reach) {
   uint n = params.skin_vertices, boxes = 3u * n, group_boxes = boxes + 2u * params.skin_clusters;
   uint clusters_at = n + params.skin_triangles, groups_at = clusters_at + params.skin_clusters;
   float best = reach * reach;
-  int found = -1;
-  bary = vec3(0.0);
+  uint found = 0xFFFFFFFFu;
+  if (g_self >= 0 && nearest[skin_slot(m)] != 0xFFFFFFFFu) visit_skinned_triangle(nearest[skin_slot(m)], x, best, found);
   for (int g = m.skin.x; g < m.skin.x + m.skin.y; ++g) {
-    if (!skinned_near(group_boxes + 2u * uint(g), x, best)) continue;
+    if (skinned_beyond(group_boxes + 2u * uint(g), x, best)) continue;
     uvec4 group = texelFetch(skin_indices_view, int(groups_at) + g);
     for (uint k = group.x; k < group.x + group.y; ++k) {
-      if (!skinned_near(boxes + 2u * k, x, best)) continue;
+      if (skinned_beyond(boxes + 2u * k, x, best)) continue;
       uvec4 cluster = texelFetch(skin_indices_view, int(clusters_at + k));
-      for (uint t = cluster.x; t < cluster.x + cluster.y; ++t) {
-        uvec4 tri = texelFetch(skin_indices_view, int(n + t));
-        vec3 b3;
-        vec3 q = closest_on_triangle(x, texelFetch(skinned_view, int(tri.x)).xyz, texelFetch(skinned_view, int(tri.y)).xyz,
-                                     texelFetch(skinned_view, int(tri.z)).xyz, b3);
-        float d2 = dot3(x - q, x - q);
-        if (d2 < best) {
-          best = d2;
-          found = int(t);
-          bary = b3;
-        }
-      }
+      for (uint t = cluster.x; t < cluster.x + cluster.y; ++t) visit_skinned_triangle(t, x, best, found);
     }
   }
+  if (g_self >= 0) nearest[skin_slot(m)] = found;
   return found;
 }
 
-// Mesh collider m as it meets a mass at x that moved by d (mesh_at in
-// host/core/reference/reference.hpp): a skinned one takes the frame of its nearest triangle
-// (skinned_frame); false where no triangle is within reach (nothing to collide with).
+// Mesh collider m as it meets a mass at x that moved by d: a skinned one takes the frame of its
+// nearest triangle (skinned_frame); false where it has none (nothing to collide with).
 bool mesh_at(inout MeshField m, vec3 x, vec3 d) {
   if (!SKINNED_MESHES || m.skin.y == 0) return true;
-  vec3 bary;
-  int t = nearest_skinned_triangle(m, x, skinned_reach(m.inv_voxel, m.thickness, d), bary);
-  if (t < 0) return false;
+  uint t = g_self < 0 || g_search ? search_skinned_triangle(m, x, skinned_reach(m.inv_voxel, m.thickness, d))
+                                  : nearest[skin_slot(m)];
+  if (t == 0xFFFFFFFFu) return false;
   uint n = params.skin_vertices;
-  uvec4 tri = texelFetch(skin_indices_view, int(n) + t);
-  vec3 origin, motion;
-  skinned_frame(texelFetch(skinned_view, int(tri.x)).xyz, texelFetch(skinned_view, int(tri.y)).xyz,
-                texelFetch(skinned_view, int(tri.z)).xyz, texelFetch(skinned_view, int(n + tri.x)).xyz,
-                texelFetch(skinned_view, int(n + tri.y)).xyz, texelFetch(skinned_view, int(n + tri.z)).xyz,
-                texelFetch(skinned_view, int(2u * n + tri.x)).xyz, texelFetch(skinned_view, int(2u * n + tri.y)).xyz,
-                texelFetch(skinned_view, int(2u * n + tri.z)).xyz, bary, x, d, m.rows[0], m.rows[1], m.rows[2], origin,
-                motion);
+  uvec4 tri = texelFetch(skin_indices_view, int(n + t));
+  vec3 a = texelFetch(skinned_view, int(tri.x)).xyz, b = texelFetch(skinned_view, int(tri.y)).xyz;
+  vec3 c = texelFetch(skinned_view, int(tri.z)).xyz, bary, origin, motion;
+  closest_on_triangle(x, a, b, c, bary);
+  skinned_frame(a, b, c, texelFetch(skinned_view, int(n + tri.x)).xyz, texelFetch(skinned_view, int(n + tri.y)).xyz,
+                texelFetch(skinned_view, int(n + tri.z)).xyz, texelFetch(skinned_view, int(2u * n + tri.x)).xyz,
+                texelFetch(skinned_view, int(2u * n + tri.y)).xyz, texelFetch(skinned_view, int(2u * n + tri.z)).xyz, bary,
+                x, d, m.rows[0], m.rows[1], m.rows[2], origin, motion);
   m.origin = origin;
   m.motion = motion;
   return true;
 }
 
-// Whether a skinned collider leaves a mass at x, moved by d, alone: no box within its reach,
-// where mesh_at finds no triangle and the response does nothing.
+// Whether a skinned collider leaves a mass at x, moved by d, alone at the substep's first
+// collision: no group's box within its reach, where the search finds no triangle. The mass is
+// then not listed, so its slot is cleared here, as that search would have.
 bool skinned_leaves_alone(MeshField m, vec3 x, vec3 d) {
   uint group_boxes = 3u * params.skin_vertices + 2u * params.skin_clusters;
   float reach = skinned_reach(m.inv_voxel, m.thickness, d);
   for (int g = m.skin.x; g < m.skin.x + m.skin.y; ++g)
-    if (skinned_near(group_boxes + 2u * uint(g), x, reach * reach)) return false;
+    if (!skinned_beyond(group_boxes + 2u * uint(g), x, reach * reach)) return false;
+  if (g_self >= 0) nearest[skin_slot(m)] = 0xFFFFFFFFu;
   return true;
 }
 
@@ -239,8 +250,9 @@ bool mesh_leaves_alone(MeshField m, vec3 x, vec3 d, inout float clearance) {
 // would stop at its first tests: left alone. Otherwise listed, and the listed response samples
 // and decides: a listed mass it leaves alone costs time, never bits. A clearance of 0 (a pass
 // that does not keep it, a pinned mass) lists every mass inside the grid.
-bool mesh_leaves_alone_after(MeshField m, vec3 x, vec3 d, float clearance) {
-  if (SKINNED_MESHES && m.skin.y > 0) return skinned_leaves_alone(m, x, d);
+bool mesh_leaves_alone_after(MeshField m, vec3 x, vec3 d, float clearance, int self) {
+  // A skinned one: its later collisions reuse the slot, and do nothing where it holds none.
+  if (SKINNED_MESHES && m.skin.y > 0) return nearest[uint(self) * params.skin_meshes + uint(m.skin.z)] == 0xFFFFFFFFu;
   vec3 p = mesh_local(m, x - m.origin), g;
   if (!inside_mesh_grid(m, p, g)) return true;
   precise float scale = ((length3(x) + length3(m.origin)) + length3(m.grid_min)) + (abs(clearance) + 0.01);

@@ -26,10 +26,12 @@ void main() {
   if (p.w == 0.0) return;
   vec4 moved = displacement_of(i);
   vec3 x = p.xyz, d = moved.xyz;
+  g_self = i;  // a skinned collider's nearest triangle: searched for by the substep's first
 #ifdef FRICTIONLESS
   // The push-out after a sweep's correction: frictionless but under fabric (params.sweep_friction).
   collide_with_objects_friction(x, d, params.sweep_friction != 0u);
 #else
+  g_search = true;  // collision (the listed one after advance or predict), reused by the later ones
   collide_with_objects(x, d);
 #endif
   // Only xyz: w (the inverse mass; predict's clearance bound, which stays with x - d) is

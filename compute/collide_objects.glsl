@@ -132,11 +132,11 @@ bool may_collide(vec3 x, vec3 d, bool friction, out float clearance) {
 // (mesh_leaves_alone_after), listing a mass near a mesh that the response may then leave
 // alone. The passes list the masses it is true for, and collide_objects runs on those alone
 // (compute/contact_list.glsl).
-bvec2 may_collide_pair_after(vec3 xi, vec3 di, float ci, vec3 xj, vec3 dj, float cj, bool friction) {
+bvec2 may_collide_pair_after(int i, vec3 xi, vec3 di, float ci, int j, vec3 xj, vec3 dj, float cj, bool friction) {
   bvec2 may = analytic_may_move_pair(xi, di, xj, dj, friction);
   for (int k = 0; k < mesh_count(); ++k) {
     MeshField field = mesh_field(k);
-    may = or_each(may, !mesh_leaves_alone_after(field, xi, di, ci), !mesh_leaves_alone_after(field, xj, dj, cj));
+    may = or_each(may, !mesh_leaves_alone_after(field, xi, di, ci, i), !mesh_leaves_alone_after(field, xj, dj, cj, j));
   }
   return may;
 }

@@ -27,6 +27,7 @@ void main() {
   vec3 off = offset_of(i);
   precise vec3 xi = p.xyz + off;
   // A mass a collider holds stays out of the coarse problem (touches_colliders).
+  g_self = i;
   if (has_colliders() && touches_colliders(xi)) {
     residual[i] = vec4(0.0, 0.0, 0.0, mass);
     return;

@@ -31,6 +31,7 @@ void list_contact(int i) {
 // its displacement's w, which the later passes of the substep keep.
 float list_if_collider_may_move(int i, vec3 x, vec3 d) {
   float clearance;
+  g_self = i;  // (a skinned collider's slot is cleared where it leaves the mass alone)
   if (may_collide(x, d, true, clearance)) list_contact(i);
   return clearance;
 }
@@ -39,7 +40,7 @@ float list_if_collider_may_move(int i, vec3 x, vec3 d) {
 // with the clearance predict left it, a pinned end (`free` false) never listed (xpbd's sweep).
 // The same bits as the response inline.
 void list_ends_if_collider_may_move(int i, vec3 xi, vec3 di, float ci, int j, vec3 xj, vec3 dj, float cj, bvec2 free) {
-  bvec2 may = may_collide_pair_after(xi, di, ci, xj, dj, cj, false);
+  bvec2 may = may_collide_pair_after(i, xi, di, ci, j, xj, dj, cj, false);
   if (may.x && free.x) list_contact(i);
   if (may.y && free.y) list_contact(j);
 }
@@ -48,7 +49,7 @@ void list_ends_if_collider_may_move(int i, vec3 xi, vec3 di, float ci, int j, ve
 // halves of the pair get the same values, so the compiler merges them (as in may_collide).
 void list_if_collider_may_push(int i, vec3 x, vec3 d, float clearance) {
   // With friction under fabric, as collide_objects' listed push-out responds (params.sweep_friction).
-  if (may_collide_pair_after(x, d, clearance, x, d, clearance, params.sweep_friction != 0u).x) list_contact(i);
+  if (may_collide_pair_after(i, x, d, clearance, i, x, d, clearance, params.sweep_friction != 0u).x) list_contact(i);
 }
 
 #endif

@@ -97,6 +97,11 @@ using uint = uint32_t;
 // through the scan's sums point, binding its buffer there before each use as the scan and the settling
 // passes do.
 #define BINDING_SKINNED BINDING_SCAN_SUMS
+// Per particle and skinned collider (particle * skin_meshes + MeshCollider::skin.z), uint: the
+// nearest triangle of its last search, where the next starts (0xFFFFFFFF none; a cache, the
+// search finds the same triangle without it). Shares the layout test's probe point, which binds
+// its own buffer there.
+#define BINDING_NEAREST 21
 // Texture units of the read-only texel views (GL_TEXTURE_BUFFER) of the simulation's buffers,
 // through which the hot passes read (compute/particle_views.glsl says why). Above the units
 // the renderer uses (0-2: fabric, height map, sky), so drawing a frame leaves them bound.
@@ -214,7 +219,7 @@ SCALAR_STRUCT(MeshCollider) {
   VEC4 motion;     // xyz m over this substep, w = 1 - friction
   VEC4 material;   // x friction (xpbd's Coulomb mu), y thickness (m), z crossing, w 1 closed, 0 open
   VEC4 bound;      // x the field's slope bound in the world (sdf_slopes; the GPU's contact list), yzw unused
-  ivec4 skin;      // a skinned collider: x its first group of clusters, y its groups (0: rigid), zw unused (TEXTURE_MESHES_INT)
+  ivec4 skin;      // a skinned collider: x its first group of clusters, y its groups (0: rigid), z its index among the skinned ones, w unused (TEXTURE_MESHES_INT)
 };
 
 // Per-vertex extras of a drawn mesh: a collider's uv and tangent; the cloth's uv, and in uv.zw the particles
@@ -282,7 +287,8 @@ struct ShadowFrame {
   F(UINT, skin_triangles)      /* and triangles */                                          \
   F(UINT, skin_clusters)       /* and clusters of triangles */                              \
   F(UINT, skin_groups)         /* and groups of clusters */                                 \
-  F(UINT, skin_palette)        /* and palette entries (bones) */
+  F(UINT, skin_palette)        /* and palette entries (bones) */                            \
+  F(UINT, skin_meshes)         /* skinned mesh colliders (BINDING_NEAREST's slots per particle) */
 #define STEP_PARAMS_DECLARE(type, name) type name;
 // std140 rounds the block's size up to 16 bytes; alignas makes sizeof agree (for REAL = float:
 // StepParamsT<double> is the double reference's, never uploaded).

@@ -19,6 +19,7 @@ void main() {
   vec4 p = position_of(i);
   vec3 off = offset_of(i);
   precise vec3 start = p.xyz + off;
+  g_self = i;
   bool touching = has_colliders() && touches_colliders(start);
   precise vec3 e = vec3(0.0);
   if (p.w != 0.0 && !touching) {

@@ -108,6 +108,8 @@ void main() {
     xi = xi + corr;
     d = d + corr;  // x_prev stays where it was
   }
+  g_self = i;  // the substep's first collision: a skinned collider's nearest triangle searched for
+  g_search = true;
   if (u_collide_objects) collide_with_objects(xi, d);
   disp[i].xyz = d;  // w, predict's clearance bound, stays with x - d
   pos_out[i] = vec4(xi, p.w);

@@ -39,7 +39,9 @@ void main() {
   // Provot's pull may not leave a mass deeper than 0.1 mm inside a collider or behind a
   // plane (docs/model.md, "Colliders: contact that holds"); shallower, nothing changes.
   if (has_colliders()) {
+    g_self = int(i);  // (a skinned collider's search starts from each end's last nearest triangle)
     if (pi.w != 0.0) keep_out_of_colliders(xi, di);
+    g_self = int(j);
     if (pj.w != 0.0) keep_out_of_colliders(xj, dj);
   }
   pos[i].xyz = xi;

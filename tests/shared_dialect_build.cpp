@@ -76,6 +76,9 @@ template <class R> void exercise(const char* type) {
   expect(box_distance2(V(R(2), o, o), zero, ex) == i, "box_distance2", type);
   expect(min3(ex, up) == zero && max3(ex, up) == V(i, i, o), "min3 and max3", type);
   expect(skinned_reach(R(1), R(0), zero) == R(3), "skinned_reach: three nodes", type);
+  expect(nearer(o, 3u, i, 0xFFFFFFFFu) && !nearer(i, 3u, i, 0xFFFFFFFFu) && nearer(i, 2u, i, 3u) && !nearer(i, 4u, i, 3u),
+         "nearer: the least distance, then the least index", type);
+  expect(!box_beyond(R(1.0009), i) && box_beyond(R(1.001), i), "box_beyond: clearly further only", type);
   V bary;
   const R q(0.25);
   const V near = closest_on_triangle(V(q, i, q), zero, ex, ez, bary);

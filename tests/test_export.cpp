@@ -14,7 +14,7 @@
 #include "backend.hpp"
 #include "export/checkpoint.hpp"
 #include "export/frame_export.hpp"
-#include "export/point_cache.hpp"
+#include "io/point_cache.hpp"
 #include "file_support.hpp"
 #include "test_helpers.hpp"
 

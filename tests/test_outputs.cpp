@@ -21,7 +21,7 @@
 #include "export/checkpoint.hpp"
 #include "analysis/diagnostics.hpp"
 #include "io/output_file.hpp"
-#include "export/point_cache.hpp"
+#include "io/point_cache.hpp"
 #include "output_support.hpp"
 #include "test_helpers.hpp"
 

@@ -5,12 +5,15 @@
 // field keeps and is carried sideways by friction (and not without it); and the loader's messages.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <string>
 
 #include "backend.hpp"
 #include "colliders/mesh_collider.hpp"
 #include "colliders/winding.hpp"
+#include "io/point_cache.hpp"
 #include "skinned_fixtures.hpp"
 #include "test_helpers.hpp"
 
@@ -148,4 +151,69 @@ TEST_CASE("a skinned collider that names no animation of its file is refused wit
   CHECK_THAT(scene_error(dir, fmt::format(R"({{"file": "{}", "animation": 0, "time_scale": -1}})", box)),
              Catch::Contains("mesh.time_scale"));
   CHECK(scene_error(dir, fmt::format(R"({{"file": "{}", "animation": 0, "loop": false}})", box)) == "(no error)");
+}
+
+TEST_CASE("a point cache or an OBJ sequence moves a collider's vertices, and a cloth rides up on it", "[skinned]") {
+  test::TempDir dir("skinned", "cache");
+  // A cube of half-size 0.1 (the glTF box's corners, as OBJ), rising 0.1 m over frames 30 to 120 at 60 frames/s.
+  std::string obj = "";
+  std::vector<glm::dvec3> corners;
+  for (int i = 0; i < 8; ++i) corners.push_back({i & 1 ? 0.1 : -0.1, i & 2 ? 0.1 : -0.1, i & 4 ? 0.1 : -0.1});
+  const int tris[] = {0, 2, 1, 1, 2, 3, 4, 5, 6, 5, 7, 6, 0, 1, 4, 1, 5, 4, 2, 6, 3, 3, 6, 7, 0, 4, 2, 2, 4, 6, 1, 3, 5, 3, 7, 5};
+  auto write_obj = [&](const std::string& path, double lift) {
+    std::string text;
+    for (const glm::dvec3& c : corners) text += fmt::format("v {} {} {}\n", c.x, c.y + lift, c.z);
+    for (int t = 0; t < 36; t += 3) text += fmt::format("f {} {} {}\n", tris[t] + 1, tris[t + 1] + 1, tris[t + 2] + 1);
+    std::ofstream(path) << text;
+  };
+  auto lift_at = [](int frame) { return 0.1 * std::clamp((frame - 30) / 90.0, 0.0, 1.0); };
+  write_obj(dir / "cube.obj", 0);
+  std::filesystem::create_directories(dir.path / "frames");
+  {
+    Pc2Writer pc2(dir / "cube.pc2", 8, 0, 1);
+    for (int f = 0; f <= 180; ++f) {
+      std::vector<glm::dvec4> at;
+      for (const glm::dvec3& c : corners) at.push_back({c.x, c.y + lift_at(f), c.z, 1});
+      pc2.add(at);
+      write_obj(dir / fmt::format("frames/cube_{:04d}.obj", f), lift_at(f));
+    }
+    pc2.close();
+  }
+  for (const std::string key : {R"("point_cache": "cube.pc2")", R"("sequence": "frames")"}) {
+    INFO(key);
+    const Scene s = parse_scene(fmt::format(R"({{
+      "cloth": {{"width": 0.1, "height": 0.1, "num_width_points": 5, "num_height_points": 5, "thickness": 0.004,
+                 "orientation": 0, "density": 0.15, "ks": 500, "damping": 0.5}},
+      "mesh": {{"file": "cube.obj", "origin": [0.05, 0.85, 0.05], "friction": 0.5, "thickness": {}, {},
+                "cache_frames_per_sec": 60, "loop": false}},
+      "simulation": {{"solver": "xpbd", "self_collision": false}}
+    }})", kThickness, key), dir / "scene.json");
+    const auto mesh = load_collider_mesh(s, 0);
+    REQUIRE(mesh->skin);
+    for (double t : {0.0, 0.75, 1.2, 2.0, 5.0}) {  // frame 45 and 72 are between the ends: linear
+      const std::vector<glm::dvec3> posed = posed_positions(*mesh, s.meshes[0], s.meshes[0].origin, t);
+      const double lift = 0.1 * std::clamp((t * 60 - 30) / 90.0, 0.0, 1.0);
+      for (size_t v = 0; v < 8; ++v) CHECK(glm::length(posed[v] - (corners[v] + glm::dvec3(0.05, 0.85 + lift, 0.05))) < 1e-6);
+    }
+    const ClothModel m = build_cloth(s);
+    CpuBackend<double> cpu(s, m);
+    for (int f = 0; f < 270; ++f) cpu.step_frame();
+    double worst = 0;
+    for (const auto& p : cpu.state().pos) worst = std::max(worst, std::abs(p.y - (1.05 + kThickness)));
+    INFO("worst |y - (top + thickness)| = " << worst * 1e3 << " mm");
+    CHECK(worst < 5e-4);
+  }
+  // A cache of another vertex count, and two sources at once, are refused.
+  {
+    Pc2Writer pc2(dir / "seven.pc2", 7, 0, 1);
+    pc2.add(std::vector<glm::dvec4>(7, glm::dvec4(0, 0, 0, 1)));
+    pc2.close();
+  }
+  CHECK_THAT(scene_error(dir, fmt::format(R"({{"file": "{}", "point_cache": "{}"}})", dir / "cube.obj", dir / "seven.pc2")),
+             Catch::Contains("mesh.point_cache") && Catch::Contains("7 points") && Catch::Contains("8 vertices"));
+  CHECK_THAT(scene_error(dir, fmt::format(R"({{"file": "{}", "point_cache": "{}", "animation": 0}})", dir / "cube.obj",
+                                          dir / "cube.pc2")),
+             Catch::Contains("mesh") && Catch::Contains("at most one of animation, point_cache and sequence"));
+  CHECK_THAT(scene_error(dir, fmt::format(R"({{"file": "{}", "sequence": "{}"}})", dir / "cube.obj", dir / "cube.obj")),
+             Catch::Contains("mesh.sequence") && Catch::Contains("not a folder"));
 }

@@ -46,6 +46,19 @@ SHARED_FN REAL skinned_reach(REAL inv_voxel, REAL thickness, VEC3 d) {
   return reach;
 }
 
+// A skinned collider's search keeps the least (squared distance, triangle index) within its reach:
+// the same triangle whatever order it visits them in, and whatever bound it starts from (the
+// mass's nearest triangle of its last search, a cache). `found` is 0xFFFFFFFFu for none yet.
+SHARED_FN bool nearer(REAL d2, uint t, REAL best, uint found) {
+  return d2 < best || (d2 == best && found != 0xFFFFFFFFu && t < found);
+}
+// A box is passed over only when clearly further than the best so far (by 2^-10 of it): the
+// rounding of a triangle's distance can never put it below its box's.
+SHARED_FN bool box_beyond(REAL box_d2, REAL best) {
+  PRECISE REAL slack = best * REAL(1.0009765625);
+  return box_d2 > slack;
+}
+
 // The point of triangle (a, b, c) nearest p, and its barycentric coordinates (Ericson, Real-Time
 // Collision Detection 5.1.5: the vertex regions, then the edges', then the face).
 SHARED_FN VEC3 closest_on_triangle(VEC3 p, VEC3 a, VEC3 b, VEC3 c, OUT(VEC3) bary) {

@@ -12,6 +12,7 @@
 #include "analysis/diagnostics.hpp"
 #include "analysis/divergence.hpp"
 #include "reference/reference.hpp"
+#include "reference/reference_skinning.hpp"
 
 namespace clothsim {
 
@@ -53,6 +54,7 @@ template <class R> class CpuBackend final : public Backend {
       : model_(model), constants_(make_constants<R>(scene, model)), state_(initial_state<R>(model)),
         limits_(divergence_limits(scene, model)), dt_(scene.dt()) {
     kept_.pos = state_.pos;
+    state_.nearest.assign(size_t(model.count()) * constants_.skin_meshes, kNoParticle);  // (skinned colliders)
   }
 
   void step_frame() override {

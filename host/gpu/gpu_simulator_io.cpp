@@ -20,6 +20,10 @@ void GpuSimulator::upload(const State<float>& s) {
     else
       offset.clear_to_zero();
   }
+  // The skinned colliders' nearest triangles, where the state has them (each substep's first
+  // collision rebuilds them before any pass reads them: a pass check runs later passes alone).
+  if (!s.nearest.empty() && s.nearest.size() * sizeof(uint32_t) == state_.nearest_.size())
+    state_.nearest_.upload(0, state_.nearest_.size(), s.nearest.data());
   // The Jacobi/ping-pong output matches the buffer it stands in for.
   state_.positions_out_.allocate(state_.positions_.size());
   state_.attach_views();
@@ -36,6 +40,7 @@ void GpuSimulator::download(State<float>& s) {
   s.lambda = gl::download_vector<Vec4<float>>(state_.multipliers_);
   s.lambda.resize(state_.model_.springs.size());  // less the dummy of a cloth without springs
   if (state_.multigrid_) s.offset = gl::download_vector<Vec4<float>>(state_.multigrid_->offset);
+  if (constants_.skin_meshes > 0) s.nearest = gl::download_vector<uint32_t>(state_.nearest_);
 }
 
 // A checkpoint is the two state buffers as they are, read back and uploaded bit for bit.

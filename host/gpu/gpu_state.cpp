@@ -56,7 +56,7 @@ size_t GpuState::buffer_bytes() const {
                               &sorted_positions_, &tethers_, &wind_forces_, &anchors_, &gather_start_, &gather_,
                               &particles_, &materials_, &corner_start_, &corner_triangles_, &triangles_, &rest_positions_, &attachments_,
                               &multipliers_, &meshes_, &sdf_, &stretch_control_, &contacts_, &skinned_, &skin_indices_,
-                              &skin_weights_, &skin_palette_})
+                              &skin_weights_, &skin_palette_, &nearest_})
     total += b->size();
   if (!multigrid_) return total;
   const GpuMultigrid& g = *multigrid_;
@@ -152,6 +152,7 @@ void GpuState::bind_all() const {
   meshes_int_view_.bind(TEXTURE_MESHES_INT);
   sdf_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_SDF);
   sdf_view_.bind(TEXTURE_SDF);
+  nearest_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_NEAREST);
   skinned_view_.bind(TEXTURE_SKINNED);
   skin_indices_view_.bind(TEXTURE_SKIN_INDICES);
   skin_weights_view_.bind(TEXTURE_SKIN_WEIGHTS);

@@ -191,25 +191,19 @@ void check_settling_passes(const ClothModel& model, const Constants<float>& c, S
   s = start;
 }
 
-}  // namespace
-
-namespace {
-
-// The skinned colliders' two passes on the GPU, for the substep the CPU has just skinned for
-// (prepare_substep ran their twins, skin_colliders and fit_collider_boxes, on its palette):
-// the vertices at the substep's end and start, then every box.
+// The skinned colliders' two passes on the GPU for the substep the CPU has just skinned for
+// (prepare_substep ran their twins on its palette): the vertices at both ends, then the boxes.
 void check_skinning_passes(const Constants<float>& c, GpuSimulator& gpu, std::vector<PassError>& out) {
-  const auto section = [](const std::vector<Vec4<float>>& v, size_t from) {
-    return std::vector<Vec4<float>>(v.begin() + std::ptrdiff_t(std::min(from, v.size())), v.end());
+  // [from, to) of the skinned texels (the vertices at the end and the start, then the boxes).
+  const auto part = [](std::vector<Vec4<float>> v, size_t from, size_t to) {
+    return std::vector<Vec4<float>>(v.begin() + std::ptrdiff_t(std::min(from, v.size())), v.begin() + std::ptrdiff_t(std::min(to, v.size())));
   };
-  const size_t n = c.skin_vertices;
+  const size_t n = c.skin_vertices, all = c.control.skinned.size();
   gpu.run(PassId::skin_colliders);
-  std::vector<Vec4<float>> g = gpu.state().download_skinned(), cpu = c.control.skinned;
-  g.resize(std::min(g.size(), 2 * n)), cpu.resize(2 * n);
-  const Deviation vertices = deviation(g, cpu);
-  out.push_back({"skin_colliders", vertices.max, vertices.bitwise});
+  const Deviation vertices = deviation(part(gpu.state().download_skinned(), 0, 2 * n), part(c.control.skinned, 0, 2 * n));
   gpu.run(PassId::fit_collider_boxes);
-  const Deviation boxes = deviation(section(gpu.state().download_skinned(), 3 * n), section(c.control.skinned, 3 * n));
+  const Deviation boxes = deviation(part(gpu.state().download_skinned(), 3 * n, all), part(c.control.skinned, 3 * n, all));
+  out.push_back({"skin_colliders", vertices.max, vertices.bitwise});
   out.push_back({"fit_collider_boxes", boxes.max, boxes.bitwise});
 }
 

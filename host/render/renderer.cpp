@@ -14,6 +14,7 @@
 #include "colliders/mesh_collider.hpp"
 #include "meshes.hpp"
 #include "renderer_detail.hpp"
+#include "scene/motion.hpp"
 
 namespace clothsim {
 
@@ -119,7 +120,11 @@ Renderer::Renderer(const std::filesystem::path& root, const Scene& scene, const 
     for (const glm::vec4& q : drawn.positions) lo = glm::min(lo, glm::vec3(q)), hi = glm::max(hi, glm::vec3(q));
     mesh_boxes_.emplace_back(lo, hi);
     meshes_.push_back(make_mesh(drawn));
+    const auto file = load_collider_mesh(scene, k);
+    posed_.push_back(file->skin ? file : nullptr);
+    posed_params_.push_back(p);
   }
+  pose_meshes(0.0);
   // The studio floor of a scene without a plane: just below the lowest of where the cloth
   // starts, where it will roughly rest and the colliders, so a hanging cloth hangs above it.
   double lowest = 1e300;
@@ -136,14 +141,35 @@ Renderer::Renderer(const std::filesystem::path& root, const Scene& scene, const 
   mesh_now_ = mesh_built_;
 }
 
+// A skinned collider's vertices where its animation has them at t (and its origin, at the
+// scene's origin or keys), drawn in place: mesh_now_ stays mesh_built_, so nothing translates them again.
+void Renderer::pose_meshes(double t) {
+  posed_time_ = t;
+  for (size_t k = 0; k < posed_.size(); ++k) {
+    if (!posed_[k]) continue;
+    const MeshColliderParams& p = posed_params_[k];
+    const glm::dvec3 origin = p.motion ? interpolate(p.motion->keyframes, t) : p.origin;
+    const SurfaceMesh posed{posed_positions(*posed_[k], p, origin, t), posed_[k]->surface.triangles};
+    const MeshData drawn = surface_mesh(posed, glm::mat3(1.f), glm::vec3(0.f));
+    meshes_[k]->positions->upload(0, drawn.positions.size() * sizeof(glm::vec4), drawn.positions.data());
+    meshes_[k]->normals->upload(0, drawn.normals.size() * sizeof(glm::vec4), drawn.normals.data());
+    glm::vec3 lo(3e38f), hi(-3e38f);
+    for (const glm::vec4& q : drawn.positions) lo = glm::min(lo, glm::vec3(q)), hi = glm::max(hi, glm::vec3(q));
+    mesh_boxes_[k] = {lo, hi};
+  }
+}
+
 void Renderer::place_colliders(const std::vector<glm::vec3>& sphere_origins, const std::vector<glm::vec3>& plane_points,
-                               const std::vector<glm::vec3>& mesh_origins) {
+                               const std::vector<glm::vec3>& mesh_origins, double time) {
   if (sphere_origins.size() != sphere_built_.size() || plane_points.size() != plane_built_.size() ||
       (!mesh_origins.empty() && mesh_origins.size() != mesh_built_.size()))
     throw std::logic_error("Renderer::place_colliders: not the scene's number of spheres, planes and meshes");
   sphere_now_ = sphere_origins;
   plane_now_ = plane_points;
   if (!mesh_origins.empty()) mesh_now_ = mesh_origins;
+  for (size_t k = 0; k < posed_.size(); ++k)
+    if (posed_[k]) mesh_now_[k] = mesh_built_[k];  // posed in place
+  if (time != posed_time_) pose_meshes(time);
 }
 
 Renderer::~Renderer() = default;

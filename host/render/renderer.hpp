@@ -21,6 +21,8 @@
 
 namespace clothsim {
 
+struct ColliderMesh;
+
 enum class ShaderKind { Wireframe, Normal, Diffuse, Phong, Texture, Bump, Displacement, Mirror };
 inline constexpr std::array<const char*, 8> kShaderNames{"Wireframe", "Normal", "Diffuse", "Phong",
                                                          "Texture", "Bump", "Displacement", "Mirror"};
@@ -87,14 +89,16 @@ class Renderer {
   // change), in file order. Keyframed colliders move in the simulation, so callers pass the
   // simulator's current constants before every draw; the meshes stay as built and are
   // translated (u_model) from where the scene file put them. Until called, they are drawn there.
+  // A skinned mesh collider (or a point cache) is posed at `time` instead: its vertices, in
+  // scene coordinates, uploaded again when the time changes.
   void place_colliders(const std::vector<glm::vec3>& sphere_origins, const std::vector<glm::vec3>& plane_points,
-                       const std::vector<glm::vec3>& mesh_origins = {});
+                       const std::vector<glm::vec3>& mesh_origins = {}, double time = 0);
   template <class R> void place_colliders(const Constants<R>& c) {
     std::vector<glm::vec3> spheres, planes, meshes;
     for (const auto& s : c.control.spheres) spheres.emplace_back(s.origin_radius);
     for (const auto& p : c.control.planes) planes.emplace_back(p.point);
     for (const auto& m : c.control.meshes) meshes.emplace_back(mesh_origin(m));
-    place_colliders(spheres, planes, meshes);
+    place_colliders(spheres, planes, meshes, c.control.time);
   }
 
   // Draws into the bound framebuffer and viewport (clears it first): with the look's
@@ -125,6 +129,7 @@ class Renderer {
                     Pass pass);
   gl::Program& program(ShaderKind kind);
   gl::Program& depth_program(bool displacement);
+  void pose_meshes(double t);  // the skinned colliders' vertices at t, uploaded
   // The shown spheres' and meshes' box where they are now (lo > hi when there are none).
   std::pair<glm::vec3, glm::vec3> collider_box(const Appearance& look) const;
 
@@ -143,7 +148,12 @@ class Renderer {
   float floor_height_ = 0;
   float floor_half_ = 0;  // half the side of every drawn plane and of the floor: 3 scene sizes
   std::vector<float> sphere_radii_;
-  std::vector<std::pair<glm::vec3, glm::vec3>> mesh_boxes_;  // as built
+  std::vector<std::pair<glm::vec3, glm::vec3>> mesh_boxes_;  // as built (a posed one: as last posed)
+  // The skinned mesh colliders (null for a rigid one), their scene entries, and the time they
+  // were last posed at (place_colliders).
+  std::vector<std::shared_ptr<const ColliderMesh>> posed_;
+  std::vector<MeshColliderParams> posed_params_;
+  double posed_time_ = 0;
   std::unique_ptr<Mesh> cloth_;
   std::array<std::unique_ptr<Mesh>, 3> springs_;
   std::vector<std::unique_ptr<Mesh>> spheres_, planes_, meshes_;

@@ -2,7 +2,7 @@
 //
 // Input bytes: a PC2 file, as `simulate --export FILE.pc2` writes it (a 32-byte header
 // "POINTCACHE2\0", i32 version, i32 points, f32 start frame, f32 sample rate, i32 samples; then
-// float32 x, y, z per point per sample; host/core/export/point_cache.hpp). Each input is read from
+// float32 x, y, z per point per sample; host/core/io/point_cache.hpp). Each input is read from
 // memory: its header, then samples 0, samples / 2 and samples - 1 (those that exist), then the
 // samples -1 and `samples`, which must be refused.
 //
@@ -35,7 +35,7 @@
 
 #include "allocation_meter.hpp"
 #include "fuzz_targets.hpp"
-#include "export/point_cache.hpp"
+#include "io/point_cache.hpp"
 
 namespace clothsim::fuzz {
 namespace {

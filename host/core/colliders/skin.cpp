@@ -11,7 +11,7 @@
 #include <assimp/scene.h>
 #include <fmt/format.h>
 
-#include "export/point_cache.hpp"
+#include "io/point_cache.hpp"
 #include "io/input_file.hpp"
 #include "scene/scene.hpp"
 

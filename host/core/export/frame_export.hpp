@@ -9,7 +9,7 @@
 
 #include "cloth/cloth.hpp"
 #include "analysis/diagnostics.hpp"
-#include "export/point_cache.hpp"
+#include "io/point_cache.hpp"
 
 namespace clothsim {
 

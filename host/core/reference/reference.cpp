@@ -10,6 +10,7 @@
 #include "colliders/mesh_collider.hpp"
 #include "scene/motion.hpp"
 #include "reference/reference_detail.hpp"
+#include "reference/reference_skinning.hpp"
 
 namespace clothsim {
 
@@ -122,6 +123,7 @@ template <class R> void set_substep_time(Constants<R>& c, double t) {
   const Timeline& tl = c.timeline;
   Control<R>& now = c.control;
   const double t1 = t + tl.dt;
+  now.time = t1;
   // The motion is rounded once, from double.
   auto motion = [&](const Keyframes& k, const glm::dvec3& at, R w) { return Vec4<R>(Vec3<R>(at - interpolate(k, t)), w); };
   for (size_t k = 0; k < tl.spheres.size(); ++k)

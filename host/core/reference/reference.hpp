@@ -17,6 +17,7 @@
 #include "cloth/cloth.hpp"
 #include "cloth/hierarchy.hpp"
 #include "scene/scene.hpp"
+#include "reference/skin_lists.hpp"
 #include "reference/spatial_hash.hpp"
 #include "../../../compute/layout.glsl"
 #include "../../../compute/shared/vector.glsl"
@@ -50,18 +51,6 @@ template <class R> void set_mesh_origin(MeshColliderT<R>& m, const Vec3<R>& o) {
 // gust_*). The factors fold the constants of the formulas: drag = -rho C_d / 12 is -1/2 rho
 // C_d, times 1/2 (the cross product of two edges is twice the area), times 1/3 (each corner
 // gathers a third); lift likewise.
-
-struct Skin;
-
-// A skinned mesh collider's timeline (reference_skinning.cpp): its bones' palette entries
-// palette_first.. in Control::palette, and how its file's frame is placed in the scene.
-struct SkinnedTimeline {
-  std::shared_ptr<const Skin> skin;
-  size_t mesh = 0;           // its index among the mesh colliders
-  uint32_t palette_first = 0;
-  double scale = 1;
-  glm::dmat3 rotation{1.0};
-};
 
 // What moves with time, in double: evaluated once per substep by set_substep_time into Control.
 struct Timeline {
@@ -104,8 +93,12 @@ template <class R> struct Control : layout::SubstepControlT<R> {
   // what skin_colliders makes of them (TEXTURE_SKINNED): every skinned vertex at the end, at
   // the start, in the bind pose, then every cluster's box (lo, hi) at the end, then every group's.
   std::vector<Vec4<R>> palette, skinned;
+  double time = 0;  // s: where the colliders are (the substep's end; 0 before the first)
   const layout::SubstepControlT<R>& block() const { return *this; }  // as uploaded
 };
+
+// No triangle, no particle: an empty slot of State::nearest.
+inline constexpr uint32_t kNoParticle = ~0u;
 
 // Scene parameters converted once to R. The scalars the shaders read are the parameter block
 // of compute/layout.glsl itself (StepParamsT<R>: gravity, dt2, stretch_limit, contact_distance,
@@ -117,18 +110,6 @@ template <class R> struct Control : layout::SubstepControlT<R> {
 // rest distance from `rest` (the model's rest positions, rounded to R once).
 // multigrid: the multigrid solver, whose solve replaces xpbd's sweep (docs/model.md) and whose
 // hierarchy (hierarchy.hpp) is built once here.
-// The skinned mesh colliders' fixed lists (TEXTURE_SKIN_INDICES, TEXTURE_SKIN_WEIGHTS), every
-// skinned collider's in turn: per vertex its bones and weights, per triangle its vertices (w its
-// mesh collider), per cluster of at most kClusterTriangles triangles near one another its
-// first triangle and count (x, y), per group of at most kGroupClusters clusters its first
-// cluster and count: a two-level tree of boxes, refitted every substep, that a mass's search
-// for its nearest triangle descends.
-template <class R> struct SkinLists {
-  std::vector<glm::uvec4> bones, triangles, clusters, groups;
-  std::vector<Vec4<R>> weights;
-};
-inline constexpr uint32_t kClusterTriangles = 32;
-inline constexpr uint32_t kGroupClusters = 8;
 
 template <class R> struct Constants : layout::StepParamsT<R> {
   Control<R> control;  // what set_substep_time writes
@@ -193,23 +174,6 @@ Constants<R> make_constants(const Scene& scene, const ClothModel& model,
 // computed). A no-op for a scene in which nothing moves (!c.timeline.moves()).
 template <class R> void set_substep_time(Constants<R>& c, double t);
 
-// Skinned mesh colliders (reference_skinning.cpp): skin_colliders and fit_collider_boxes are the
-// CPU twins of compute/skin_colliders.comp (every skinned vertex from the palette) and
-// compute/fit_collider_boxes.comp (each group's clusters' boxes, then the group's), run by the
-// CPU backend after set_substep_time; skinned_mesh_at gives a mass at x (moved d) the
-// frame of its nearest triangle within reach (skinned_frame in compute/shared/skinning.glsl),
-// false where none is.
-template <class R> void skin_colliders(Control<R>& control, const Constants<R>& c);
-template <class R> void fit_collider_boxes(Control<R>& control, const Constants<R>& c);
-template <class R> bool skinned_mesh_at(const Constants<R>& c, const MeshColliderT<R>& m, const Vec3<R>& x,
-                                        const Vec3<R>& d, MeshColliderT<R>& frame);
-// Mesh collider m as it meets a mass at x that moved by d: m itself when rigid, its frame at x
-// (in `scratch`) when skinned, null where a skinned one has no triangle within reach.
-template <class R> const MeshColliderT<R>* mesh_at(const Constants<R>& c, const MeshColliderT<R>& m, const Vec3<R>& x,
-                                                   const Vec3<R>& d, MeshColliderT<R>& scratch) {
-  if (m.skin.y == 0) return &m;
-  return skinned_mesh_at(c, m, x, d, scratch) ? &scratch : nullptr;
-}
 
 // What changes during a run: positions (w = inverse mass, 0 = pinned), the displacement of
 // the last substep (d = x - x_prev, w unused), forces and normals, all vec4 like the GPU
@@ -226,6 +190,11 @@ template <class R> struct State {
   // them as the springs' forces of the last substep, the sweep starts from them (docs/model.md,
   // "Warm-started multipliers"). Zero at the start and for the classic solver.
   std::vector<Vec4<R>> lambda;
+  // Per particle and skinned collider (particle * skin_meshes + MeshCollider::skin.z): the
+  // nearest triangle the substep's first collision found (kNoParticle: none within reach),
+  // which the later ones reuse (reference_skinning.hpp; BINDING_NEAREST on the GPU). Rebuilt
+  // every substep before it is read, so a state without it (saved, uploaded) resumes the same.
+  std::vector<uint32_t> nearest;
   // The multigrid solve's scratch (reference_multigrid.cpp), sized on first use. residual: per
   // particle the residual force (w: its mass), then per coarse vertex (at particle count + its
   // global index) the coarse residual (w: the mass it stands for); offset: per particle x - y,

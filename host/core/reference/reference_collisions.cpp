@@ -2,6 +2,7 @@
 // grid and the spheres and planes, with the friction blend written on small differences.
 #include "reference/reference.hpp"
 #include "reference/reference_detail.hpp"
+#include "reference/reference_skinning.hpp"
 #include "../../../compute/shared/self_contact.glsl"
 
 namespace clothsim {
@@ -50,7 +51,8 @@ template <class R> void resolve_self_contacts(const Constants<R>& c, State<R>& s
 // One particle against every sphere, then every plane, then every mesh. With `friction` false every contact
 // keeps all of its tangential motion (keep = 1): the pure push-out of xpbd's constraint pass.
 // The formulas are compute/shared/collisions.glsl's.
-template <class R> void collide_particle(const Constants<R>& c, Vec3<R>& x, Vec3<R>& d, bool friction) {
+template <class R> void collide_particle(const Constants<R>& c, Vec3<R>& x, Vec3<R>& d, bool friction, uint32_t* slots,
+                                         bool search) {
   const bool coulomb = friction && c.xpbd;
   for (const SphereColliderT<R>& sp : c.control.spheres) {
     const Vec3<R> origin(sp.origin_radius), motion(sp.motion);
@@ -87,22 +89,22 @@ template <class R> void collide_particle(const Constants<R>& c, Vec3<R>& x, Vec3
   }
   MeshColliderT<R> frame;  // a skinned collider's, at this mass
   for (const MeshColliderT<R>& m : c.control.meshes)
-    if (const MeshColliderT<R>* at = mesh_at(c, m, x, d, frame)) collide_with_mesh(c, *at, friction, x, d);
+    if (const MeshColliderT<R>* at = mesh_at(c, m, x, d, frame, slots, search)) collide_with_mesh(c, *at, friction, x, d);
 }
 
-template <class R> void keep_out_of_colliders(const Constants<R>& c, Vec3<R>& x, Vec3<R>& d) {
+template <class R> void keep_out_of_colliders(const Constants<R>& c, Vec3<R>& x, Vec3<R>& d, uint32_t* slots) {
   for (const SphereColliderT<R>& sp : c.control.spheres) keep_out_of_sphere(Vec3<R>(sp.origin_radius), sp.origin_radius.w, x, d);
   for (const PlaneColliderT<R>& pl : c.control.planes) keep_in_front_of_plane(Vec3<R>(pl.point), Vec3<R>(pl.normal), pl.point.w, x, d);
   MeshColliderT<R> frame;
   for (const MeshColliderT<R>& m : c.control.meshes)
-    if (const MeshColliderT<R>* at = mesh_at(c, m, x, d, frame)) keep_out_of_mesh(c, *at, x, d);
+    if (const MeshColliderT<R>* at = mesh_at(c, m, x, d, frame, slots, false)) keep_out_of_mesh(c, *at, x, d);
 }
 
 template <class R> void collide_objects(const Constants<R>& c, State<R>& s) {
   for (size_t i = 0; i < s.pos.size(); ++i) {
     if (s.pos[i].w == R(0)) continue;
     Vec3<R> x(s.pos[i]), d(s.disp[i]);
-    collide_particle(c, x, d, true);
+    collide_particle(c, x, d, true, skin_slots(c, s, uint32_t(i)), true);  // the substep's first: a search
     s.pos[i] = Vec4<R>(x, s.pos[i].w);
     s.disp[i] = Vec4<R>(d, R(0));
   }
@@ -112,8 +114,8 @@ template <class R> void collide_objects(const Constants<R>& c, State<R>& s) {
   template void collide_self<R>(const Constants<R>&, State<R>&); \
   template void resolve_self_contacts<R>(const Constants<R>&, State<R>&); \
   template void collide_objects<R>(const Constants<R>&, State<R>&); \
-  template void collide_particle<R>(const Constants<R>&, Vec3<R>&, Vec3<R>&, bool); \
-  template void keep_out_of_colliders<R>(const Constants<R>&, Vec3<R>&, Vec3<R>&);
+  template void collide_particle<R>(const Constants<R>&, Vec3<R>&, Vec3<R>&, bool, uint32_t*, bool); \
+  template void keep_out_of_colliders<R>(const Constants<R>&, Vec3<R>&, Vec3<R>&, uint32_t*);
 CLOTHSIM_INSTANTIATE(float)
 CLOTHSIM_INSTANTIATE(double)
 

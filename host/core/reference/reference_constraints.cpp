@@ -4,6 +4,7 @@
 
 #include "reference/reference.hpp"
 #include "reference/reference_detail.hpp"
+#include "reference/reference_skinning.hpp"
 #include "../../../compute/shared/springs.glsl"
 
 namespace clothsim {
@@ -36,8 +37,8 @@ void limit_colour(const ClothModel& m, const Constants<R>& c, int colour, State<
     // Provot's pull may not leave a mass deeper than 0.1 mm inside a collider or behind a
     // plane (docs/model.md, "Colliders: contact that holds"); shallower, nothing changes.
     if (c.has_colliders()) {
-      if (wi != R(0)) keep_out_of_colliders(c, xi, di);
-      if (wj != R(0)) keep_out_of_colliders(c, xj, dj);
+      if (wi != R(0)) keep_out_of_colliders(c, xi, di, skin_slots(c, s, i));
+      if (wj != R(0)) keep_out_of_colliders(c, xj, dj, skin_slots(c, s, j));
     }
     s.pos[i] = Vec4<R>(xi, wi);
     s.pos[j] = Vec4<R>(xj, wj);
@@ -106,8 +107,8 @@ void solve_distance_constraint_colour(const ClothModel& m, const Constants<R>& c
     // A correction must not push a mass into a collider or through a plane, where the
     // collision test of the next substep could no longer see it (docs/model.md).
     if (c.has_colliders()) {
-      if (wi != R(0)) collide_particle(c, xi, di, false);
-      if (wj != R(0)) collide_particle(c, xj, dj, false);
+      if (wi != R(0)) collide_particle(c, xi, di, false, skin_slots(c, s, i));
+      if (wj != R(0)) collide_particle(c, xj, dj, false, skin_slots(c, s, j));
     }
     s.pos[i] = Vec4<R>(xi, wi);
     s.pos[j] = Vec4<R>(xj, wj);

@@ -10,10 +10,13 @@ namespace clothsim {
 // One particle against every sphere, then every plane (reference_collisions.cpp). With
 // `friction` false every contact keeps all of its tangential motion (keep = 1): the pure
 // push-out of xpbd's constraint pass.
-template <class R> void collide_particle(const Constants<R>& c, Vec3<R>& x, Vec3<R>& d, bool friction);
+// `slots`, `search`: the mass's nearest skinned triangles, found anew (the substep's first
+// collision) or reused (reference_skinning.hpp, mesh_at).
+template <class R> void collide_particle(const Constants<R>& c, Vec3<R>& x, Vec3<R>& d, bool friction,
+                                         uint32_t* slots = nullptr, bool search = false);
 // A mass deeper than 0.1 mm inside a sphere, or behind a plane's front, goes back to the
 // surface (a plane's: its surface offset on the front), without friction; otherwise nothing.
-template <class R> void keep_out_of_colliders(const Constants<R>& c, Vec3<R>& x, Vec3<R>& d);
+template <class R> void keep_out_of_colliders(const Constants<R>& c, Vec3<R>& x, Vec3<R>& d, uint32_t* slots = nullptr);
 
 // The colliders' formulas and contact responses, written once for both backends.
 using shared::blend_to;

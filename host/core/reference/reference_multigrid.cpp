@@ -7,6 +7,7 @@
 // solve the same energy, so a rest state of the step is the static equilibrium of the springs.
 #include "reference/reference.hpp"
 #include "reference/reference_detail.hpp"
+#include "reference/reference_skinning.hpp"
 #include "../../../compute/shared/collisions.glsl"
 #include "../../../compute/shared/springs.glsl"
 
@@ -61,7 +62,7 @@ Vec3<R> coarse_residual(const Hierarchy& h, const Constants<R>& c, const State<R
 // problem does not know: such a mass neither gives its residual to the coarse levels nor takes
 // their correction, and the sweep alone moves it (docs/model.md). The GLSL twin is
 // touches_colliders in compute/multigrid.glsl.
-template <class R> bool touches_colliders(const Constants<R>& c, const Vec3<R>& x) {
+template <class R> bool touches_colliders(const Constants<R>& c, const Vec3<R>& x, uint32_t* slots) {
   const R reach = R(kContactReach);
   for (const SphereColliderT<R>& sp : c.control.spheres)
     if (shared::near_sphere(x, Vec3<R>(sp.origin_radius), sp.origin_radius.w, reach)) return true;
@@ -71,7 +72,7 @@ template <class R> bool touches_colliders(const Constants<R>& c, const Vec3<R>& 
   for (const MeshColliderT<R>& m : c.control.meshes) {
     R phi;
     Vec3<R> grad;
-    const MeshColliderT<R>* at = mesh_at(c, m, x, Vec3<R>(0), frame);
+    const MeshColliderT<R>* at = mesh_at(c, m, x, Vec3<R>(0), frame, slots, false);
     if (at && sample_mesh_at(*at, c.sdf->data(), x, phi, grad) && phi < m.material.y + reach) return true;  // y: thickness
   }
   return false;
@@ -101,7 +102,7 @@ template <class R> void compute_residuals(const ClothModel& m, const Constants<R
     // the external forces' share: the classic force, gravity and the wind included.
     const Vec3<R> off(s.offset[i]);
     const Vec3<R> xi = Vec3<R>(s.pos[i]) + off;
-    if (c.has_colliders() && touches_colliders(c, xi)) {
+    if (c.has_colliders() && touches_colliders(c, xi, skin_slots(c, s, i))) {
       s.residual[i] = Vec4<R>(Vec3<R>(0), c.mass[i]);
       continue;
     }
@@ -125,7 +126,7 @@ template <class R> void restrict_residuals(const Constants<R>& c, int level, Sta
   for (uint32_t g = l.first; g < l.first + l.count; ++g) {
     s.coarse_corr[g] = Vec4<R>(0);
     const uint32_t p = h.particle[g];
-    if (s.pos[p].w == R(0) || (c.has_colliders() && touches_colliders(c, Vec3<R>(s.pos[p]) + Vec3<R>(s.offset[p]))) ||
+    if (s.pos[p].w == R(0) || (c.has_colliders() && touches_colliders(c, Vec3<R>(s.pos[p]) + Vec3<R>(s.offset[p]), skin_slots(c, s, p))) ||
         folded(h, s, g)) {
       // Pinned, held, held by a collider or in a fold: fixed in the coarse problem (w -1 says so).
       s.coarse_rhs[g] = Vec4<R>(0, 0, 0, -1);
@@ -171,7 +172,7 @@ template <class R> void prolong_to_cloth(const ClothModel& m, const Constants<R>
     // From the prediction to the start (the offset predict left) plus the correction.
     const Vec3<R> off(s.offset[i]);
     Vec3<R> e(0);
-    if (s.pos[i].w != R(0) && !(c.has_colliders() && touches_colliders(c, Vec3<R>(s.pos[i]) + off)))
+    if (s.pos[i].w != R(0) && !(c.has_colliders() && touches_colliders(c, Vec3<R>(s.pos[i]) + off, skin_slots(c, s, i))))
       for (uint32_t k = h.fine_parent_start[i]; k < h.fine_parent_start[i + 1]; ++k)
         e += Vec3<R>(s.coarse_corr[h.fine_parent[k]]) * R(h.fine_parent_weight[k]);
     s.pos[i] = Vec4<R>((Vec3<R>(s.pos[i]) + off) + e, s.pos[i].w);
@@ -240,7 +241,7 @@ template <class R> void relax_vertices(const ClothModel& m, const Constants<R>& 
     // A correction must not push a mass into a collider or through a plane (as in xpbd's sweep).
     // fabric: with Coulomb friction, so the sweep's own moves along a surface are held as the
     // prediction's are (without it a drape creeps off a sphere: 22 mm over frames 90-300).
-    if (c.has_colliders()) collide_particle(c, x, d, c.sweep_friction != 0u);
+    if (c.has_colliders()) collide_particle(c, x, d, c.sweep_friction != 0u, skin_slots(c, s, i));
     s.pos[i] = Vec4<R>(x, wi);
     s.disp[i] = Vec4<R>(d, R(0));
     s.offset[i] = Vec4<R>(off, R(0));

@@ -10,6 +10,7 @@
 #include "scene/motion.hpp"
 #include "reference/reference.hpp"
 #include "reference/reference_detail.hpp"
+#include "reference/reference_skinning.hpp"
 #include "../../../compute/shared/skinning.glsl"
 
 namespace clothsim {
@@ -64,7 +65,7 @@ void make_skins(const Scene& scene, const std::vector<std::shared_ptr<const Coll
       c.skin.groups.push_back({uint32_t(i), uint32_t(std::min<size_t>(kGroupClusters, c.skin.clusters.size() - i)), 0, 0});
     for (const auto& [code, t] : order)
       c.skin.triangles.push_back(glm::uvec4(tris[t] + glm::uvec3(first_vertex), uint32_t(k)));
-    c.control.meshes[k].skin = glm::ivec4(int(first_group), int(c.skin.groups.size() - first_group), 0, 0);
+    c.control.meshes[k].skin = glm::ivec4(int(first_group), int(c.skin.groups.size() - first_group), int(c.timeline.skins.size()), 0);
     c.timeline.skins.push_back({mesh.skin, k, palette, p.scale, collider_rotation(p)});
     palette += uint32_t(skin.palette_node.size());
   }
@@ -74,6 +75,7 @@ void make_skins(const Scene& scene, const std::vector<std::shared_ptr<const Coll
   c.skin_clusters = uint32_t(c.skin.clusters.size());
   c.skin_groups = uint32_t(c.skin.groups.size());
   c.skin_palette = palette;
+  c.skin_meshes = uint32_t(c.timeline.skins.size());
   c.control.palette.assign(size_t(6) * palette, Vec4<R>(0));
   c.control.skinned.assign(3 * rest.size() + 2 * (c.skin.clusters.size() + c.skin.groups.size()), Vec4<R>(0));
   std::copy(rest.begin(), rest.end(), c.control.skinned.begin() + 2 * std::ptrdiff_t(rest.size()));
@@ -141,36 +143,55 @@ template <class R> void fit_collider_boxes(Control<R>& control, const Constants<
   }
 }
 
+namespace {
+
+// The least (distance, index) triangle of skinned collider m within its reach of x, or
+// kNoParticle; started from *cached (when given and set) and kept there.
 template <class R>
-bool skinned_mesh_at(const Constants<R>& c, const MeshColliderT<R>& m, const Vec3<R>& x, const Vec3<R>& d,
-                     MeshColliderT<R>& frame) {
+uint32_t nearest_skinned_triangle(const Constants<R>& c, const MeshColliderT<R>& m, const Vec3<R>& x, const Vec3<R>& d,
+                                  uint32_t* cached) {
   const std::vector<Vec4<R>>& sk = c.control.skinned;
   const size_t n = c.skin_vertices;
   const R reach = shared::skinned_reach(m.grid.w, m.material.y, d);
   R best = reach * reach;
-  int found = -1;
-  Vec3<R> bary(0);
+  uint32_t found = kNoParticle;
+  const auto visit = [&](uint32_t t) {
+    const glm::uvec4 tri = c.skin.triangles[t];
+    Vec3<R> b3;
+    const Vec3<R> q = shared::closest_on_triangle(x, Vec3<R>(sk[tri.x]), Vec3<R>(sk[tri.y]), Vec3<R>(sk[tri.z]), b3);
+    const R d2 = dot3(x - q, x - q);
+    if (shared::nearer(d2, t, best, found)) best = d2, found = t;
+  };
+  if (cached && *cached != kNoParticle) visit(*cached);  // the last search's: a bound to start from
   const size_t boxes = 3 * n, group_boxes = boxes + 2 * c.skin.clusters.size();
-  auto near = [&](size_t box) { return shared::box_distance2(x, Vec3<R>(sk[box]), Vec3<R>(sk[box + 1])) < best; };
+  auto beyond = [&](size_t box) { return shared::box_beyond(shared::box_distance2(x, Vec3<R>(sk[box]), Vec3<R>(sk[box + 1])), best); };
   for (int g = m.skin.x; g < m.skin.x + m.skin.y; ++g) {
-    if (!near(group_boxes + 2 * size_t(g))) continue;
+    if (beyond(group_boxes + 2 * size_t(g))) continue;
     const glm::uvec4 gr = c.skin.groups[size_t(g)];
     for (uint32_t k = gr.x; k < gr.x + gr.y; ++k) {
-      if (!near(boxes + 2 * size_t(k))) continue;
+      if (beyond(boxes + 2 * size_t(k))) continue;
       const glm::uvec4 cl = c.skin.clusters[k];
-      for (uint32_t t = cl.x; t < cl.x + cl.y; ++t) {
-        const glm::uvec4 tri = c.skin.triangles[t];
-        Vec3<R> b3;
-        const Vec3<R> q = shared::closest_on_triangle(x, Vec3<R>(sk[tri.x]), Vec3<R>(sk[tri.y]), Vec3<R>(sk[tri.z]), b3);
-        const R d2 = dot3(x - q, x - q);
-        if (d2 < best) best = d2, found = int(t), bary = b3;
-      }
+      for (uint32_t t = cl.x; t < cl.x + cl.y; ++t) visit(t);
     }
   }
-  if (found < 0) return false;
+  if (cached) *cached = found;
+  return found;
+}
+
+}  // namespace
+
+template <class R>
+bool skinned_mesh_at(const Constants<R>& c, const MeshColliderT<R>& m, const Vec3<R>& x, const Vec3<R>& d,
+                     MeshColliderT<R>& frame, uint32_t* slots, bool search) {
+  const std::vector<Vec4<R>>& sk = c.control.skinned;
+  const size_t n = c.skin_vertices;
+  uint32_t* cached = slots ? &slots[m.skin.z] : nullptr;
+  const uint32_t found = search || !cached ? nearest_skinned_triangle(c, m, x, d, cached) : *cached;
+  if (found == kNoParticle) return false;
   const glm::uvec4 tri = c.skin.triangles[size_t(found)];
   auto at = [&](size_t section, uint32_t v) { return Vec3<R>(sk[section * n + v]); };
-  Vec3<R> r0, r1, r2, origin, motion;
+  Vec3<R> bary, r0, r1, r2, origin, motion;
+  shared::closest_on_triangle(x, at(0, tri.x), at(0, tri.y), at(0, tri.z), bary);
   shared::skinned_frame(at(0, tri.x), at(0, tri.y), at(0, tri.z), at(1, tri.x), at(1, tri.y), at(1, tri.z), at(2, tri.x),
                         at(2, tri.y), at(2, tri.z), bary, x, d, r0, r1, r2, origin, motion);
   frame = m;
@@ -187,7 +208,7 @@ bool skinned_mesh_at(const Constants<R>& c, const MeshColliderT<R>& m, const Vec
   template void skin_colliders<R>(Control<R>&, const Constants<R>&);                                                \
   template void fit_collider_boxes<R>(Control<R>&, const Constants<R>&);                                            \
   template bool skinned_mesh_at<R>(const Constants<R>&, const MeshColliderT<R>&, const Vec3<R>&, const Vec3<R>&,     \
-                                   MeshColliderT<R>&);
+                                   MeshColliderT<R>&, uint32_t*, bool);
 CLOTHSIM_INSTANTIATE(float)
 CLOTHSIM_INSTANTIATE(double)
 

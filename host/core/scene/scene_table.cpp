@@ -1,6 +1,7 @@
-// THE scene parameter table: every scene parameter is one row here (param_table.hpp says what a
-// row holds and who reads it). Adding a parameter: a member in scene.hpp with its default, one
-// row below, and its physics; then `cmake --build build --target parameters-doc`.
+// THE scene parameter table: every scene parameter is one row here, or for a mesh collider in
+// scene_table_mesh.cpp (param_table.hpp says what a row holds and who reads it). Adding a
+// parameter: a member in scene.hpp with its default, one row below, and its physics; then
+// `cmake --build build --target parameters-doc`.
 //
 // Row order is the order the loader reads and reports errors in. Ranges are what the loader
 // accepts; `expected` is its message for a number outside them (tests/scenes_bad/expected.txt).
@@ -8,37 +9,12 @@
 #include <cmath>
 #include <limits>
 #include "scene/scene_table.hpp"
+#include "scene/scene_table_detail.hpp"
 
 namespace clothsim {
 namespace {
 
-constexpr Widget drag(float speed, double lo, double hi, const char* format) {
-  return {.style = Widget::Drag, .speed = speed, .lo = lo, .hi = hi, .format = format};
-}
-constexpr Widget kCheckbox{.style = Widget::Checkbox};
-constexpr Widget kReadOnly{.style = Widget::ReadOnly};
-
-// Unit length, or false for [0, 0, 0].
-bool normalise(glm::dvec3& n) {
-  // Scale by the largest component first: |n| of a finite n such as [1e200, 0, 0] overflows.
-  const double m = std::max({std::abs(n.x), std::abs(n.y), std::abs(n.z)});
-  if (m == 0) return false;
-  // A normal that is already unit to rounding is kept as written, so that normalising is
-  // idempotent and scene_to_json's output loads back to the same normal, bit for bit.
-  const double len2 = n.x * n.x + n.y * n.y + n.z * n.z;
-  if (std::abs(len2 - 1) > 4 * std::numeric_limits<double>::epsilon()) {
-    n /= m;
-    n /= std::sqrt(n.x * n.x + n.y * n.y + n.z * n.z);
-  }
-  return true;
-}
-
-const char* normalise_normal(glm::dvec3& n) {
-  return normalise(n) ? nullptr : "expected a non-zero normal vector, got [0, 0, 0]";
-}
-const char* normalise_axis(glm::dvec3& n) {
-  return normalise(n) ? nullptr : "expected a non-zero rotation axis, got [0, 0, 0]";
-}
+using namespace table_detail;
 
 // `cloth`: one object, or an array of them; the first is Scene::cloth, the rest extra_cloths.
 class ClothList final : public ListRef {
@@ -62,11 +38,6 @@ void visit_cloths(Scene& s, const ParamInfo& info, ParamVisitor& v) {
 
 const char* const kSolvers[] = {"classic", "xpbd", "multigrid", "fabric"};
 const char* const kMassLumpings[] = {"area", "uniform"};
-
-const ParamInfo kFriction{.key = "friction", .required = true, .lo = 0, .hi = 1,
-                          .expected = "a friction coefficient in [0, 1]",
-                          .meaning = "classic: the CS184 blend, 0 a touching mass keeps its motion, 1 it "
-                                     "sticks; xpbd: Coulomb's mu, a cloth holds on a slope while tan(angle) <= mu"};
 
 const Param<Scene> kScene[] = {
     // Scene::cloth and Scene::extra_cloths; the panel shows the rows of every cloth.
@@ -222,55 +193,6 @@ const Param<PlaneParams> kPlane[] = {
                                                            "translates); friction acts relative to it"}),
 };
 
-const Param<MeshColliderParams> kMeshCollider[] = {
-    row<&MeshColliderParams::file>({.key = "file", .required = true, .expected = "a path to a mesh file",
-                                    .meaning = "a mesh file (OBJ, PLY, glTF, STL, ...), relative to the scene file; "
-                                               "closed for an inside, open for a shell of `thickness`",
-                                    .widget = kReadOnly}),
-    row<&MeshColliderParams::scale>({.key = "scale", .lo = 1e-9, .expected = "a scale > 0",
-                                     .meaning = "the file's coordinates are multiplied by this (metres per unit)",
-                                     .widget = kReadOnly}),
-    row<&MeshColliderParams::origin>({.key = "origin", .unit = "m", .meaning = "where the file's origin is placed, last"}),
-    row<&MeshColliderParams::rotation_axis>({.key = "rotation_axis", .meaning = "non-zero; made unit length on loading",
-                                             .widget = kReadOnly, .after_read = normalise_axis}),
-    row<&MeshColliderParams::rotation_degrees>({.key = "rotation_degrees", .unit = "°",
-                                                .meaning = "rotation about rotation_axis (right-handed), after the scale",
-                                                .widget = kReadOnly}),
-    row<&MeshColliderParams::friction>({.key = "friction", .lo = 0, .hi = 1,
-                                        .expected = "a friction coefficient in [0, 1]", .meaning = kFriction.meaning}),
-    row<&MeshColliderParams::motion>({.key = "motion", .meaning = "keyframed origin, in place of `origin` (the mesh "
-                                                                  "translates); friction acts relative to it"}),
-    row<&MeshColliderParams::voxel_size>({.key = "voxel_size", .lo = 0, .expected = "a spacing >= 0 (metres)",
-                                          .unit = "m",
-                                          .meaning = "node spacing of the signed distance field; 0: the mesh's longest "
-                                                     "extent / 128 (a field is at most 256 MiB)",
-                                          .widget = kReadOnly}),
-    row<&MeshColliderParams::thickness>({.key = "thickness", .lo = 0, .expected = "a thickness >= 0 (metres)",
-                                         .unit = "m", .meaning = "masses are kept this far outside the surface"}),
-    row<&MeshColliderParams::animation>({.key = "animation", .expected = "an animation's name or index",
-                                         .meaning = "a skinned collider: the file's bones move its vertices through "
-                                                    "this animation (its name, or its index from 0); absent: rigid",
-                                         .widget = kReadOnly, .index_or_name = true}),
-    row<&MeshColliderParams::time_scale>({.key = "time_scale", .lo = 0, .hi = 1e6,
-                                          .expected = "a time scale in [0, 1e6]",
-                                          .meaning = "animation seconds per scene second (0 holds the first pose)",
-                                          .widget = kReadOnly}),
-    row<&MeshColliderParams::loop>({.key = "loop", .meaning = "the animation (or cache) starts over at its end; false: "
-                                                             "it holds its last pose", .widget = kReadOnly}),
-    row<&MeshColliderParams::point_cache>({.key = "point_cache", .expected = "a path to a PC2 file",
-                                           .meaning = "a deforming collider: a PC2 point cache of `file`'s vertices "
-                                                      "(Blender's Mesh Cache), relative to the scene file",
-                                           .widget = kReadOnly}),
-    row<&MeshColliderParams::sequence>({.key = "sequence", .expected = "a path to a folder of OBJ files",
-                                        .meaning = "a deforming collider: a folder of OBJ files of `file`'s vertices, "
-                                                   "one a frame in name order (--export-colliders writes one)",
-                                        .widget = kReadOnly}),
-    row<&MeshColliderParams::cache_frames_per_sec>({.key = "cache_frames_per_sec", .lo = 0, .hi = 1e6,
-                                                    .expected = "frames per second in [0, 1e6]", .unit = "1/s",
-                                                    .meaning = "the point cache's or sequence's frame rate; 0: the "
-                                                               "scene's frames_per_sec", .widget = kReadOnly}),
-};
-
 const Param<SimulationParams> kSimulation[] = {
     row<&SimulationParams::frames_per_sec>({.key = "frames_per_sec", .lo = 1e-6, .hi = 1e6,
                                             .expected = "frames per second in (0, 1e6]", .unit = "1/s",
@@ -361,7 +283,6 @@ template <> std::span<const Param<Scene>> param_rows<Scene>() { return kScene; }
 template <> std::span<const Param<ClothParams>> param_rows<ClothParams>() { return kCloth; }
 template <> std::span<const Param<SphereParams>> param_rows<SphereParams>() { return kSphere; }
 template <> std::span<const Param<PlaneParams>> param_rows<PlaneParams>() { return kPlane; }
-template <> std::span<const Param<MeshColliderParams>> param_rows<MeshColliderParams>() { return kMeshCollider; }
 template <> std::span<const Param<SimulationParams>> param_rows<SimulationParams>() { return kSimulation; }
 template <> std::span<const Param<MotionParams>> param_rows<MotionParams>() { return kMotion; }
 template <> std::span<const Param<WindParams>> param_rows<WindParams>() { return kWind; }

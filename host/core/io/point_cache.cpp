@@ -1,4 +1,4 @@
-#include "export/point_cache.hpp"
+#include "io/point_cache.hpp"
 
 #include <bit>
 #include <cerrno>
