@@ -28,16 +28,7 @@ std::string attached_scene(const std::string& solver, const std::string& attachm
                      attachment, solver);
 }
 
-std::string scene_error(const std::string& text) {
-  try {
-    const Scene s = parse_scene(text, "attach.json");
-    const ClothModel m = build_cloth(s);
-    CpuBackend<double> cpu(s, m);
-  } catch (const SceneError& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
+std::string scene_error(const std::string& text) { return test::setup_error(text, "attach.json"); }
 
 }  // namespace
 

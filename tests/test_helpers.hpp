@@ -52,6 +52,19 @@ template <class T> size_t mismatches(const std::vector<T>& a, const std::vector<
   return n;
 }
 
+// The SceneError a scene's text raises on the way to running it (parsed as `source`, its cloth
+// built, a CPU backend made: the colliders' files loaded), or "(no error)".
+inline std::string setup_error(const std::string& text, const std::string& source) {
+  try {
+    const Scene s = parse_scene(text, source);
+    const ClothModel m = build_cloth(s);
+    CpuBackend<double> cpu(s, m);
+  } catch (const SceneError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
 // The largest spring stretch at any of the first `frames` frames of the CPU reference (float).
 inline double worst_stretch_over_frames(const Scene& s, int frames, uint64_t* settling_passes = nullptr) {
   const ClothModel m = build_cloth(s);
