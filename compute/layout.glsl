@@ -116,7 +116,7 @@ using uint = uint32_t;
 // The rest of the cloth model (ClothModel in host/core/cloth/cloth.hpp), static over a run.
 #define TEXTURE_GATHER_START 16      // R32UI, per particle + 1: its first entry in the gather list
 #define TEXTURE_GATHER 17            // RGBA32UI, per gather entry: x the other end | type << 30, y the rest length's bits, z the spring, w 1 if the particle is its i end
-#define TEXTURE_PARTICLES 18         // RGBA32F, per particle: x mass (kg), y its cloth's material index, z its attachment's collider (kind + 4 index, 0 none)
+#define TEXTURE_PARTICLES 18         // RGBA32F, per particle: x mass (kg), y its cloth's material index, z its attachment's collider (kind + 4 index, 0 none), w the skinned vertex it follows (a skinned collider's)
 #define TEXTURE_MATERIALS 19         // RGBA32F, MATERIAL_TEXELS per cloth (MaterialTexels)
 #define TEXTURE_CORNER_START 20      // R32UI, per particle + 1: its first entry in the corner list
 #define TEXTURE_CORNER_TRIANGLES 21  // R32UI, per corner entry: a triangle around the particle (ascending)

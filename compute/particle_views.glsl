@@ -44,9 +44,12 @@ bool attachment_of(int i, out vec4 rel, out vec3 origin) {
   origin = vec3(0.0);
   rel = texelFetch(attachments_view, i);
   if (rel.w == 0.0) return false;
-  uint code = uint(texelFetch(particles_view, i).z), k = code >> 2;
+  vec4 particle = texelFetch(particles_view, i);
+  uint code = uint(particle.z), k = code >> 2;
   if ((code & 3u) == 1u) origin = texelFetch(spheres_view, int(k) * SPHERE_TEXELS).xyz;
   else if ((code & 3u) == 2u) origin = texelFetch(planes_view, int(k) * PLANE_TEXELS).xyz;
+  else if (texelFetch(meshes_int_view, int(k) * MESH_TEXELS + 8).y > 0)  // skinned: its vertex (particle.w), skinned
+    origin = texelFetch(skinned_view, int(particle.w)).xyz;
   else origin = vec3(texelFetch(meshes_view, int(k) * MESH_TEXELS).w, texelFetch(meshes_view, int(k) * MESH_TEXELS + 1).w,
                      texelFetch(meshes_view, int(k) * MESH_TEXELS + 2).w);
   return true;

@@ -13,15 +13,18 @@ TEST_CASE("skinned colliders on the GPU: the skinning, every pass and a whole ri
   const glm::quat turn = glm::angleAxis(0.3f, glm::vec3(0, 1, 0));
   const std::string file = test::write_skinned_box(
       dir.path, "box", 0.1f, {{0.f, 0.1f, 0.4f}, {}, {glm::quat(1, 0, 0, 0), glm::quat(1, 0, 0, 0), turn}});
-  for (const char* solver : {"classic", "xpbd", "fabric"}) {
+  // fabric twice: the second with the cloth's corner attached to the box (it follows a skinned vertex).
+  for (const char* solver : {"classic", "xpbd", "fabric", "fabric+attached"}) {
     INFO(solver);
+    const bool attached = std::string(solver) == "fabric+attached";
     const Scene s = parse_scene(fmt::format(R"({{
       "cloth": {{"width": 0.1, "height": 0.1, "num_width_points": 5, "num_height_points": 5, "thickness": 0.004,
-                 "orientation": 0, "density": 0.15, "ks": 500, "damping": 0.5}},
+                 "orientation": 0, "density": 0.15, "ks": 500, "damping": 0.5{}}},
       "mesh": {{"file": "{}", "origin": [0.05, 0.9, 0.05], "friction": 0.5, "thickness": 0.004, "animation": 0,
                 "motion": {{"keyframes": [[0, [0.05, 0.9, 0.05]], [0.4, [0.05, 0.95, 0.07]]]}}}},
       "simulation": {{"solver": "{}", "self_collision": false}}
-    }})", file, solver), dir / "scene.json");
+    }})", attached ? R"(, "attachments": [{"collider": "mesh", "vertices": [0, 4], "stiffness": 50}])" : "", file,
+                                attached ? "fabric" : solver), dir / "scene.json");
     const ClothModel model = build_cloth(s);
     {
       GpuSimulator gpu(s, model, pass_fixtures::compute_dir());

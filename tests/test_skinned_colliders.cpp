@@ -210,3 +210,31 @@ TEST_CASE("a point cache or an OBJ sequence moves a collider's vertices, and a c
   CHECK_THAT(scene_error(dir, fmt::format(R"({{"file": "{}", "sequence": "{}"}})", dir / "cube.obj", dir / "cube.obj")),
              Catch::Contains("mesh.sequence") && Catch::Contains("not a folder"));
 }
+
+TEST_CASE("a cloth attached to a skinned box follows the vertices it was nearest, m g / k below them",
+          "[skinned][attachments]") {
+  test::TempDir dir("skinned", "attached");
+  const std::string solver = GENERATE("classic", "fabric");
+  // The box well below the cloth (its top at 0.6, then 0.7), so that only the attachments act.
+  const std::string file = test::write_skinned_box(dir.path, "box", 0.1f, rise());
+  const Scene s = parse_scene(fmt::format(R"({{
+    "cloth": {{"width": 0.1, "height": 0.1, "num_width_points": 5, "num_height_points": 5, "thickness": 0.004,
+               "orientation": 0, "density": 0.15, "ks": 50, "damping": 1,
+               "attachments": [{{"collider": "mesh", "box": {{"min": [-1, -1, -1], "max": [1, 2, 1]}}, "stiffness": 10}}]}},
+    "mesh": {{"file": "{}", "origin": [0.05, 0.5, 0.05], "friction": 0, "animation": 0, "loop": false}},
+    "simulation": {{"solver": "{}", "self_collision": false}}
+  }})", file, solver), dir / "scene.json");
+  const ClothModel m = build_cloth(s);
+  CpuBackend<double> cpu(s, m);
+  for (int f = 0; f < 450; ++f) cpu.step_frame();  // 5 s: the box rose 0.1 m from 0.5 s to 1.5 s
+  const double lag = 0.1 * 0.1 * 0.15 / 25 * 9.8 / 10;  // m g / k
+  double worst = 0, sideways = 0;
+  for (size_t i = 0; i < m.initial.size(); ++i) {
+    const glm::dvec3 x(cpu.state().pos[i]);
+    worst = std::max(worst, std::abs((m.initial[i].y + 0.1 - x.y) - lag));
+    sideways = std::max({sideways, std::abs(x.x - m.initial[i].x), std::abs(x.z - m.initial[i].z)});
+  }
+  INFO(solver << ": lag " << lag * 1e3 << " mm; worst deviation " << worst * 1e3 << " mm, sideways " << sideways * 1e3 << " mm");
+  CHECK(worst < 0.01 * lag);
+  CHECK(sideways < 1e-6);
+}

@@ -108,7 +108,8 @@ void GpuState::upload_materials(const Constants<float>& c) {
   std::vector<glm::vec4> particles;
   for (size_t i = 0; i < c.mass.size(); ++i)
     particles.push_back({c.mass[i], float(model_.material[i]),
-                         c.has_attachments() ? float(c.attach_collider[i]) : 0.f, 0.f});
+                         c.has_attachments() ? float(c.attach_collider[i]) : 0.f,
+                         c.has_attachments() ? float(c.attach_vertex[i]) : 0.f});  // exact below 2^24
   gl::upload_vector(materials_, materials, GL_DYNAMIC_DRAW);
   gl::upload_vector(particles_, particles, GL_DYNAMIC_DRAW);
   materials_view_.attach(materials_, GL_RGBA32F);

@@ -74,6 +74,7 @@ template <class R> void make_attachments(const Scene& scene, const ClothModel& m
   if (!any) return;
   c.attach.assign(size_t(model.count()), Vec4<R>(0));
   c.attach_collider.assign(size_t(model.count()), 0u);
+  c.attach_vertex.assign(size_t(model.count()), 0u);
   const bool array = cloths.size() > 1;
   for (size_t part = 0; part < cloths.size(); ++part) {
     const ClothPart& cp = model.parts[part];
@@ -81,10 +82,16 @@ template <class R> void make_attachments(const Scene& scene, const ClothModel& m
       const AttachmentParams& a = cloths[part]->attachments[k];
       const ColliderRef ref = *find_collider(scene, a.collider);  // the loader checked it
       const glm::dvec3 origin = collider_origin(scene, ref, 0.0);
+      const bool skinned = ref.kind == 3 && c.control.meshes[ref.index].skin.y > 0;
       auto attach = [&](uint32_t i) {
         if (model.pinned[i]) return;  // a pin stays a pin
-        c.attach[i] = Vec4<R>(Vec3<R>(model.initial[i] - origin), R(a.stiffness));
+        // A skinned collider: the vertex follows its nearest skinned vertex at t = 0 (a bone's
+        // surface), not the collider's origin.
+        const uint32_t v = skinned ? nearest_skinned_vertex(c, ref.index, model.initial[i]) : 0u;
+        const glm::dvec3 from = skinned ? glm::dvec3(Vec3<R>(c.control.skinned[v])) : origin;
+        c.attach[i] = Vec4<R>(Vec3<R>(model.initial[i] - from), R(a.stiffness));
         c.attach_collider[i] = uint32_t(ref.kind) + 4u * uint32_t(ref.index);
+        if (skinned) c.attach_vertex[i] = v;
       };
       const std::string key = fmt::format("{}.attachments[{}]", array ? fmt::format("cloth[{}]", part) : "cloth", k);
       for (size_t v = 0; v < a.vertices.size(); ++v) {
@@ -241,6 +248,11 @@ Constants<R> make_constants(const Scene& scene, const ClothModel& model, std::sh
   make_meshes(scene, c);
   make_wind(scene, c);
   make_timeline(scene, model, c);
+  if (!c.timeline.skins.empty()) {  // the skinned colliders at t = 0, still (the attachments read them)
+    set_skin_palette(c, 0.0, 0.0);
+    skin_colliders(c.control, c);
+    fit_collider_boxes(c.control, c);
+  }
   make_attachments(scene, model, c);
   // Each plane's front: the side the cloth's rest centre is on, where the plane is at t = 0.
   glm::dvec3 centre(0.0);
@@ -254,11 +266,6 @@ Constants<R> make_constants(const Scene& scene, const ClothModel& model, std::sh
   c.plane_count = uint32_t(c.control.planes.size());
   c.mesh_count = uint32_t(c.control.meshes.size());
   c.pins_moving = c.moving_pins();
-  if (!c.timeline.skins.empty()) {  // the skinned colliders at t = 0, still
-    set_skin_palette(c, 0.0, 0.0);
-    skin_colliders(c.control, c);
-    fit_collider_boxes(c.control, c);
-  }
   return c;
 }
 

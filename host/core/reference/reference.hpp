@@ -137,6 +137,8 @@ template <class R> struct Constants : layout::StepParamsT<R> {
   // kind + 4 index (kind 1 sphere, 2 plane, 3 mesh; 0 none). Both empty without attachments.
   std::vector<Vec4<R>> attach;
   std::vector<uint32_t> attach_collider;
+  // For an attachment to a skinned collider: the skinned vertex it follows (nearest at t = 0).
+  std::vector<uint32_t> attach_vertex;
   Timeline timeline;
   const layout::StepParamsT<R>& params() const { return *this; }  // the block, as uploaded
   bool has_colliders() const {
@@ -144,12 +146,14 @@ template <class R> struct Constants : layout::StepParamsT<R> {
   }
   bool moving_pins() const { return !anchors.empty(); }
   bool has_attachments() const { return !attach.empty(); }
-  // Where particle i's collider's origin is at the substep's end (attach_collider[i] != 0).
+  // Where particle i's collider's origin is at the substep's end (attach_collider[i] != 0); for
+  // a skinned collider, where its attached vertex is.
   Vec3<R> attached_origin(size_t i) const {
     const uint32_t code = attach_collider[i], k = code >> 2;
     if ((code & 3u) == 1u) return Vec3<R>(control.spheres[k].origin_radius);
     if ((code & 3u) == 2u) return Vec3<R>(control.planes[k].point);
     const auto& m = control.meshes[k];
+    if (m.skin.y > 0) return Vec3<R>(control.skinned[attach_vertex[i]]);  // its vertex, skinned
     return Vec3<R>(m.row0.w, m.row1.w, m.row2.w);
   }
   bool enabled(const Spring& s) const { return materials[s.material].enabled[int(s.type)]; }

@@ -56,6 +56,9 @@ struct ColliderMesh;
 template <class R>
 void make_skins(const Scene& scene, const std::vector<std::shared_ptr<const ColliderMesh>>& loaded, Constants<R>& c);
 template <class R> void set_skin_palette(Constants<R>& c, double start, double end);
+// The skinned vertex of mesh collider `mesh` nearest p where skin_colliders last put them (the
+// least distance, then index): what an attachment to it follows.
+template <class R> uint32_t nearest_skinned_vertex(const Constants<R>& c, size_t mesh, const glm::dvec3& p);
 
 
 }  // namespace clothsim

@@ -81,6 +81,23 @@ void make_skins(const Scene& scene, const std::vector<std::shared_ptr<const Coll
   std::copy(rest.begin(), rest.end(), c.control.skinned.begin() + 2 * std::ptrdiff_t(rest.size()));
 }
 
+template <class R> uint32_t nearest_skinned_vertex(const Constants<R>& c, size_t mesh, const glm::dvec3& p) {
+  const glm::ivec4 skin = c.control.meshes[mesh].skin;
+  // The collider's vertices are those of its groups' clusters' triangles.
+  uint32_t best = 0;
+  double best_d2 = std::numeric_limits<double>::max();
+  for (int g = skin.x; g < skin.x + skin.y; ++g)
+    for (uint32_t k = c.skin.groups[size_t(g)].x; k < c.skin.groups[size_t(g)].x + c.skin.groups[size_t(g)].y; ++k)
+      for (uint32_t t = c.skin.clusters[k].x; t < c.skin.clusters[k].x + c.skin.clusters[k].y; ++t)
+        for (int corner = 0; corner < 3; ++corner) {
+          const uint32_t v = c.skin.triangles[t][corner];
+          const glm::dvec3 e = glm::dvec3(Vec3<R>(c.control.skinned[v])) - p;
+          const double d2 = glm::dot(e, e);
+          if (d2 < best_d2 || (d2 == best_d2 && v < best)) best_d2 = d2, best = v;
+        }
+  return best;
+}
+
 template <class R> void set_skin_palette(Constants<R>& c, double start, double end_time) {
   const Timeline& tl = c.timeline;
   for (const SkinnedTimeline& s : tl.skins) {
@@ -205,6 +222,7 @@ bool skinned_mesh_at(const Constants<R>& c, const MeshColliderT<R>& m, const Vec
 #define CLOTHSIM_INSTANTIATE(R)                                                                                        \
   template void make_skins<R>(const Scene&, const std::vector<std::shared_ptr<const ColliderMesh>>&, Constants<R>&); \
   template void set_skin_palette<R>(Constants<R>&, double, double);                                                          \
+  template uint32_t nearest_skinned_vertex<R>(const Constants<R>&, size_t, const glm::dvec3&);                     \
   template void skin_colliders<R>(Control<R>&, const Constants<R>&);                                                \
   template void fit_collider_boxes<R>(Control<R>&, const Constants<R>&);                                            \
   template bool skinned_mesh_at<R>(const Constants<R>&, const MeshColliderT<R>&, const Vec3<R>&, const Vec3<R>&,     \
