@@ -141,6 +141,14 @@ TEST_CASE("a skinned collider that names no animation of its file is refused wit
   std::ofstream(obj) << "v 0 0 0\nv 1 0 0\nv 0 0 1\nf 1 2 3\n";
   CHECK_THAT(scene_error(dir, fmt::format(R"({{"file": "{}", "animation": "walk"}})", obj)),
              Catch::Contains("mesh.animation") && Catch::Contains("has no animations"));
+  // A skin without inverseBindMatrices (glTF's default): Assimp 5.2 would crash on it.
+  std::ifstream in(box);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string ibm = R"(, "inverseBindMatrices": 6)";
+  text.replace(text.find(ibm), ibm.size(), "");
+  std::ofstream(dir / "no_ibm.gltf") << text;  // (its buffer is still box.bin)
+  CHECK_THAT(scene_error(dir, fmt::format(R"({{"file": "{}", "animation": 0}})", dir / "no_ibm.gltf")),
+             Catch::Contains("mesh.file") && Catch::Contains("inverseBindMatrices"));
   CHECK_THAT(scene_error(dir, fmt::format(R"({{"file": "{}", "animation": 0, "time_scale": -1}})", box)),
              Catch::Contains("mesh.time_scale"));
   CHECK(scene_error(dir, fmt::format(R"({{"file": "{}", "animation": 0, "loop": false}})", box)) == "(no error)");

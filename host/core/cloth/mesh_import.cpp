@@ -19,6 +19,7 @@
 #include <glm/mat4x4.hpp>
 
 #include "io/input_file.hpp"
+#include "io/gltf_check.hpp"
 #include "io/ply_check.hpp"
 #include "scene/scene.hpp"
 #include "cloth/mesh_import_detail.hpp"
@@ -184,6 +185,7 @@ PolyMesh load_mesh(const std::filesystem::path& file, const std::string& what, b
   // Assimp trusts a PLY header's counts and allocates from them: they are checked against the
   // file's size first (ply_check.hpp), and an ASCII PLY's data lines against them.
   if (auto problem = ply_problem(file, size)) cx.fail(*problem);
+  if (auto problem = gltf_problem(file, size)) cx.fail(*problem);
 
   // No post-processing: not aiProcess_Triangulate (quads stay quads), not JoinIdenticalVertices
   // (it keeps a uv seam apart; welding here is by position alone), not ValidateDataStructure
