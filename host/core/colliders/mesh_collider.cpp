@@ -122,25 +122,24 @@ std::shared_ptr<const ColliderMesh> load_collider_mesh(const Scene& scene, size_
 
   auto out = std::make_shared<ColliderMesh>();
   out->file = p.file_path;
+  auto keep = [&](Skin skin) {  // what moves the vertices, played as the scene says
+    skin.time_scale = p.time_scale;
+    skin.loop = p.loop;
+    out->skin = std::make_shared<Skin>(std::move(skin));
+  };
   MeshInspector read_bones;
   if (!p.animation.empty())
     read_bones = [&](const aiScene& file, std::span<const MeshUse> uses, size_t vertices) {
-      auto skin = std::make_shared<Skin>(read_skin(file, uses, vertices, p.animation,
-                                                   fmt::format("{}: {}.animation: {}", scene.source, key, printable(p.file_path.string()))));
-      skin->time_scale = p.time_scale;
-      skin->loop = p.loop;
-      out->skin = std::move(skin);
+      keep(read_skin(file, uses, vertices, p.animation,
+                     fmt::format("{}: {}.animation: {}", scene.source, key, printable(p.file_path.string()))));
     };
   const PolyMesh poly = load_mesh(p.file_path, fmt::format("{}: {}.file", scene.source, key), /*manifold=*/false, read_bones);
   out->surface = surface_of(poly, p.scale);
   if (!p.point_cache.empty() || !p.sequence.empty()) {
     const bool pc2 = !p.point_cache.empty();
     const std::string what = fmt::format("{}: {}.{}", scene.source, key, pc2 ? "point_cache" : "sequence");
-    auto skin = std::make_shared<Skin>(pc2 ? read_point_cache(poly.positions, p.point_cache_path, rate, what)
-                                           : read_obj_sequence(poly.positions, p.sequence_path, rate, what));
-    skin->time_scale = p.time_scale;
-    skin->loop = p.loop;
-    out->skin = std::move(skin);
+    keep(pc2 ? read_point_cache(poly.positions, p.point_cache_path, rate, what)
+             : read_obj_sequence(poly.positions, p.sequence_path, rate, what));
   }
   const double extent = longest_extent(out->surface);
   if (!(extent > 0))

@@ -6,6 +6,7 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <fstream>
 #include <map>
 
 #include <assimp/scene.h>
@@ -129,8 +130,11 @@ Skin read_point_cache(const std::vector<glm::dvec3>& rest, const std::filesystem
     if (double(h.samples) * double(h.points) > double(kMaxCachePositions))
       throw SceneError(fmt::format("{}: {} holds {} positions, more than the {} a collider may", what,
                                    printable(pc2.string()), double(h.samples) * h.points, kMaxCachePositions));
+    // One stream for every sample (the header's read checked the file: a regular file, its counts).
+    std::ifstream in(pc2, std::ios::binary);
+    const uint64_t size = std::filesystem::file_size(pc2);
     for (int k = 0; k < h.samples; ++k) {
-      const std::vector<glm::vec3> sample = read_pc2_sample(pc2.string(), k);
+      const std::vector<glm::vec3> sample = read_pc2_sample(in, size, pc2.string(), k);
       frames.emplace_back(sample.begin(), sample.end());
     }
   } catch (const Pc2Error& e) {
