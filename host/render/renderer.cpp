@@ -66,6 +66,21 @@ float cloth_extent(const ClothModel& m) {
   return float(std::max({size.x, size.y, size.z, 1e-6}));
 }
 
+// A drawn mesh's bounding box.
+std::pair<glm::vec3, glm::vec3> box_of(const MeshData& d) {
+  glm::vec3 lo(3e38f), hi(-3e38f);
+  for (const glm::vec4& q : d.positions) lo = glm::min(lo, glm::vec3(q)), hi = glm::max(hi, glm::vec3(q));
+  return {lo, hi};
+}
+
+// A skinned collider drawn where its animation has it at t, in scene coordinates (its origin at
+// the scene's origin or keys, as collider_origin places it).
+MeshData posed_mesh(const ColliderMesh& mesh, const MeshColliderParams& p, double t) {
+  const glm::dvec3 origin = p.motion ? interpolate(p.motion->keyframes, t) : p.origin;
+  return surface_mesh(SurfaceMesh{posed_positions(mesh, p, origin, t), mesh.surface.triangles}, glm::mat3(1.f),
+                      glm::vec3(0.f));
+}
+
 std::unique_ptr<Renderer::Mesh> make_mesh(const MeshData& d) {
   auto m = make_indexed(d.indices);
   m->positions.emplace("collider positions");
@@ -115,16 +130,15 @@ Renderer::Renderer(const std::filesystem::path& root, const Scene& scene, const 
   for (size_t k = 0; k < scene.meshes.size(); ++k) {
     const MeshColliderParams& p = scene.meshes[k];
     mesh_built_.emplace_back(p.origin);
-    MeshData drawn = surface_mesh(load_collider_mesh(scene, k)->surface, glm::mat3(collider_rotation(p)), glm::vec3(p.origin));
-    glm::vec3 lo(3e38f), hi(-3e38f);
-    for (const glm::vec4& q : drawn.positions) lo = glm::min(lo, glm::vec3(q)), hi = glm::max(hi, glm::vec3(q));
-    mesh_boxes_.emplace_back(lo, hi);
-    meshes_.push_back(make_mesh(drawn));
     const auto file = load_collider_mesh(scene, k);
+    // A skinned one posed at t = 0 (posed_time_), in place; a rigid one translated by u_model.
+    const MeshData drawn = file->skin ? posed_mesh(*file, p, 0.0)
+                                      : surface_mesh(file->surface, glm::mat3(collider_rotation(p)), glm::vec3(p.origin));
+    mesh_boxes_.push_back(box_of(drawn));
+    meshes_.push_back(make_mesh(drawn));
     posed_.push_back(file->skin ? file : nullptr);
     posed_params_.push_back(p);
   }
-  pose_meshes(0.0);
   // The studio floor of a scene without a plane: just below the lowest of where the cloth
   // starts, where it will roughly rest and the colliders, so a hanging cloth hangs above it.
   double lowest = 1e300;
@@ -147,15 +161,10 @@ void Renderer::pose_meshes(double t) {
   posed_time_ = t;
   for (size_t k = 0; k < posed_.size(); ++k) {
     if (!posed_[k]) continue;
-    const MeshColliderParams& p = posed_params_[k];
-    const glm::dvec3 origin = p.motion ? interpolate(p.motion->keyframes, t) : p.origin;
-    const SurfaceMesh posed{posed_positions(*posed_[k], p, origin, t), posed_[k]->surface.triangles};
-    const MeshData drawn = surface_mesh(posed, glm::mat3(1.f), glm::vec3(0.f));
+    const MeshData drawn = posed_mesh(*posed_[k], posed_params_[k], t);
     meshes_[k]->positions->upload(0, drawn.positions.size() * sizeof(glm::vec4), drawn.positions.data());
     meshes_[k]->normals->upload(0, drawn.normals.size() * sizeof(glm::vec4), drawn.normals.data());
-    glm::vec3 lo(3e38f), hi(-3e38f);
-    for (const glm::vec4& q : drawn.positions) lo = glm::min(lo, glm::vec3(q)), hi = glm::max(hi, glm::vec3(q));
-    mesh_boxes_[k] = {lo, hi};
+    mesh_boxes_[k] = box_of(drawn);
   }
 }
 
