@@ -35,12 +35,12 @@ void main() {
   precise vec3 f = off * -inertia;
   uint first = texelFetch(gather_start_view, i).x, last = texelFetch(gather_start_view, i + 1).x;
   for (uint g = first; g < last; ++g) {
-    uvec2 entry = texelFetch(gather_view, int(g)).xy;  // x: the other end | type << 30, y: rest bits
-    uint type = entry.x >> 30;
-    if (!type_enabled(mat, type)) continue;
-    int j = int(entry.x & 0x3FFFFFFFu);
+    int j;
+    uint type;
+    float rest, k;
+    if (!gathered_spring(g, mat, j, type, rest, k)) continue;
     precise vec3 e = (position_of(j).xyz + offset_of(j)) - xi;
-    f = add_spring_force(f, e, uintBitsToFloat(entry.y), stiffness(mat, type));
+    f = add_spring_force(f, e, rest, k);
   }
   vec4 rel;
   vec3 origin;

@@ -12,8 +12,8 @@
 uniform uint u_first;
 uniform uint u_count;
 
-// The spring of invocation k of this colour: from particle i to j, its rest length, type and
-// material. False for an invocation past the colour's end.
+// The spring of invocation k of this colour: from particle i to j, its rest length now (a
+// seam's shrinks: seam_rest), type and material. False for an invocation past the colour's end.
 bool colour_spring(uint k, out int i, out int j, out float rest, out uint type, out int material_index) {
   i = 0;
   j = 0;
@@ -27,6 +27,7 @@ bool colour_spring(uint k, out int i, out int j, out float rest, out uint type, 
   rest = uintBitsToFloat(s.z);
   type = s.w & 3u;
   material_index = int(s.w >> 2);
+  if (type == 3u) rest = seam_rest(rest, control.seam_shrink);
   return true;
 }
 

@@ -13,16 +13,17 @@ vec3 add_spring(vec3 f, vec3 xi, int j, float rest, float k_spring) {
   return add_spring_force(f, position_of(j).xyz - xi, rest, k_spring);
 }
 
-// Springs never join two cloths, so every spring of particle i has i's material.
-// (mass: particle i's, read with its material by the caller.)
+// Only a seam joins two cloths (gathered_spring reads the other's ks for it): every other spring
+// of particle i has i's material. (mass: particle i's, read with its material by the caller.)
 vec3 spring_force(int i, vec3 xi, Material mat, float mass) {
   precise vec3 f = params.gravity * mass;
   uint first = texelFetch(gather_start_view, i).x, last = texelFetch(gather_start_view, i + 1).x;
   for (uint g = first; g < last; ++g) {
-    uvec2 entry = texelFetch(gather_view, int(g)).xy;  // x: the other end | type << 30, y: rest bits
-    uint type = entry.x >> 30;
-    if (!type_enabled(mat, type)) continue;
-    f = add_spring(f, xi, int(entry.x & 0x3FFFFFFFu), uintBitsToFloat(entry.y), stiffness(mat, type));
+    int j;
+    uint type;
+    float rest, k;
+    if (!gathered_spring(g, mat, j, type, rest, k)) continue;
+    f = add_spring(f, xi, j, rest, k);
   }
   // An attachment's pull, after the springs (accumulate_forces in reference_forces.cpp).
   vec4 rel;

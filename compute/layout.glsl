@@ -121,7 +121,7 @@ using uint = uint32_t;
 #define TEXTURE_CORNER_START 20      // R32UI, per particle + 1: its first entry in the corner list
 #define TEXTURE_CORNER_TRIANGLES 21  // R32UI, per corner entry: a triangle around the particle (ascending)
 #define TEXTURE_TRIANGLES 22         // RGBA32UI, per triangle: xyz its corners
-#define TEXTURE_REST_POSITIONS 23    // RGBA32F, per particle: xyz its rest position (bounded contact; 1 texel otherwise)
+#define TEXTURE_REST_POSITIONS 23    // RGBA32F, per particle: xyz its rest position (bounded contact), w its weld (seams); 1 texel without either
 #define TEXTURE_MULTIPLIERS 24       // RGBA32F, per spring: BINDING_MULTIPLIERS, read by predict and the sweep
 #define TEXTURE_MESHES 25            // RGBA32F, MESH_TEXELS per MeshCollider
 #define TEXTURE_SDF 26               // RGBA32F, per field node its value and its +x, +y, +x+y neighbours' (BINDING_SDF)
@@ -288,7 +288,8 @@ struct ShadowFrame {
   F(UINT, skin_clusters)       /* and clusters of triangles */                              \
   F(UINT, skin_groups)         /* and groups of clusters */                                 \
   F(UINT, skin_palette)        /* and palette entries (bones) */                            \
-  F(UINT, skin_meshes)         /* skinned mesh colliders (BINDING_NEAREST's slots per particle) */
+  F(UINT, skin_meshes)         /* skinned mesh colliders (BINDING_NEAREST's slots per particle) */ \
+  F(UINT, welds)               /* 1 = seams: TEXTURE_REST_POSITIONS' w is each particle's weld (ClothModel::weld) */
 #define STEP_PARAMS_DECLARE(type, name) type name;
 // std140 rounds the block's size up to 16 bytes; alignas makes sizeof agree (for REAL = float:
 // StepParamsT<double> is the double reference's, never uploaded).
@@ -301,7 +302,8 @@ SCALAR_STRUCT(StepParams) { STEP_PARAMS_FIELDS(STEP_PARAMS_DECLARE) };
 // its own field list so that tests/test_gpu_layout.cpp checks it as it does StepParams.
 #define SUBSTEP_CONTROL_FIELDS(F)                                                           \
   F(VEC3, pin_offset)          /* m, pinned_motion at the substep's end */                 \
-  F(REAL, gust_phase)          /* fract(t / period) at the substep's start */
+  F(REAL, gust_phase)          /* fract(t / period) at the substep's start */              \
+  F(REAL, seam_shrink)         /* m, sewing_speed * t at the substep's end: what every seam's rest length has lost */
 SCALAR_STRUCT(SubstepControl) { SUBSTEP_CONTROL_FIELDS(STEP_PARAMS_DECLARE) };
 
 // The divergence guard's reduction of one frame. Coordinates are stored as ordered bits
@@ -336,7 +338,7 @@ using PlaneCollider = PlaneColliderT<float>;
 using MeshCollider = MeshColliderT<float>;
 using StepParams = StepParamsT<float>;
 using SubstepControl = SubstepControlT<float>;
-static_assert(sizeof(SubstepControl) == 16, "SubstepControl is one vec4");
+static_assert(sizeof(SubstepControl) == 32, "SubstepControl is two vec4s");
 static_assert(sizeof(MaterialTexels) == MATERIAL_TEXELS * sizeof(vec4), "MaterialTexels texels");
 static_assert(sizeof(SphereCollider) == SPHERE_TEXELS * sizeof(vec4), "SphereCollider texels");
 static_assert(sizeof(PlaneCollider) == PLANE_TEXELS * sizeof(vec4), "PlaneCollider texels");

@@ -8,6 +8,8 @@
 #ifndef CLOTHSIM_PARTICLE_VIEWS_GLSL
 #define CLOTHSIM_PARTICLE_VIEWS_GLSL
 
+#include "shared/springs.glsl"
+
 layout(binding = TEXTURE_POSITIONS) uniform samplerBuffer positions_view;
 layout(binding = TEXTURE_DISPLACEMENT) uniform samplerBuffer displacement_view;
 layout(binding = TEXTURE_SPRINGS) uniform usamplerBuffer springs_view;
@@ -70,9 +72,29 @@ Material material_and_mass_of(int i, out float mass) {
   mass = particle.x;
   return material(int(particle.y));
 }
-bool type_enabled(Material m, uint type) { return m.keep[1 + int(type)] != 0.0; }
+// Type 3, a seam, is always on (its keep has no entry: the || skips the read).
+bool type_enabled(Material m, uint type) { return type == 3u || m.keep[1 + int(type)] != 0.0; }
 float stiffness(Material m, uint type) { return type == 2u ? m.stiffness.y : m.stiffness.x; }
 float compliance(Material m, uint type) { return type == 2u ? m.stiffness.w : m.stiffness.z; }
+
+// Gather entry g of a particle of material `mat` (TEXTURE_GATHER): its other end and type, and
+// its rest length and stiffness now, as Constants::rest_of and stiffness_of give them: a seam's
+// rest shrinks as it closes and it takes the lower ks of its two cloths. False (nothing else
+// read) for a spring of a type its cloth has off.
+bool gathered_spring(uint g, Material mat, out int other, out uint type, out float rest, out float k) {
+  uvec2 entry = texelFetch(gather_view, int(g)).xy;  // x: the other end | type << 30, y: rest bits
+  type = entry.x >> 30;
+  other = int(entry.x & 0x3FFFFFFFu);
+  rest = uintBitsToFloat(entry.y);
+  k = 0.0;
+  if (!type_enabled(mat, type)) return false;
+  k = stiffness(mat, type);
+  if (type == 3u) {
+    rest = seam_rest(rest, control.seam_shrink);
+    k = min(k, material_of(other).stiffness.x);
+  }
+  return true;
+}
 
 // The triangles around particle i are corner entries [corners_first(i), corners_first(i + 1)),
 // ascending: the order compute_normals and compute_wind_forces gather in on both backends.

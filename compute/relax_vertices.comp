@@ -33,14 +33,15 @@ void main() {
   // The least room any spring has left below 99 % of its limit, for skipping the limit's loop.
   float headroom = 3.0e38;
   for (uint g = first; g < last; ++g) {
-    uvec2 entry = texelFetch(gather_view, int(g)).xy;  // x: the other end | type << 30, y: rest bits
-    uint type = entry.x >> 30;
-    if (!type_enabled(mat, type)) continue;
-    float rest = uintBitsToFloat(entry.y), k = stiffness(mat, type);
+    int j;
+    uint type;
+    float rest, k;
+    if (!gathered_spring(g, mat, j, type, rest, k)) continue;
     vec3 n;
     float len, sa, sd;
-    bool taut = spring_terms(x, position_of(int(entry.x & 0x3FFFFFFFu)).xyz, rest, k, n, len, sa, sd);
-    headroom = min(headroom, 0.99 * params.stretch_limit * rest - len);
+    bool taut = spring_terms(x, position_of(j).xyz, rest, k, n, len, sa, sd);
+    // A seam's limit is enforce_stretch_limit's (its weld): this loop moves one end at a time.
+    if (type != 3u) headroom = min(headroom, 0.99 * params.stretch_limit * rest - len);
     if (!taut) continue;
     f = add_spring_pull(f, n, len, rest, k);
     add_spring_hessian(hess, n, sa, sd);
@@ -69,13 +70,14 @@ void main() {
   // the same bits.
   if (!(length3(step) + 1.0e-6 * (length3(x) + 1.0) < headroom)) limit_last = last;
   for (uint g = first; g < limit_last; ++g) {
-    uvec2 entry = texelFetch(gather_view, int(g)).xy;
-    uint type = entry.x >> 30;
-    if (!type_enabled(mat, type)) continue;
-    vec4 q = position_of(int(entry.x & 0x3FFFFFFFu));
+    int j;
+    uint type;
+    float rest, k;
+    if (!gathered_spring(g, mat, j, type, rest, k) || type == 3u) continue;
+    vec4 q = position_of(j);
     precise vec3 e = q.xyz - x;
     float len = length3(e);
-    precise float limit = params.stretch_limit * uintBitsToFloat(entry.y);
+    precise float limit = params.stretch_limit * rest;
     if (!(len > limit)) continue;
     vec3 corr = one_end_stretch_pull(e, len, limit, wi, q.w);
     x = x + corr;

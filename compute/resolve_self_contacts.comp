@@ -26,7 +26,7 @@ struct Contacts {
 
 // Adds the push-out from every particle among entries [first, last) that lies in one of the
 // three cells (x - 1 .. x + 1, row.y, row.z) and closer than the contact distance.
-Contacts visit_entries(Contacts acc, vec3 xi, vec3 rest_i, ivec3 row, uint first, uint last) {
+Contacts visit_entries(Contacts acc, vec3 xi, vec4 rest_i, ivec3 row, uint first, uint last) {
   float contact = params.contact_distance;
   for (uint e = first; e < last; ++e) {
     vec3 xj = texelFetch(sorted_positions_view, int(e)).xyz;
@@ -39,6 +39,11 @@ Contacts visit_entries(Contacts acc, vec3 xi, vec3 rest_i, ivec3 row, uint first
     vec3 e3 = xi - xj;
     float d = length3(e3);
     if (d >= contact || d == 0.0) continue;
+    // A touching pair only: its rest texel (xyz the rest position, w the weld). A sewn pair, one
+    // weld, is held together by its seam, never pushed apart.
+    vec4 rest_j = params.bounded_contact != 0u || params.welds != 0u ? texelFetch(rest_positions_view, int(entries[e]))
+                                                                    : vec4(0.0);
+    if (params.welds != 0u && rest_j.w == rest_i.w) continue;
     if (params.bounded_contact == 0u) {
       acc.sum = add_self_contact(acc.sum, e3, d, contact, 1.0);
       ++acc.hits;
@@ -47,7 +52,7 @@ Contacts visit_entries(Contacts acc, vec3 xi, vec3 rest_i, ivec3 row, uint first
     // Bounded contact: masses closer at rest than the contact distance (the cloth's own
     // neighbours) are kept only at their rest distance; each of the pair moves half the gap.
     // Read only for a touching pair, so the rest positions cost nothing in the common case.
-    precise vec3 rest_e = rest_i - texelFetch(rest_positions_view, int(entries[e])).xyz;
+    precise vec3 rest_e = rest_i.xyz - rest_j.xyz;
     float keep = min(contact, length3(rest_e));
     if (!(d < keep)) continue;
     acc.sum = add_self_contact(acc.sum, e3, d, keep, 0.5);
@@ -61,7 +66,7 @@ uint bucket_start(uint b) { return texelFetch(cell_start_view, int(b)).x; }
 // The three cells (x - 1 .. x + 1) of row (y, z) around cell c: three consecutive buckets,
 // so one run of entries, in the reference's order (dx = -1, 0, 1; ascending ids within a
 // cell) -- or two runs when the three buckets wrap around the end of the table.
-Contacts visit_row(Contacts acc, vec3 xi, vec3 rest_i, ivec3 c, int dy, int dz) {
+Contacts visit_row(Contacts acc, vec3 xi, vec4 rest_i, ivec3 c, int dy, int dz) {
   ivec3 row = ivec3(c.x, c.y + dy, c.z + dz);
   uint size = params.table_size;
   uint b0 = (hash_row(row.y, row.z) + uint(c.x - 1)) & (size - 1u);
@@ -83,8 +88,8 @@ void main() {
   precise vec3 xi = p.xyz;
   ivec3 c = cell_of(xi);
   Contacts acc = Contacts(vec3(0.0), 0u);
-  // (Without the bounded contact the view holds one dummy texel: not read.)
-  vec3 rest_i = params.bounded_contact != 0u ? texelFetch(rest_positions_view, i).xyz : vec3(0.0);
+  // (Without the bounded contact or seams the view holds one dummy texel: not read.)
+  vec4 rest_i = params.bounded_contact != 0u || params.welds != 0u ? texelFetch(rest_positions_view, i) : vec4(0.0);
   // The nine rows of three cells, in the reference's order (dz, then dy), written out so
   // every offset is a constant.
   acc = visit_row(acc, xi, rest_i, c, -1, -1);

@@ -100,6 +100,7 @@ template <class R> void exercise(const char* type) {
   expect(add_spring_force(zero, e, R(4), R(2)) == e * R(0.4), "add_spring_force", type);
   expect(add_spring_pull(zero, up, R(2), R(1), R(1)) == up, "add_spring_pull", type);
   expect(add_anchor_pull(zero, zero, up, ex, R(2)) == (up + ex) * R(2), "add_anchor_pull", type);
+  expect(seam_rest(R(3), R(1)) == R(2) && seam_rest(R(1), R(3)) == R(0), "seam_rest", type);
   V xi = zero, xj = e, di = zero, dj = zero;
   expect(limit_stretch(xi, xj, di, dj, R(1), R(1), R(2), R(3)) && length3(xj - xi) == R(3), "limit_stretch", type);
   t = one_end_stretch_pull(e, R(5), R(3), R(1), R(1));

@@ -127,7 +127,7 @@ TEST_CASE("every field of the substep's control has the C++ offset and type, and
 #define SUBSTEP_CONTROL_MEMBER(type, name) members.push_back(MEMBER(SubstepControl, "control.", name));
   SUBSTEP_CONTROL_FIELDS(SUBSTEP_CONTROL_MEMBER)
 #undef SUBSTEP_CONTROL_MEMBER
-  REQUIRE(members.size() == 2);
+  REQUIRE(members.size() == 3);
   check_uniform_block(program, "SubstepControlBlock", BINDING_SUBSTEP_CONTROL, GLint(sizeof(layout::SubstepControl)),
                       members);
   CHECK_NO_GL_ERRORS();

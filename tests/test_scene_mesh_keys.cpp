@@ -230,7 +230,7 @@ TEST_CASE("two cloths round-trip through scene_to_json to an equal scene", "[sce
   const Scene one = parse_scene(with_cloth(kMesh), "x.json");
   const nlohmann::json j1 = nlohmann::json::parse(scene_to_json(one));
   REQUIRE(j1["cloth"].is_object());
-  CHECK(j1["cloth"] == nlohmann::json::parse(R"({"mesh": "meshes/flag.obj", "thickness": 0.002, "attachments": [], "enable_structural": true,
+  CHECK(j1["cloth"] == nlohmann::json::parse(R"({"mesh": "meshes/flag.obj", "thickness": 0.002, "attachments": [], "seams": [], "enable_structural": true,
       "enable_shearing": true, "enable_bending": true, "damping": 0.2, "density": 150.0, "ks": 5000.0,
       "pinned_vertices": [], "scale": 1.0, "offset": [0.0, 0.0, 0.0], "rotation_axis": [0.0, 1.0, 0.0],
       "rotation_degrees": 0.0, "mass_lumping": "area"})"));

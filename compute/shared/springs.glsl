@@ -40,6 +40,10 @@ SHARED_FN VEC3 add_spring_force(VEC3 f, VEC3 e, REAL rest, REAL k) {
   return sum;
 }
 
+// A seam's rest length now (docs/model.md, "Sewing"): the pair's start distance less what the
+// seams have shrunk by (sewing_speed x time), never below zero: a zero-length spring once sewn.
+SHARED_FN REAL seam_rest(REAL start, REAL shrunk) { return max(REAL(0), start - shrunk); }
+
 // f plus the pull of an attachment (docs/model.md, "Attachments"): a zero-length spring of
 // stiffness k from x to its anchor, `rel` (the start position less the collider's start origin)
 // plus `origin` (the collider's origin now). Its Hessian is k I.
@@ -149,14 +153,19 @@ SHARED_FN VEC3 spring_hessian_times(VEC3 n, REAL s, REAL d, VEC3 v) {
 }
 
 // The spring from p to q (rest `rest`, stiffness k): its unit direction n, its length and the
-// Hessian's two coefficients s = k (1 - t) along n and d = k t across. False for coincident ends.
+// Hessian's two coefficients s = k (1 - t) along n and d = k t across. Coincident ends: false,
+// but for a zero-length spring (a sewn seam), whose Hessian k I has no direction to need: then
+// d = k, n = 0 and the pull is zero (a welded pair stays coupled in the solve).
 SHARED_FN bool spring_terms(VEC3 p, VEC3 q, REAL rest, REAL k, OUT(VEC3) n, OUT(REAL) len, OUT(REAL) s, OUT(REAL) d) {
   n = VEC3(REAL(0));
   s = REAL(0);
   d = REAL(0);
   PRECISE VEC3 e = q - p;
   len = length3(e);
-  if (!(len > REAL(0))) return false;
+  if (!(len > REAL(0))) {
+    d = rest == REAL(0) ? k : REAL(0);
+    return rest == REAL(0);
+  }
   PRECISE REAL inv = REAL(1) / len;
   PRECISE VEC3 unit = e * inv;
   n = unit;

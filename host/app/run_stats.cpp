@@ -43,6 +43,10 @@ nlohmann::json stats_json(const Scene& scene, const ClothModel& model, Backend& 
   j["plane_clearance_m"] = numbers(st.plane_clearance);
   j["mesh_clearance_m"] = numbers(st.mesh_clearance);
   j["mesh_inside_masses"] = st.mesh_inside;
+  if (st.seam_pairs > 0) {
+    j["seam_pairs"] = st.seam_pairs;
+    j["max_seam_gap_m"] = number(st.max_seam_gap);
+  }
   j["finite"] = st.finite;
   j["self_intersections"] = count_self_intersections(model, snap);
   return j;

@@ -48,6 +48,8 @@ void print_stats(const Scene& scene, const ClothModel& model, const ClothStats& 
   for (size_t k = 0; k < st.mesh_clearance.size(); ++k)
     fmt::print("mesh[{}] clearance   {:.6f} m (to its surface; thickness {} m)\n", k, st.mesh_clearance[k],
                scene.meshes[k].thickness);
+  if (st.seam_pairs > 0)
+    fmt::print("seams             {} sewn pairs, the widest {:.3f} mm apart\n", st.seam_pairs, st.max_seam_gap * 1e3);
   for (size_t k = 0; k < st.mesh_inside.size(); ++k)
     fmt::print("mesh[{}] inside      {} of {} masses (winding number above 1/2)\n", k, st.mesh_inside[k],
                model.count());
@@ -256,7 +258,10 @@ void add_simulate_command(CLI::App& app, std::function<int()>& run) {
         export_guarded([&] { frames->finish(); });
         fmt::print("wrote {}\n", frames->summary());
       }
-      if (collider_frames) fmt::print("wrote {}\n", collider_frames->summary());
+      if (collider_frames) {
+        colliders_guarded([&] { collider_frames->finish(); });
+        fmt::print("wrote {}\n", collider_frames->summary());
+      }
       if (o->stats || kind == ExportKind::Obj) {
         const ClothSnapshot snap = backend->snapshot();
         if (o->stats) print_stats(scene, model, measure(scene, model, snap, backend->time()), o->frames, wall, *backend);

@@ -91,9 +91,11 @@ void GpuState::upload_anchors(const Constants<float>& c) {
 }
 
 void GpuState::upload_rest_positions(const Constants<float>& c) {
-  // Only the bounded contact reads them (one dummy texel otherwise: a view may not be empty).
+  // Only the bounded contact and seams read them (one dummy texel otherwise: a view may not be
+  // empty). w: the weld, exact in a float (particle indices are below 2^24).
   std::vector<glm::vec4> rest;
-  for (const Vec3<float>& r : c.rest) rest.push_back({r.x, r.y, r.z, 0.f});
+  for (size_t i = 0; i < c.rest.size(); ++i)
+    rest.push_back({c.rest[i].x, c.rest[i].y, c.rest[i].z, c.welds ? float(c.weld[i]) : 0.f});
   if (rest.empty()) rest.resize(1);
   gl::upload_vector(rest_positions_, rest, GL_STATIC_DRAW);
   rest_positions_view_.attach(rest_positions_, GL_RGBA32F);

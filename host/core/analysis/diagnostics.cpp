@@ -73,8 +73,15 @@ ClothStats measure(const Scene& scene, const ClothModel& m, const ClothSnapshot&
   }
   std::vector<double> ratios;
   ratios.reserve(m.springs.size());
+  auto p_ks = [&](uint32_t i) { return cloths.at(m.material[i])->ks; };
   for (const Spring& sp : m.springs) {
     const double len = glm::length(xyz(s.pos[sp.j]) - xyz(s.pos[sp.i]));
+    if (sp.type == SpringType::Seam) {  // a sewn pair: its gap (and the energy of a zero-length spring)
+      ++st.seam_pairs;
+      st.max_seam_gap = std::max(st.max_seam_gap, len);
+      st.spring += 0.5 * std::min(p_ks(sp.i), p_ks(sp.j)) * len * len;
+      continue;
+    }
     st.max_stretch_ratio = std::max(st.max_stretch_ratio, len / sp.rest);
     ratios.push_back(len / sp.rest);
     const ClothParams& p = *cloths.at(sp.material);

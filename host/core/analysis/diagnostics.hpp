@@ -22,11 +22,13 @@ struct ClothSnapshot {
 };
 
 struct ClothStats {
-  double max_stretch_ratio = 0;  // max over springs of length / rest length
+  double max_stretch_ratio = 0;  // max over springs of length / rest length (seams are no edge: left out)
   double p99_stretch_ratio = 0;  // its 99th percentile (the ratio 99 % of the springs are at or under)
   double kinetic = 0;            // J, from the Verlet velocity d / dt, d = x - x_prev
   double gravitational = 0;      // J, -m g . x summed
-  double spring = 0;             // J, 1/2 k (len - rest)^2 over enabled springs
+  double spring = 0;             // J, 1/2 k (len - rest)^2 over enabled springs (seams: at zero rest)
+  size_t seam_pairs = 0;         // sewn pairs (cloth.seams)
+  double max_seam_gap = 0;       // m, the widest of their distances
   // Where each collider is at the snapshot's time (a keyframed one at its keyframed position):
   std::vector<double> sphere_clearance;  // min |x - o| - r per sphere (negative: inside)
   std::vector<double> plane_clearance;   // min signed distance on the plane's front (the cloth's starting side), per plane

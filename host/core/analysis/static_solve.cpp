@@ -37,12 +37,16 @@ struct Problem {
       if (!m.pinned[size_t(i)]) unknown[size_t(i)] = n++;
   }
 
+  // The rest state is the sewn one: a seam at zero length, with its two cloths' lower ks.
+  static double rest(const Spring& s) { return s.type == SpringType::Seam ? 0.0 : s.rest; }
+  double stiffness(const Spring& s) const { return c.stiffness_of(model, s); }
+
   double energy(const std::vector<glm::dvec3>& x) const {
     double e = 0;
     for (const Spring& s : model.springs) {
       if (!c.enabled(s)) continue;
-      const double stretch = glm::length(x[s.j] - x[s.i]) - s.rest;
-      e += 0.5 * c.materials[s.material].stiffness(s.type) * stretch * stretch;
+      const double stretch = glm::length(x[s.j] - x[s.i]) - rest(s);
+      e += 0.5 * stiffness(s) * stretch * stretch;
     }
     for (int i = 0; i < model.count(); ++i)
       if (unknown[size_t(i)] >= 0) e -= c.mass[size_t(i)] * glm::dot(c.gravity, x[size_t(i)]);
@@ -62,7 +66,7 @@ struct Problem {
       const glm::dvec3 e = x[s.j] - x[s.i];
       const double len = glm::length(e);
       if (!(len > 0)) continue;
-      const glm::dvec3 pull = e * (c.materials[s.material].stiffness(s.type) * (len - s.rest) / len);
+      const glm::dvec3 pull = e * (stiffness(s) * (len - rest(s)) / len);
       add(s.i, pull);
       add(s.j, -pull);
     }
@@ -86,7 +90,7 @@ struct Problem {
       const double len = glm::length(e);
       if (!(len > 0)) continue;
       const glm::dvec3 u = e / len;
-      const double ks = c.materials[s.material].stiffness(s.type), lateral = std::max(0.0, 1.0 - s.rest / len);
+      const double ks = stiffness(s), lateral = std::max(0.0, 1.0 - rest(s) / len);
       double k[3][3];
       for (int r = 0; r < 3; ++r)
         for (int q = 0; q < 3; ++q) k[r][q] = ks * (u[r] * u[q] + lateral * ((r == q ? 1.0 : 0.0) - u[r] * u[q]));

@@ -58,14 +58,15 @@ namespace {
 // same colour of two parts merges into one: their particles are disjoint). Returns, for each
 // spring of each part in order, its index in the sorted list.
 std::vector<uint32_t> sort_by_colour(ClothModel& m, const std::vector<PartSprings>& parts) {
-  uint32_t per_type[3] = {0, 0, 0};
+  uint32_t per_type[kSpringTypes] = {0, 0, 0, 0};
   for (auto& p : parts)
     for (size_t s = 0; s < p.springs.size(); ++s) {
       uint32_t& n = per_type[int(p.springs[s].type)];
       n = std::max(n, p.colour[s] + 1);
     }
-  const uint32_t first[3] = {0, per_type[0], per_type[0] + per_type[1]};
-  const uint32_t colours = first[2] + per_type[2];
+  uint32_t first[kSpringTypes] = {0, 0, 0, 0};
+  for (int t = 1; t < kSpringTypes; ++t) first[t] = first[t - 1] + per_type[t - 1];
+  const uint32_t colours = first[kSpringTypes - 1] + per_type[kSpringTypes - 1];
   std::vector<uint32_t> size(colours, 0);
   std::vector<uint32_t> global;  // global colour of each spring, parts in order
   for (auto& p : parts)
@@ -100,8 +101,8 @@ void finish_model(ClothModel& m, const std::vector<PartSprings>& parts) {
   std::vector<std::vector<uint32_t>> lists(n);
   size_t offset = 0;
   for (size_t k = 0; k < parts.size(); ++k) {
-    const ClothPart& part = m.parts[k];
-    if (!parts[k].gather.empty()) {
+    if (k < m.parts.size() && !parts[k].gather.empty()) {
+      const ClothPart& part = m.parts[k];
       uint32_t i = part.first;
       for (uint32_t s : parts[k].gather) {
         if (s == kEndOfList) { ++i; continue; }
@@ -111,12 +112,13 @@ void finish_model(ClothModel& m, const std::vector<PartSprings>& parts) {
     offset += parts[k].springs.size();
   }
   std::vector<uint8_t> given(n, 0);
-  for (size_t k = 0; k < parts.size(); ++k)
+  for (size_t k = 0; k < m.parts.size(); ++k)
     if (!parts[k].gather.empty())
       for (uint32_t i = m.parts[k].first; i < m.parts[k].first + m.parts[k].count; ++i) given[i] = 1;
+  // A builder's order has no seams (they join parts): they follow it, in sorted order.
   for (uint32_t s = 0; s < m.springs.size(); ++s)
     for (uint32_t end : {m.springs[s].i, m.springs[s].j})
-      if (!given[end]) lists[end].push_back(s);
+      if (!given[end] || m.springs[s].type == SpringType::Seam) lists[end].push_back(s);
   for (uint32_t i = 0; i < n; ++i) {
     m.gather_start[i + 1] = m.gather_start[i] + uint32_t(lists[i].size());
     m.gather.insert(m.gather.end(), lists[i].begin(), lists[i].end());
@@ -214,6 +216,8 @@ static ClothModel build_cloth_model(const Scene& scene) {
     m.nw = m.parts[0].nw;
     m.nh = m.parts[0].nh;
   }
+  PartSprings seams = sew_seams(scene, m);
+  if (!seams.springs.empty()) parts.push_back(std::move(seams));
   finish_model(m, parts);
   m.mass = particle_masses(scene, m);
   return m;

@@ -17,7 +17,10 @@
 
 namespace clothsim {
 
-enum class SpringType { Structural = 0, Shearing = 1, Bending = 2 };
+// Seam: a spring of cloth.seams (seams.cpp), across a seam between two vertices that start
+// apart; its rest length shrinks to zero as the seam closes (docs/model.md, "Sewing").
+enum class SpringType { Structural = 0, Shearing = 1, Bending = 2, Seam = 3 };
+inline constexpr int kSpringTypes = 4;
 
 // One spring (a distance constraint under xpbd): from particle i to j, with its rest length,
 // its type (which stiffness, which enable_* flag) and the cloth whose material it takes.
@@ -50,7 +53,8 @@ struct ClothModel {
   std::vector<std::array<uint32_t, 3>> triangles;
   // Springs sorted by colour: colour c is springs [colour_start[c], colour_start[c + 1]), all of
   // one type, no two sharing a particle, so a colour is one dispatch without atomics. Colours run
-  // structural, then shearing, then bending: one Gauss-Seidel sweep visits them in this order.
+  // structural, then shearing, then bending, then seams: one Gauss-Seidel sweep visits them in
+  // this order.
   std::vector<Spring> springs;
   std::vector<uint32_t> colour_start;
   // The classic force gather: particle i sums springs gather[gather_start[i] .. gather_start[i + 1])
@@ -63,6 +67,9 @@ struct ClothModel {
   std::vector<int32_t> tether_pin;
   std::vector<double> tether_rest;
   std::vector<ClothPart> parts;
+  // With seams: per particle the least particle it is sewn to, through any chain of seams (itself
+  // if none). Self-collision never pushes two particles of one weld apart. Empty without seams.
+  std::vector<uint32_t> weld;
   // The grid's size when the whole model is one CS184 grid (row-major i = y * nw + x), else 0.
   int nw = 0, nh = 0;
 
@@ -70,12 +77,14 @@ struct ClothModel {
   int index(int x, int y) const { return y * nw + x; }
   int colours() const { return int(colour_start.size()) - 1; }
   SpringType colour_type(int c) const { return springs[colour_start[c]].type; }
+  bool has_seams() const { return !weld.empty(); }
   bool is_grid() const { return nw > 0; }
   // Springs of one type (independent of the enable_* flags).
   int springs_of(SpringType type) const;
   int structural_springs() const { return springs_of(SpringType::Structural); }
   int shearing_springs() const { return springs_of(SpringType::Shearing); }
   int bending_springs() const { return springs_of(SpringType::Bending); }
+  int seam_springs() const { return springs_of(SpringType::Seam); }
 };
 
 // "50x50 cloth", "mesh cloth of 10000 particles, 29500 springs", "2 cloths, 3000 particles": for messages.
@@ -102,7 +111,14 @@ struct PartSprings {
   std::vector<uint32_t> gather;
 };
 inline constexpr uint32_t kEndOfList = UINT32_MAX;
+// `parts` has one entry per model.parts, then optionally the seams' springs (sew_seams), whose
+// ends may be in any part: every particle gathers its seams after its own springs.
 void finish_model(ClothModel& model, const std::vector<PartSprings>& parts);
+// cloth.seams of every cloth as springs of type Seam, each at the pair's start distance, with
+// their colours (no two at one particle); sets model.weld. Nothing without seams. Throws
+// SceneError for a side with an index out of range, sides of unequal lengths, or a vertex sewn
+// to itself.
+PartSprings sew_seams(const Scene& scene, ClothModel& model);
 void build_tethers(ClothModel& model);  // called by finish_model
 // The CS184 grid of `params` appended to `model` as cloth `material` (cloth_grid.cpp), its
 // jitter drawn with `seed` (simulation.seed).

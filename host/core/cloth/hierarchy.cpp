@@ -19,12 +19,14 @@ void sort_unique(Graph& g) {
   }
 }
 
-// The particles joined by springs of the given types (any cloth, enabled or not: the graph is
-// the rest shape's, not the run's).
-Graph spring_graph(const ClothModel& m, bool with_bending) {
+// The particles joined by springs (any cloth, enabled or not: the graph is the rest shape's, not
+// the run's): every spring for the colouring of a sweep (`all`), else the structural and
+// shearing ones, which coarsen. Seams do not: their start length is no rest shape, so each
+// panel coarsens on its own and the fine sweep joins them.
+Graph spring_graph(const ClothModel& m, bool all) {
   Graph g(m.count());
   for (const Spring& s : m.springs) {
-    if (s.type == SpringType::Bending && !with_bending) continue;
+    if (!all && (s.type == SpringType::Bending || s.type == SpringType::Seam)) continue;
     g[s.i].push_back(s.j);
     g[s.j].push_back(s.i);
   }
@@ -42,7 +44,7 @@ Graph spring_graph(const ClothModel& m, bool with_bending) {
 double ordering_quantum(const ClothModel& m) {
   double shortest = 0;
   for (const Spring& s : m.springs)
-    if (s.rest > 0 && (shortest == 0 || s.rest < shortest)) shortest = s.rest;
+    if (s.type != SpringType::Seam && s.rest > 0 && (shortest == 0 || s.rest < shortest)) shortest = s.rest;
   return shortest > 0 ? 0.25 * shortest : 1.0;
 }
 

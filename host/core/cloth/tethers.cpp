@@ -35,7 +35,7 @@ void build_tethers(ClothModel& m) {
     m.tether_rest[i] = dist;
     for (uint32_t g = m.gather_start[i]; g < m.gather_start[i + 1]; ++g) {
       const Spring& s = m.springs[m.gather[g]];
-      if (s.type == SpringType::Bending) continue;
+      if (s.type == SpringType::Bending || s.type == SpringType::Seam) continue;
       const int j = int(s.i) == i ? int(s.j) : int(s.i);
       if (done[j]) continue;
       const double next = dist + s.rest;

@@ -1,7 +1,8 @@
 // --export-colliders DIR/ (docs/export.md, "Colliders"): every mesh collider of the scene as it
 // stands at each exported frame, DIR/mesh0/frame_NNNN.obj, DIR/mesh1/..., in scene coordinates
 // and numbered like --export DIR/'s frames, so that a cloth's point cache and the bodies it
-// drapes over play back together in Blender or any tool that reads OBJ sequences.
+// drapes over play back together in Blender or any tool that reads OBJ sequences; and, at the
+// end of the run, each collider's frames as one point cache, DIR/meshK/mesh.pc2.
 #pragma once
 
 #include <cstdint>
@@ -31,6 +32,10 @@ class ColliderExport {
   bool wants(int64_t frame) const { return frame >= start_ && (frame - start_) % every_ == 0; }
   // Writes every collider at simulated time `time` (s) as frame `frame`.
   void add(int64_t frame, double time);
+  // After the last frame of a run that ended well: every collider's frames as one point cache,
+  // DIR/meshK/mesh.pc2 over the first frame's OBJ (Blender's Mesh Cache plays it), one sample
+  // per exported frame. Throws std::runtime_error naming a file that cannot be written.
+  void finish();
   std::string summary() const;
 
  private:
@@ -39,7 +44,9 @@ class ColliderExport {
   int64_t start_;
   int every_;
   std::vector<std::shared_ptr<const ColliderMesh>> meshes_;
+  std::vector<std::vector<glm::dvec4>> samples_;  // per collider, every frame's vertices so far
   int written_ = 0;
+  bool cached_ = false;
   int64_t first_ = 0, last_ = 0;
 };
 

@@ -18,7 +18,7 @@ bool Timeline::moves() const {
   for (auto& k : spheres) if (k) return true;
   for (auto& k : planes) if (k) return true;
   for (auto& k : meshes) if (k) return true;
-  return !skins.empty() || pins.has_value() || gust_period > 0;
+  return !skins.empty() || pins.has_value() || gust_period > 0 || sewing_speed > 0;
 }
 
 namespace {
@@ -57,6 +57,7 @@ template <class R> void make_timeline(const Scene& scene, const ClothModel& mode
     for (int i = 0; i < model.count(); ++i)
       c.anchors.push_back(Vec4<R>(Vec3<R>(model.initial[i]), model.pinned[i] ? R(1) : R(0)));
   }
+  if (model.has_seams()) tl.sewing_speed = scene.simulation.sewing_speed;
   // Where the colliders are at t = 0, at rest: set_substep_time takes over from the first substep.
   for (size_t k = 0; k < tl.spheres.size(); ++k)
     if (tl.spheres[k]) set_xyz(c.control.spheres[k].origin_radius, interpolate(*tl.spheres[k], 0.0));
@@ -154,6 +155,7 @@ template <class R> void set_substep_time(Constants<R>& c, double t) {
   if (!tl.skins.empty()) set_skin_palette(c, t, t1);
   if (tl.pins) now.pin_offset = Vec3<R>(interpolate(*tl.pins, t1));
   if (tl.gust_period > 0) now.gust_phase = R(gust_phase(t, tl.gust_period));
+  if (tl.sewing_speed > 0) now.seam_shrink = R(tl.sewing_speed * t1);
 }
 
 int stretch_passes_for(const Scene& scene, const ClothModel& model) {
@@ -176,7 +178,9 @@ int stretch_passes_for(const Scene& scene, const ClothModel& model) {
     const double sag_stretch = cloths[k]->density * glm::length(sp.gravity) * extent / cloths[k]->ks;
     if (!(sag_stretch <= 0.5 * sp.max_stretch)) return kAutoStretchPasses;  // ks 0 too
   }
-  return 0;
+  // Seams: one pass, whose seam colours weld the sewn pairs (docs/model.md, "Sewing"); the
+  // sweep's own limit moves one end at a time, which would act on a pair as a force.
+  return model.has_seams() ? 1 : 0;
 }
 
 template <class R>
@@ -207,6 +211,7 @@ Constants<R> make_constants(const Scene& scene, const ClothModel& model, std::sh
     mat.enabled[0] = k->enable_structural;
     mat.enabled[1] = k->enable_shearing;
     mat.enabled[2] = k->enable_bending;
+    mat.enabled[3] = true;  // seams
     c.materials.push_back(mat);
   }
   // From the scene, so a live density edit takes effect.
@@ -236,8 +241,11 @@ Constants<R> make_constants(const Scene& scene, const ClothModel& model, std::sh
     // on each other cover at most half of it, so a mass of one layer is seen by the other's
     // masses before it can reach the gap between them (docs/model.md).
     c.max_step = R(kMaxStepFraction * 2.0 * thickness);
-    for (const glm::dvec3& p : model.initial) c.rest.push_back(Vec3<R>(p));
   }
+  c.weld = model.weld;
+  c.welds = model.has_seams() ? 1u : 0u;
+  if (c.bounded_contact || c.welds)  // the GPU packs both in one texel per particle
+    for (const glm::dvec3& p : model.initial) c.rest.push_back(Vec3<R>(p));
   c.count = uint32_t(model.count());
   c.table_size = hash_table_size(uint32_t(model.count()));
   for (auto& s : scene.spheres)

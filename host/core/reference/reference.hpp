@@ -18,9 +18,11 @@
 #include "cloth/hierarchy.hpp"
 #include "scene/scene.hpp"
 #include "reference/skin_lists.hpp"
+#include "reference/timeline.hpp"
 #include "reference/spatial_hash.hpp"
 #include "../../../compute/layout.glsl"
 #include "../../../compute/shared/vector.glsl"
+#include "../../../compute/shared/springs.glsl"
 
 namespace clothsim {
 
@@ -51,28 +53,6 @@ template <class R> void set_mesh_origin(MeshColliderT<R>& m, const Vec3<R>& o) {
 // gust_*). The factors fold the constants of the formulas: drag = -rho C_d / 12 is -1/2 rho
 // C_d, times 1/2 (the cross product of two edges is twice the area), times 1/3 (each corner
 // gathers a third); lift likewise.
-
-// What moves with time, in double: evaluated once per substep by set_substep_time into Control.
-struct Timeline {
-  std::vector<std::optional<Keyframes>> spheres, planes, meshes;  // by collider, in file order
-  std::vector<glm::dvec3> mesh_origins;                   // by mesh collider: its origin without keys
-  std::vector<SkinnedTimeline> skins;                     // the skinned mesh colliders
-  std::optional<Keyframes> pins;                          // offsets of the pinned masses
-  double gust_period = 0;                                 // 0: no gusts
-  double dt = 0;
-  bool moves() const;  // anything above is set
-};
-
-// One cloth's material, converted once to R (a scene with several cloths has one each).
-template <class R> struct MaterialC {
-  R ks, ks_bending;        // N/m: structural and shearing, bending (0.2 ks)
-  R keep_velocity;         // 1 - damping / 100
-  // xpbd: the time-scaled compliance alpha~ = 1 / (ks' dt^2) of a spring's distance constraint.
-  R alpha, alpha_bending;
-  bool enabled[3];         // by SpringType
-  R stiffness(SpringType t) const { return t == SpringType::Bending ? ks_bending : ks; }
-  R compliance(SpringType t) const { return t == SpringType::Bending ? alpha_bending : alpha; }
-};
 
 // The bounded contact's speed limit: a mass moves at most this fraction of the contact
 // distance per substep (Constants::max_step).
@@ -139,6 +119,9 @@ template <class R> struct Constants : layout::StepParamsT<R> {
   std::vector<uint32_t> attach_collider;
   // For an attachment to a skinned collider: the skinned vertex it follows (nearest at t = 0).
   std::vector<uint32_t> attach_vertex;
+  // ClothModel::weld when the cloths have seams (params().welds), else empty: self-collision
+  // leaves a sewn pair alone.
+  std::vector<uint32_t> weld;
   Timeline timeline;
   const layout::StepParamsT<R>& params() const { return *this; }  // the block, as uploaded
   bool has_colliders() const {
@@ -157,6 +140,15 @@ template <class R> struct Constants : layout::StepParamsT<R> {
     return Vec3<R>(m.row0.w, m.row1.w, m.row2.w);
   }
   bool enabled(const Spring& s) const { return materials[s.material].enabled[int(s.type)]; }
+  // A spring's rest length and stiffness now: a seam's shrinks as it closes, and takes the lower
+  // ks of its two cloths (the same on both ends); any other its cloth's, as built.
+  R rest_of(const Spring& s) const {
+    return s.type == SpringType::Seam ? shared::seam_rest(R(s.rest), control.seam_shrink) : R(s.rest);
+  }
+  R stiffness_of(const ClothModel& m, const Spring& s) const {
+    if (s.type != SpringType::Seam) return materials[s.material].stiffness(s.type);
+    return std::min(materials[m.material[s.i]].ks, materials[m.material[s.j]].ks);
+  }
   // Colour c of `m` runs at all: its type is enabled in some cloth (a colour is of one type).
   bool colour_enabled(const ClothModel& m, int c) const {
     for (auto& mat : materials)
@@ -177,7 +169,6 @@ Constants<R> make_constants(const Scene& scene, const ClothModel& model,
 // offset at t + dt (advance moves them there), the gusts' phase at t (when the forces are
 // computed). A no-op for a scene in which nothing moves (!c.timeline.moves()).
 template <class R> void set_substep_time(Constants<R>& c, double t);
-
 
 // What changes during a run: positions (w = inverse mass, 0 = pinned), the displacement of
 // the last substep (d = x - x_prev, w unused), forces and normals, all vec4 like the GPU

@@ -24,6 +24,7 @@ template <class R> void resolve_self_contacts(const Constants<R>& c, State<R>& s
       const R d = length3(e3);
       // i itself, and coincident masses, have no direction to separate along: skipped.
       if (d >= c.contact_distance || d == R(0)) return;
+      if (c.welds && c.weld[i] == c.weld[j]) return;  // a sewn pair: its seam holds it together
       if (!c.bounded_contact) {
         sum = shared::add_self_contact(sum, e3, d, c.contact_distance, R(1));
         ++hits;

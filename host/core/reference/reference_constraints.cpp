@@ -31,7 +31,7 @@ void limit_colour(const ClothModel& m, const Constants<R>& c, int colour, State<
     const R wi = s.pos[i].w, wj = s.pos[j].w, wsum = wi + wj;
     if (wsum == R(0)) return;
     Vec3<R> xi(s.pos[i]), xj(s.pos[j]), di(s.disp[i]), dj(s.disp[j]);
-    const R limit = c.stretch_limit * R(sp.rest);
+    const R limit = c.stretch_limit * c.rest_of(sp);
     if (over && length3(xj - xi) > limit * R(kStretchSettled)) *over = true;
     if (!limit_stretch(xi, xj, di, dj, wi, wj, wsum, limit)) return;
     // Provot's pull may not leave a mass deeper than 0.1 mm inside a collider or behind a
@@ -91,7 +91,7 @@ void solve_distance_constraint_colour(const ClothModel& m, const Constants<R>& c
     const R alpha = c.materials[sp.material].compliance(sp.type);
     const R wi = s.pos[i].w, wj = s.pos[j].w, wsum = wi + wj;
     if (wsum == R(0)) return;
-    const R rest = R(sp.rest);
+    const R rest = c.rest_of(sp);
     Vec3<R> xi(s.pos[i]), xj(s.pos[j]), di(s.disp[i]), dj(s.disp[j]);
     const Vec3<R> e = xj - xi;
     const R len = length3(e);
@@ -105,10 +105,13 @@ void solve_distance_constraint_colour(const ClothModel& m, const Constants<R>& c
     // max_stretch stays a hard limit, in the same visit.
     limit_stretch(xi, xj, di, dj, wi, wj, wsum, c.stretch_limit * rest);
     // A correction must not push a mass into a collider or through a plane, where the
-    // collision test of the next substep could no longer see it (docs/model.md).
+    // collision test of the next substep could no longer see it (docs/model.md). Frictionless
+    // but under fabric (sweep_friction), as the GPU's listed push-out (collide_objects.comp's
+    // FRICTIONLESS): xpbd's sweep runs under fabric only in the pass checks, from a fabric state.
     if (c.has_colliders()) {
-      if (wi != R(0)) collide_particle(c, xi, di, false, skin_slots(c, s, i));
-      if (wj != R(0)) collide_particle(c, xj, dj, false, skin_slots(c, s, j));
+      const bool friction = c.sweep_friction != 0u;
+      if (wi != R(0)) collide_particle(c, xi, di, friction, skin_slots(c, s, i));
+      if (wj != R(0)) collide_particle(c, xj, dj, friction, skin_slots(c, s, j));
     }
     s.pos[i] = Vec4<R>(xi, wi);
     s.pos[j] = Vec4<R>(xj, wj);

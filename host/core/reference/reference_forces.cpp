@@ -49,9 +49,7 @@ template <class R> void accumulate_forces(const ClothModel& m, const Constants<R
       const Spring& sp = m.springs[m.gather[g]];
       if (!c.enabled(sp)) continue;
       const uint32_t j = sp.i == i ? sp.j : sp.i;
-      const R rest = R(sp.rest);
-      const R k = c.materials[sp.material].stiffness(sp.type);
-      f = shared::add_spring_force(f, Vec3<R>(s.pos[j]) - xi, rest, k);
+      f = shared::add_spring_force(f, Vec3<R>(s.pos[j]) - xi, c.rest_of(sp), c.stiffness_of(m, sp));
     }
     if (c.has_attachments() && c.attach[i].w != R(0))  // after the springs, as forces.glsl adds it
       f = shared::add_anchor_pull(f, xi, Vec3<R>(c.attach[i]), c.attached_origin(i), c.attach[i].w);

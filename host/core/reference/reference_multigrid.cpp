@@ -112,7 +112,7 @@ template <class R> void compute_residuals(const ClothModel& m, const Constants<R
       if (!c.enabled(sp)) continue;
       const uint32_t j = sp.i == i ? sp.j : sp.i;
       const Vec3<R> e = (Vec3<R>(s.pos[j]) + Vec3<R>(s.offset[j])) - xi;
-      f = shared::add_spring_force(f, e, R(sp.rest), c.materials[sp.material].stiffness(sp.type));
+      f = shared::add_spring_force(f, e, c.rest_of(sp), c.stiffness_of(m, sp));
     }
     if (c.has_attachments() && c.attach[i].w != R(0))
       f = shared::add_anchor_pull(f, xi, Vec3<R>(c.attach[i]), c.attached_origin(i), c.attach[i].w);
@@ -201,11 +201,12 @@ template <class R> void relax_vertices(const ClothModel& m, const Constants<R>& 
       const uint32_t j = sp.i == i ? sp.j : sp.i;
       Vec3<R> n;
       R len, sa, sd;
-      const R k_s = c.materials[sp.material].stiffness(sp.type);
-      const bool taut = spring_terms(x, Vec3<R>(s.pos[j]), R(sp.rest), k_s, n, len, sa, sd);
-      headroom = std::min(headroom, R(0.99) * c.stretch_limit * R(sp.rest) - len);
+      const R k_s = c.stiffness_of(m, sp), rest = c.rest_of(sp);
+      const bool taut = spring_terms(x, Vec3<R>(s.pos[j]), rest, k_s, n, len, sa, sd);
+      // A seam's limit is enforce_stretch_limit's (its weld): this loop moves one end at a time.
+      if (sp.type != SpringType::Seam) headroom = std::min(headroom, R(0.99) * c.stretch_limit * rest - len);
       if (!taut) continue;
-      f = shared::add_spring_pull(f, n, len, R(sp.rest), k_s);
+      f = shared::add_spring_pull(f, n, len, rest, k_s);
       add_spring_hessian(hess, n, sa, sd);
     }
     // An attachment: its pull and its block k I (docs/model.md, "Attachments").
@@ -227,12 +228,12 @@ template <class R> void relax_vertices(const ClothModel& m, const Constants<R>& 
     const bool may_limit = !(length3(step) + R(1.0e-6) * (length3(x) + R(1)) < headroom);
     for (uint32_t g = m.gather_start[i]; may_limit && g < m.gather_start[i + 1]; ++g) {
       const Spring& sp = m.springs[m.gather[g]];
-      if (!c.enabled(sp)) continue;
+      if (!c.enabled(sp) || sp.type == SpringType::Seam) continue;
       const uint32_t j = sp.i == i ? sp.j : sp.i;
       const R wj = s.pos[j].w;
       const Vec3<R> e = Vec3<R>(s.pos[j]) - x;
       const R len = length3(e);
-      const R limit = c.stretch_limit * R(sp.rest);
+      const R limit = c.stretch_limit * c.rest_of(sp);
       if (!(len > limit)) continue;
       const Vec3<R> corr = shared::one_end_stretch_pull(e, len, limit, wi, wj);
       x = x + corr;

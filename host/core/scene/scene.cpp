@@ -88,6 +88,44 @@ void check_attachments(const Scene& s, const ClothParams& c, const std::string& 
   }
 }
 
+// Each seam of cloth `c` (cloth index `index` of `cloths`) says one way of picking each side's
+// vertices, names a cloth that exists, and an edge only of a grid; the lists' lengths and
+// indices are checked when the cloths are built (a mesh's vertex count is known then).
+void check_seams(const Scene& s, const ClothParams& c, size_t cloths, const std::string& source,
+                 const std::string& key) {
+  static const char* const kEdges[] = {"x_min", "x_max", "y_min", "y_max"};
+  for (size_t k = 0; k < c.seams.size(); ++k) {
+    const SeamParams& seam = c.seams[k];
+    const std::string at = fmt::format("{}.seams[{}]", key, k);
+    if (seam.to_cloth >= int(cloths))
+      throw SceneError(fmt::format("{}: {}.to_cloth: expected the index of one of the scene's {} cloth(s) (0 to {}), "
+                                   "got {}",
+                                   source, at, cloths, cloths - 1, seam.to_cloth));
+    const ClothParams& other = seam.to_cloth < 0 ? c : *s.cloths()[size_t(seam.to_cloth)];
+    auto side = [&](const std::vector<int>& vertices, const std::string& edge, const std::optional<BoxParams>& box,
+                    const ClothParams& cloth, const char* prefix) {
+      const int ways = int(!vertices.empty()) + int(!edge.empty()) + int(box.has_value());
+      if (ways != 1)
+        throw SceneError(fmt::format("{}: {}: expected exactly one of `{}vertices`, `{}edge` and `{}box`, got {}",
+                                     source, at, prefix, prefix, prefix, ways));
+      check_box(box, source, fmt::format("{}.{}box", at, prefix));
+      if (edge.empty()) return;
+      if (std::find(std::begin(kEdges), std::end(kEdges), edge) == std::end(kEdges))
+        throw SceneError(fmt::format("{}: {}.{}edge: expected \"x_min\", \"x_max\", \"y_min\" or \"y_max\", got \"{}\"",
+                                     source, at, prefix, printable(edge)));
+      if (cloth.is_mesh())
+        throw SceneError(fmt::format("{}: {}.{}edge: a mesh cloth has no grid edges: expected `{}vertices` or `{}box`",
+                                     source, at, prefix, prefix, prefix));
+    };
+    side(seam.vertices, seam.edge, seam.box, c, "");
+    side(seam.to_vertices, seam.to_edge, seam.to_box, other, "to_");
+    if (s.simulation.solver == Solver::Xpbd)
+      throw SceneError(fmt::format("{}: {}: seams need simulation.solver \"classic\", \"multigrid\" or \"fabric\", "
+                                   "got \"xpbd\"",
+                                   source, at));
+  }
+}
+
 void finish_cloth(ClothParams& c, const std::string& source, const std::string& key) {
   check_box(c.pinned_box, source, key + ".pinned_box");
   // Relative to the scene file's directory; a scene that is no file ("<built-in>", "<fuzz>"):
@@ -135,6 +173,7 @@ Scene parse_scene(const std::string& text, const std::string& source, const std:
     const std::string key = array ? fmt::format("cloth[{}]", i) : std::string("cloth");
     finish_cloth(c, source, key);
     check_attachments(s, c, source, key);
+    check_seams(s, c, s.extra_cloths.size() + 1, source, key);
     if (c.is_mesh()) continue;
     particles += (long long)c.num_width_points * c.num_height_points;
     if (particles > kMaxParticles)

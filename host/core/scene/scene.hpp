@@ -61,6 +61,25 @@ struct AttachmentParams {
   bool operator==(const AttachmentParams&) const = default;
 };
 
+// `cloth.seams[k]` (docs/model.md, "Sewing"): cloth vertices sewn to others of this cloth or of
+// another cloth of the array. Each side picks its vertices by `vertices` (0-based, as in
+// AttachmentParams), by a grid's `edge` ("x_min", "x_max", "y_min", "y_max": a row or column of
+// grid indices, in ascending order) or by `box` (every vertex whose start position is inside,
+// ordered along the box's longest side); the k-th vertex of one side is sewn to the k-th of the
+// other. The seam's springs start at the pair's distance and shrink at simulation.sewing_speed
+// to zero length, then hold the pair as one point.
+struct SeamParams {
+  std::vector<int> vertices;
+  std::string edge;
+  std::optional<BoxParams> box;
+  int to_cloth = -1;  // the other side's cloth (0-based, in the array); -1: this one
+  std::vector<int> to_vertices;
+  std::string to_edge;
+  std::optional<BoxParams> to_box;
+
+  bool operator==(const SeamParams&) const = default;
+};
+
 // How a mesh cloth's mass (density x area) is spread over its vertices: `area`, each vertex a
 // third of the area of each triangle around it (a quarter of each quad); `uniform`, the total
 // shared equally, as the CS184 grid does (docs/model.md, "Mesh cloth").
@@ -83,6 +102,7 @@ struct ClothParams {
   double ks = 5000;       // N/m
   std::optional<MotionParams> pinned_motion;  // keys are offsets [dx, dy, dz] of every pinned mass
   std::vector<AttachmentParams> attachments;   // vertices that follow a collider
+  std::vector<SeamParams> seams;               // vertices sewn to others
   // A cloth from a mesh file instead of the grid (docs/model.md, "Mesh cloth"). `mesh` is the
   // path as the scene writes it, relative to the scene file; mesh_path is it resolved (set by
   // the loader; empty: the CS184 grid of num_width_points x num_height_points).
@@ -161,6 +181,7 @@ struct SimulationParams {
   Solver solver = Solver::Classic;
   double tether_stretch = 0.01;  // xpbd only: long-range attachments to the nearest pin
   int stretch_passes = -1;       // xpbd and multigrid: Provot passes over every colour after the sweep; -1 auto (stretch_passes_for)
+  double sewing_speed = 0.5;     // m/s: how fast a seam's springs shrink from the pair's distance to zero
   int stretch_passes_max = -1;   // up to this many in all, the ones past stretch_passes only while a spring is over; -1: stretch_passes
 
   bool operator==(const SimulationParams&) const = default;

@@ -115,6 +115,9 @@ const Param<ClothParams> kCloth[] = {
     row<&ClothParams::attachments>({.key = "attachments",
                                     .meaning = "cloth vertices tied to a collider, which they follow (docs/model.md, "
                                                "\"Attachments\"): a list of objects"}),
+    row<&ClothParams::seams>({.key = "seams",
+                              .meaning = "cloth vertices sewn to others of this cloth or of another (docs/model.md, "
+                                         "\"Sewing\"): a list of objects"}),
     row<&ClothParams::pinned_motion>({.key = "pinned_motion",
                                       .meaning = "moves every pinned mass: keys are offsets [dx, dy, dz] from "
                                                  "its start"}),
@@ -172,6 +175,25 @@ const Param<AttachmentParams> kAttachment[] = {
                                        .expected = "a stiffness in [1e-9, 1e9] (N/m)", .unit = "N/m",
                                        .meaning = "of each vertex's zero-length spring to its anchor",
                                        .widget = drag(10.f, 1e-9, 1e9, "%.1f")}),
+};
+
+// One side of a seam is `vertices`, `edge` or `box` (scene.cpp checks there is one); the other
+// is the to_ keys, on `to_cloth`.
+const Param<SeamParams> kSeam[] = {
+    row<&SeamParams::vertices>({.key = "vertices", .lo = 0, .expected = "a vertex index >= 0", .meaning = "0-based indices of this side's vertices, in order"}),
+    row<&SeamParams::edge>({.key = "edge", .expected = "\"x_min\", \"x_max\", \"y_min\" or \"y_max\"",
+                            .meaning = "a grid's side: the column x = 0 or the last, the row y = 0 or the last, "
+                                       "in ascending grid index"}),
+    row<&SeamParams::box>({.key = "box", .meaning = "every vertex whose start position is inside, ordered along "
+                                                   "the box's longest side"}),
+    row<&SeamParams::to_cloth>({.key = "to_cloth", .lo = -1, .hi = 1 << 20,
+                                .expected = "the 0-based index of a cloth of the array",
+                                .meaning = "the cloth of the other side; absent: this one"}),
+    row<&SeamParams::to_vertices>({.key = "to_vertices", .lo = 0, .expected = "a vertex index >= 0", .meaning = "the other side's vertices: its k-th is sewn to "
+                                                                   "this side's k-th"}),
+    row<&SeamParams::to_edge>({.key = "to_edge", .expected = "\"x_min\", \"x_max\", \"y_min\" or \"y_max\"",
+                               .meaning = "the other side as a grid's side"}),
+    row<&SeamParams::to_box>({.key = "to_box", .meaning = "the other side as the vertices inside a box"}),
 };
 
 const Param<SphereParams> kSphere[] = {
@@ -237,8 +259,15 @@ const Param<SimulationParams> kSimulation[] = {
          .meaning = "xpbd and multigrid: passes of the max_stretch limit over every colour after the sweep, so that "
                     "the limit holds at the end of the substep (in the sweep a later colour can pull a spring out "
                     "again); -1: none under xpbd, under multigrid 2 where a cloth's own weight would stretch its "
-                    "springs past half the limit (density · |gravity| · size / ks > max_stretch / 2), else none",
+                    "springs past half the limit (density · |gravity| · size / ks > max_stretch / 2), else 1 with "
+                    "seams (their weld), else none",
          .widget = drag(0.1f, -1, 20, "%d")}),
+    row<&SimulationParams::sewing_speed>({.key = "sewing_speed", .lo = 1e-6, .hi = 1e3,
+                                          .expected = "a speed in [1e-6, 1e3] (m/s)", .unit = "m/s",
+                                          .meaning = "a seam's springs shrink from the pair's start distance to zero "
+                                                     "at this speed, then hold the pair together (docs/model.md, "
+                                                     "\"Sewing\")",
+                                          .widget = drag(0.01f, 1e-6, 1e3, "%.2f")}),
     row<&SimulationParams::stretch_passes_max>(
         {.key = "stretch_passes_max", .lo = -1, .hi = 100, .expected = "-1 (no settling passes) or a pass count in [0, 100]",
          .meaning = "xpbd and multigrid: settling passes of the limit after the stretch_passes ones, up to this many "
@@ -289,5 +318,6 @@ template <> std::span<const Param<WindParams>> param_rows<WindParams>() { return
 template <> std::span<const Param<GustParams>> param_rows<GustParams>() { return kGust; }
 template <> std::span<const Param<BoxParams>> param_rows<BoxParams>() { return kBox; }
 template <> std::span<const Param<AttachmentParams>> param_rows<AttachmentParams>() { return kAttachment; }
+template <> std::span<const Param<SeamParams>> param_rows<SeamParams>() { return kSeam; }
 
 }  // namespace clothsim

@@ -1,0 +1,39 @@
+// Two parts of the reference's Constants (reference.hpp) that stand on their own: what moves
+// with time (Timeline, in double) and each cloth's material (MaterialC, in R).
+#pragma once
+
+#include <optional>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "cloth/cloth.hpp"
+#include "reference/skin_lists.hpp"
+#include "scene/scene.hpp"
+
+namespace clothsim {
+
+// What moves with time, in double: evaluated once per substep by set_substep_time into Control.
+struct Timeline {
+  std::vector<std::optional<Keyframes>> spheres, planes, meshes;  // by collider, in file order
+  std::vector<glm::dvec3> mesh_origins;                   // by mesh collider: its origin without keys
+  std::vector<SkinnedTimeline> skins;                     // the skinned mesh colliders
+  std::optional<Keyframes> pins;                          // offsets of the pinned masses
+  double gust_period = 0;                                 // 0: no gusts
+  double sewing_speed = 0;                                // m/s; 0: no seams
+  double dt = 0;
+  bool moves() const;  // anything above is set
+};
+
+// One cloth's material, converted once to R (a scene with several cloths has one each).
+template <class R> struct MaterialC {
+  R ks, ks_bending;        // N/m: structural and shearing, bending (0.2 ks)
+  R keep_velocity;         // 1 - damping / 100
+  // xpbd: the time-scaled compliance alpha~ = 1 / (ks' dt^2) of a spring's distance constraint.
+  R alpha, alpha_bending;
+  bool enabled[kSpringTypes];  // by SpringType (seams always)
+  R stiffness(SpringType t) const { return t == SpringType::Bending ? ks_bending : ks; }
+  R compliance(SpringType t) const { return t == SpringType::Bending ? alpha_bending : alpha; }
+};
+
+}  // namespace clothsim
