@@ -1,12 +1,14 @@
 // `simulate --export-colliders DIR/` (issue 45, item 6): every mesh collider as it stands at
 // each exported frame, checked against the file's vertices placed by hand (rotation, origin
-// keyed in time), and the output rules of any export (docs/export.md).
+// keyed in time), the point cache of them all (mesh.pc2), and the output rules of any export
+// (docs/export.md).
 #include <catch2/catch.hpp>
 
 #include <filesystem>
 #include <fstream>
 
 #include "file_support.hpp"
+#include "io/point_cache.hpp"
 #include "output_support.hpp"
 #include "test_helpers.hpp"
 
@@ -57,6 +59,22 @@ TEST_CASE("simulate --export-colliders writes each mesh collider where it stands
     CHECK(worst < 1e-6);
   }
   CHECK_FALSE(fs::exists(dir.path / "out" / "mesh0" / "frame_0005.obj"));
+  // And all four as one point cache over frame 0's OBJ: a sample per exported frame, from frame
+  // 0, one every 10, each the frame's OBJ rounded to float.
+  const std::string cache = (dir.path / "out" / "mesh0" / "mesh.pc2").string();
+  const Pc2Header h = read_pc2_header(cache);
+  CHECK(h.points == int(file.size()));
+  CHECK(h.samples == 4);
+  CHECK(h.start_frame == 0.f);
+  CHECK(h.sample_rate == 10.f);
+  for (int k = 0; k < 4; ++k) {
+    const std::vector<glm::dvec3> v =
+        test::read_obj_vertices(dir.path / "out" / "mesh0" / fmt::format("frame_{:04d}.obj", 10 * k));
+    const std::vector<glm::vec3> sample = read_pc2_sample(cache, k);
+    double worst = 0;
+    for (size_t i = 0; i < v.size(); ++i) worst = std::max(worst, glm::length(glm::dvec3(sample[i]) - v[i]));
+    CHECK(worst < 1e-6);
+  }
 }
 
 TEST_CASE("simulate --export-colliders follows the rules of every output: exit 2 before the run", "[export][cli]") {
