@@ -65,6 +65,17 @@ inline void check_same(const char* what, const Vec4s& gpu, const Vec4s& cpu, dou
     CHECK(d.max <= tolerance);
 }
 
+// Every pass of `scene` from the state after `warmup_frames` CPU frames, as `validate` checks
+// them: bit for bit on llvmpipe, else within kPassTolerance.
+inline void check_every_pass_alike(const Scene& scene, const ClothModel& model, int warmup_frames) {
+  GpuSimulator gpu(scene, model, compute_dir());
+  for (const PassError& e : check_passes(scene, model, gpu, warmup_frames)) {
+    INFO(e.pass << ": max |GPU - CPU| = " << e.max_error << " m");
+    if (gl::gl_renderer_is_llvmpipe()) CHECK(e.bitwise);
+    else CHECK(e.max_error <= kPassTolerance);
+  }
+}
+
 // Runs pass_check (what `validate` runs) after `warmup_frames` CPU frames and checks each
 // pass of a substep without self-collision (unfused and fused), and the normals.
 inline void check_each_pass(const Scene& scene, int warmup_frames) {

@@ -30,14 +30,7 @@ TEST_CASE("mesh colliders on the GPU: every pass and a whole drop as the referen
                                      : "";
       const Scene s = test::drop_onto_mesh(obj, solver, motion);
       const ClothModel model = build_cloth(s);
-      {
-        GpuSimulator gpu(s, model, pass_fixtures::compute_dir());
-        for (const PassError& e : check_passes(s, model, gpu, 36)) {
-          INFO(e.pass << ": max |GPU - CPU| = " << e.max_error << " m");
-          if (gl::gl_renderer_is_llvmpipe()) CHECK(e.bitwise);
-          else CHECK(e.max_error <= pass_fixtures::kPassTolerance);
-        }
-      }
+      pass_fixtures::check_every_pass_alike(s, model, 36);
       GpuSimulator gpu(s, model, pass_fixtures::compute_dir());
       CpuBackend<float> cpu(s, model);
       const double voxel = load_collider_mesh(s, 0)->sdf.voxel;

@@ -13,14 +13,7 @@ TEST_CASE("sewn panels on the GPU: every pass and a whole run as the reference",
     INFO(solver);
     const Scene s = parse_scene(test::hanging_panels_scene(dir, solver, 400, 200, true), dir / "sew.json");
     const ClothModel model = build_cloth(s);
-    {
-      GpuSimulator gpu(s, model, pass_fixtures::compute_dir());
-      for (const PassError& e : check_passes(s, model, gpu, 6)) {
-        INFO(e.pass << ": max |GPU - CPU| = " << e.max_error << " m");
-        if (gl::gl_renderer_is_llvmpipe()) CHECK(e.bitwise);
-        else CHECK(e.max_error <= pass_fixtures::kPassTolerance);
-      }
-    }
+    pass_fixtures::check_every_pass_alike(s, model, 6);
     GpuSimulator gpu(s, model, pass_fixtures::compute_dir());
     CpuBackend<float> cpu(s, model);
     State<float> out;

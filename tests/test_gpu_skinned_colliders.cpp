@@ -26,14 +26,7 @@ TEST_CASE("skinned colliders on the GPU: the skinning, every pass and a whole ri
     }})", attached ? R"(, "attachments": [{"collider": "mesh", "vertices": [0, 4], "stiffness": 50}])" : "", file,
                                 attached ? "fabric" : solver), dir / "scene.json");
     const ClothModel model = build_cloth(s);
-    {
-      GpuSimulator gpu(s, model, pass_fixtures::compute_dir());
-      for (const PassError& e : check_passes(s, model, gpu, 12)) {
-        INFO(e.pass << ": max |GPU - CPU| = " << e.max_error << " m");
-        if (gl::gl_renderer_is_llvmpipe()) CHECK(e.bitwise);
-        else CHECK(e.max_error <= pass_fixtures::kPassTolerance);
-      }
-    }
+    pass_fixtures::check_every_pass_alike(s, model, 12);
     GpuSimulator gpu(s, model, pass_fixtures::compute_dir());
     CpuBackend<float> cpu(s, model);
     State<float> out;
