@@ -57,7 +57,9 @@ layout(std430, binding = BINDING_NEAREST) buffer Nearest { uint nearest[]; };
 int g_self = -1;         // the mass whose collisions run: set by the passes that know it
 bool g_search = false;   // and whether this is its substep's first collision
 
-uint skin_slot(MeshField m) { return uint(g_self) * params.skin_meshes + uint(m.skin.z); }
+// Mass `self`'s slot of skinned collider m in BINDING_NEAREST; skin_slot(m) is g_self's.
+uint skin_slot_of(MeshField m, int self) { return uint(self) * params.skin_meshes + uint(m.skin.z); }
+uint skin_slot(MeshField m) { return skin_slot_of(m, g_self); }
 bool skinned_beyond(uint box, vec3 x, float best) {
   return box_beyond(box_distance2(x, texelFetch(skinned_view, int(box)).xyz, texelFetch(skinned_view, int(box) + 1).xyz), best);
 }
@@ -252,7 +254,7 @@ bool mesh_leaves_alone(MeshField m, vec3 x, vec3 d, inout float clearance) {
 // that does not keep it, a pinned mass) lists every mass inside the grid.
 bool mesh_leaves_alone_after(MeshField m, vec3 x, vec3 d, float clearance, int self) {
   // A skinned one: its later collisions reuse the slot, and do nothing where it holds none.
-  if (SKINNED_MESHES && m.skin.y > 0) return nearest[uint(self) * params.skin_meshes + uint(m.skin.z)] == 0xFFFFFFFFu;
+  if (SKINNED_MESHES && m.skin.y > 0) return nearest[skin_slot_of(m, self)] == 0xFFFFFFFFu;
   vec3 p = mesh_local(m, x - m.origin), g;
   if (!inside_mesh_grid(m, p, g)) return true;
   precise float scale = ((length3(x) + length3(m.origin)) + length3(m.grid_min)) + (abs(clearance) + 0.01);

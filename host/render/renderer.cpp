@@ -76,8 +76,7 @@ std::pair<glm::vec3, glm::vec3> box_of(const MeshData& d) {
 // A skinned collider drawn where its animation has it at t, in scene coordinates (its origin at
 // the scene's origin or keys, as collider_origin places it).
 MeshData posed_mesh(const ColliderMesh& mesh, const MeshColliderParams& p, double t) {
-  const glm::dvec3 origin = p.motion ? interpolate(p.motion->keyframes, t) : p.origin;
-  return surface_mesh(SurfaceMesh{posed_positions(mesh, p, origin, t), mesh.surface.triangles}, glm::mat3(1.f),
+  return surface_mesh(SurfaceMesh{posed_positions(mesh, p, keyed_at(p.motion, p.origin, t), t), mesh.surface.triangles}, glm::mat3(1.f),
                       glm::vec3(0.f));
 }
 

@@ -101,7 +101,7 @@ ClothStats measure(const Scene& scene, const ClothModel& m, const ClothSnapshot&
   // A keyframed collider is where its keys put it at `time`, as the collision passes of the
   // snapshot's last substep saw it (docs/model.md, "Moving scenes").
   for (auto& sp : scene.spheres) {
-    const glm::dvec3 origin = sp.motion ? interpolate(sp.motion->keyframes, time) : sp.origin;
+    const glm::dvec3 origin = keyed_at(sp.motion, sp.origin, time);
     double best = std::numeric_limits<double>::infinity();
     for (auto& p : s.pos) best = std::min(best, glm::length(xyz(p) - origin) - sp.radius);
     st.sphere_clearance.push_back(best);
@@ -109,8 +109,7 @@ ClothStats measure(const Scene& scene, const ClothModel& m, const ClothSnapshot&
   for (auto& pl : scene.planes) {
     // The plane's front (the side the cloth started on, where the plane is at t = 0) counts as
     // outside; a plane through the start centre uses +normal.
-    const glm::dvec3 start = pl.motion ? interpolate(pl.motion->keyframes, 0.0) : pl.point;
-    const glm::dvec3 point = pl.motion ? interpolate(pl.motion->keyframes, time) : pl.point;
+    const glm::dvec3 start = keyed_at(pl.motion, pl.point, 0.0), point = keyed_at(pl.motion, pl.point, time);
     double side = glm::dot(centre - start, pl.normal) < 0 ? -1.0 : 1.0;
     double best = std::numeric_limits<double>::infinity();
     for (auto& p : s.pos) best = std::min(best, side * glm::dot(xyz(p) - point, pl.normal));

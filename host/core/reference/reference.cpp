@@ -267,7 +267,7 @@ Constants<R> make_constants(const Scene& scene, const ClothModel& model, std::sh
   for (auto& p : model.initial) centre += p;
   centre /= double(std::max(1, model.count()));
   for (size_t k = 0; k < c.control.planes.size(); ++k) {
-    const glm::dvec3 at = c.timeline.planes[k] ? interpolate(*c.timeline.planes[k], 0.0) : scene.planes[k].point;
+    const glm::dvec3 at = keyed_at(c.timeline.planes[k], scene.planes[k].point, 0.0);
     c.control.planes[k].point.w = glm::dot(centre - at, scene.planes[k].normal) < 0 ? R(-1) : R(1);  // its front
   }
   c.sphere_count = uint32_t(c.control.spheres.size());

@@ -103,7 +103,7 @@ template <class R> void set_skin_palette(Constants<R>& c, double start, double e
   for (const SkinnedTimeline& s : tl.skins) {
     for (int end = 0; end < 2; ++end) {
       const double at = end ? end_time : start;
-      const glm::dvec3 origin = tl.meshes[s.mesh] ? interpolate(*tl.meshes[s.mesh], at) : tl.mesh_origins[s.mesh];
+      const glm::dvec3 origin = keyed_at(tl.meshes[s.mesh], tl.mesh_origins[s.mesh], at);
       const std::vector<glm::dmat4> bones = s.skin->palette_at(at);
       for (size_t j = 0; j < bones.size(); ++j) {
         // origin + rotation (scale B r_file): the linear part rotation B3, the translation

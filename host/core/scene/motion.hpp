@@ -24,15 +24,20 @@ inline glm::dvec3 interpolate(const Keyframes& keys, double t) {
   return keys.back().value;
 }
 
+// A keyed value at time t: its keys' if it has them, else `fixed` (where the scene puts it).
+inline glm::dvec3 keyed_at(const std::optional<Keyframes>& keys, const glm::dvec3& fixed, double t) {
+  return keys ? interpolate(*keys, t) : fixed;
+}
+inline glm::dvec3 keyed_at(const std::optional<MotionParams>& motion, const glm::dvec3& fixed, double t) {
+  return motion ? interpolate(motion->keyframes, t) : fixed;
+}
+
 // Where a collider's origin (a sphere's origin, a plane's point, a mesh's origin) is at time t:
 // its motion's keys if it has them, else where the scene puts it.
 inline glm::dvec3 collider_origin(const Scene& scene, const ColliderRef& ref, double t) {
-  auto at = [t](const std::optional<MotionParams>& motion, const glm::dvec3& fixed) {
-    return motion ? interpolate(motion->keyframes, t) : fixed;
-  };
-  if (ref.kind == 1) return at(scene.spheres[ref.index].motion, scene.spheres[ref.index].origin);
-  if (ref.kind == 2) return at(scene.planes[ref.index].motion, scene.planes[ref.index].point);
-  return at(scene.meshes[ref.index].motion, scene.meshes[ref.index].origin);
+  if (ref.kind == 1) return keyed_at(scene.spheres[ref.index].motion, scene.spheres[ref.index].origin, t);
+  if (ref.kind == 2) return keyed_at(scene.planes[ref.index].motion, scene.planes[ref.index].point, t);
+  return keyed_at(scene.meshes[ref.index].motion, scene.meshes[ref.index].origin, t);
 }
 
 // The fractional part of t / period, in [0, 1): the gusts' phase in time, kept small so that
