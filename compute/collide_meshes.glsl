@@ -8,6 +8,7 @@
 #include "particle_views.glsl"
 #include "shared/mesh_field.glsl"
 #include "shared/skinning.glsl"
+#include "skin_tree.glsl"
 
 struct MeshField {
   vec3 rows[3];
@@ -18,7 +19,7 @@ struct MeshField {
   float inv_voxel;
   ivec4 dims;  // w: the offset of node (0, 0, 0) in sdf_view
   float slope;  // the sampled field's Lipschitz bound in the world (mesh_leaves_alone_after)
-  ivec4 skin;   // a skinned collider: x its first group of clusters, y its groups (0: rigid)
+  ivec4 skin;   // a skinned collider: x its first super-group, y its super-groups (0: rigid)
 };
 
 MeshField mesh_field(int k) {
@@ -75,18 +76,21 @@ void visit_skinned_triangle(uint t, vec3 x, inout float best, inout uint found) 
   }
 }
 uint search_skinned_triangle(MeshField m, vec3 x, float reach) {
-  uint n = params.skin_vertices, boxes = 3u * n, group_boxes = boxes + 2u * params.skin_clusters;
-  uint clusters_at = n + params.skin_triangles, groups_at = clusters_at + params.skin_clusters;
+  SkinTree tree = skin_tree();
   float best = reach * reach;
   uint found = 0xFFFFFFFFu;
   if (g_self >= 0 && nearest[skin_slot(m)] != 0xFFFFFFFFu) visit_skinned_triangle(nearest[skin_slot(m)], x, best, found);
-  for (int g = m.skin.x; g < m.skin.x + m.skin.y; ++g) {
-    if (skinned_beyond(group_boxes + 2u * uint(g), x, best)) continue;
-    uvec4 group = texelFetch(skin_indices_view, int(groups_at) + g);
-    for (uint k = group.x; k < group.x + group.y; ++k) {
-      if (skinned_beyond(boxes + 2u * k, x, best)) continue;
-      uvec4 cluster = texelFetch(skin_indices_view, int(clusters_at + k));
-      for (uint t = cluster.x; t < cluster.x + cluster.y; ++t) visit_skinned_triangle(t, x, best, found);
+  for (int s = m.skin.x; s < m.skin.x + m.skin.y; ++s) {
+    if (skinned_beyond(tree.super_boxes + 2u * uint(s), x, best)) continue;
+    uvec4 super_group = texelFetch(skin_indices_view, int(tree.supers_at) + s);
+    for (uint g = super_group.x; g < super_group.x + super_group.y; ++g) {
+      if (skinned_beyond(tree.group_boxes + 2u * g, x, best)) continue;
+      uvec4 group = texelFetch(skin_indices_view, int(tree.groups_at + g));
+      for (uint k = group.x; k < group.x + group.y; ++k) {
+        if (skinned_beyond(tree.boxes + 2u * k, x, best)) continue;
+        uvec4 cluster = texelFetch(skin_indices_view, int(tree.clusters_at + k));
+        for (uint t = cluster.x; t < cluster.x + cluster.y; ++t) visit_skinned_triangle(t, x, best, found);
+      }
     }
   }
   if (g_self >= 0) nearest[skin_slot(m)] = found;
@@ -115,13 +119,18 @@ bool mesh_at(inout MeshField m, vec3 x, vec3 d) {
 }
 
 // Whether a skinned collider leaves a mass at x, moved by d, alone at the substep's first
-// collision: no group's box within its reach, where the search finds no triangle. The mass is
-// then not listed, so its slot is cleared here, as that search would have.
+// collision: no group's box within its reach (a super-group's box beyond it holds none), where
+// the search finds no triangle. The mass is then not listed, so its slot is cleared here, as
+// that search would have.
 bool skinned_leaves_alone(MeshField m, vec3 x, vec3 d) {
-  uint group_boxes = 3u * params.skin_vertices + 2u * params.skin_clusters;
+  SkinTree tree = skin_tree();
   float reach = skinned_reach(m.inv_voxel, m.thickness, d);
-  for (int g = m.skin.x; g < m.skin.x + m.skin.y; ++g)
-    if (!skinned_beyond(group_boxes + 2u * uint(g), x, reach * reach)) return false;
+  for (int s = m.skin.x; s < m.skin.x + m.skin.y; ++s) {
+    if (skinned_beyond(tree.super_boxes + 2u * uint(s), x, reach * reach)) continue;
+    uvec4 super_group = texelFetch(skin_indices_view, int(tree.supers_at) + s);
+    for (uint g = super_group.x; g < super_group.x + super_group.y; ++g)
+      if (!skinned_beyond(tree.group_boxes + 2u * g, x, reach * reach)) return false;
+  }
   if (g_self >= 0) nearest[skin_slot(m)] = 0xFFFFFFFFu;
   return true;
 }

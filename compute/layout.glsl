@@ -219,7 +219,7 @@ SCALAR_STRUCT(MeshCollider) {
   VEC4 motion;     // xyz m over this substep, w = 1 - friction
   VEC4 material;   // x friction (xpbd's Coulomb mu), y thickness (m), z crossing, w 1 closed, 0 open
   VEC4 bound;      // x the field's slope bound in the world (sdf_slopes; the GPU's contact list), yzw unused
-  ivec4 skin;      // a skinned collider: x its first group of clusters, y its groups (0: rigid), z its index among the skinned ones, w unused (TEXTURE_MESHES_INT)
+  ivec4 skin;      // a skinned collider: x its first super-group of groups, y its super-groups (0: rigid), z its index among the skinned ones, w unused (TEXTURE_MESHES_INT)
 };
 
 // Per-vertex extras of a drawn mesh: a collider's uv and tangent; the cloth's uv, and in uv.zw the particles
@@ -287,6 +287,7 @@ struct ShadowFrame {
   F(UINT, skin_triangles)      /* and triangles */                                          \
   F(UINT, skin_clusters)       /* and clusters of triangles */                              \
   F(UINT, skin_groups)         /* and groups of clusters */                                 \
+  F(UINT, skin_supers)         /* and super-groups of groups */                             \
   F(UINT, skin_palette)        /* and palette entries (bones) */                            \
   F(UINT, skin_meshes)         /* skinned mesh colliders (BINDING_NEAREST's slots per particle) */ \
   F(UINT, welds)               /* 1 = seams: TEXTURE_REST_POSITIONS' w is each particle's weld (ClothModel::weld) */

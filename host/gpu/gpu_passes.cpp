@@ -69,7 +69,7 @@ void GpuPasses::dispatch_row(PassId pass, PassSpan span, bool listed, GLintptr i
   switch (r.domain) {
     case Domain::particles: p.dispatch(groups_); break;
     case Domain::skinned_vertices: p.dispatch(gl::workgroups_for(constants_.skin_vertices, WORKGROUP_SIZE)); break;
-    case Domain::skin_groups: p.dispatch(gl::workgroups_for(constants_.skin_groups, WORKGROUP_SIZE)); break;
+    case Domain::skin_supers: p.dispatch(gl::workgroups_for(constants_.skin_supers, WORKGROUP_SIZE)); break;
     case Domain::hash_table: p.dispatch(gl::workgroups_for(state_.table_size_, WORKGROUP_SIZE)); break;
     case Domain::colour:
       if (span.count == 0) return;  // a grid too narrow for this colour: nothing, not even the barrier

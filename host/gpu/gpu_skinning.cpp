@@ -23,7 +23,8 @@ void GpuState::upload_skins(const Constants<float>& c) {
   skin_source_ = source;
   // The lists in TEXTURE_SKIN_INDICES' order: bones, triangles, clusters, groups.
   std::vector<glm::uvec4> indices(c.skin.bones);
-  for (const auto* list : {&c.skin.triangles, &c.skin.clusters, &c.skin.groups}) indices.insert(indices.end(), list->begin(), list->end());
+  for (const auto* list : {&c.skin.triangles, &c.skin.clusters, &c.skin.groups, &c.skin.supers})
+    indices.insert(indices.end(), list->begin(), list->end());
   if (indices.empty()) indices.resize(1);
   gl::upload_vector(skin_indices_, indices, GL_STATIC_DRAW);
   gl::upload_vector(skin_weights_, or_dummy({c.skin.weights.begin(), c.skin.weights.end()}), GL_STATIC_DRAW);

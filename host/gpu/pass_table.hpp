@@ -33,7 +33,7 @@ inline constexpr size_t kPassCount = size_t(PassId::count_);
 enum class Domain : uint8_t {
   particles,       // one invocation per particle
   skinned_vertices,  // one per skinned collider vertex (Constants::skin_vertices)
-  skin_groups,     // one per group of clusters of the skinned colliders (Constants::skin_groups)
+  skin_supers,     // one per super-group of the skinned colliders' tree of boxes (Constants::skin_supers)
   hash_table,      // one per bucket of the spatial hash
   colour,          // u_first, u_count: a colour's springs (an empty colour: no dispatch, no barrier)
   range,           // u_first, u_count: a coarse level or colour, a fine colour (empty: no dispatch, the barrier stays)
@@ -135,7 +135,7 @@ inline constexpr PassRow kPasses[] = {
      0, kSkinned, 0, C::once, nullptr, "skin_colliders", true,
      "fit_collider_boxes reads the skinned vertices through the same storage buffer"},
     {P::fit_collider_boxes, "fit_collider_boxes", "fit_collider_boxes", B::always, P::fit_collider_boxes,
-     D::skin_groups, kComputeReads, 0, kSkinned, 0, C::once, nullptr, "skin_colliders", true,
+     D::skin_supers, kComputeReads, 0, kSkinned, 0, C::once, nullptr, "skin_colliders", true,
      "the collisions read the skinned vertices and the boxes through their views (and skin_colliders' writes, "
      "before this barrier, with them)"},
     {P::compute_wind_forces, "compute_wind_forces", "compute_wind_forces", B::always, P::compute_wind_forces,

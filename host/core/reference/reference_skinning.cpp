@@ -63,9 +63,13 @@ void make_skins(const Scene& scene, const std::vector<std::shared_ptr<const Coll
       c.skin.clusters.push_back({uint32_t(c.skin.triangles.size() + i), uint32_t(std::min<size_t>(kClusterTriangles, order.size() - i)), 0, 0});
     for (size_t i = first_cluster; i < c.skin.clusters.size(); i += kGroupClusters)
       c.skin.groups.push_back({uint32_t(i), uint32_t(std::min<size_t>(kGroupClusters, c.skin.clusters.size() - i)), 0, 0});
+    const size_t first_super = c.skin.supers.size();
+    for (size_t i = first_group; i < c.skin.groups.size(); i += kSuperGroups)
+      c.skin.supers.push_back({uint32_t(i), uint32_t(std::min<size_t>(kSuperGroups, c.skin.groups.size() - i)), 0, 0});
     for (const auto& [code, t] : order)
       c.skin.triangles.push_back(glm::uvec4(tris[t] + glm::uvec3(first_vertex), uint32_t(k)));
-    c.control.meshes[k].skin = glm::ivec4(int(first_group), int(c.skin.groups.size() - first_group), int(c.timeline.skins.size()), 0);
+    c.control.meshes[k].skin = glm::ivec4(int(first_super), int(c.skin.supers.size() - first_super),
+                                          int(c.timeline.skins.size()), 0);
     c.timeline.skins.push_back({mesh.skin, k, palette, p.scale, collider_rotation(p)});
     palette += uint32_t(skin.palette_node.size());
   }
@@ -74,10 +78,12 @@ void make_skins(const Scene& scene, const std::vector<std::shared_ptr<const Coll
   c.skin_triangles = uint32_t(c.skin.triangles.size());
   c.skin_clusters = uint32_t(c.skin.clusters.size());
   c.skin_groups = uint32_t(c.skin.groups.size());
+  c.skin_supers = uint32_t(c.skin.supers.size());
   c.skin_palette = palette;
   c.skin_meshes = uint32_t(c.timeline.skins.size());
   c.control.palette.assign(size_t(6) * palette, Vec4<R>(0));
-  c.control.skinned.assign(3 * rest.size() + 2 * (c.skin.clusters.size() + c.skin.groups.size()), Vec4<R>(0));
+  c.control.skinned.assign(3 * rest.size() + 2 * (c.skin.clusters.size() + c.skin.groups.size() + c.skin.supers.size()),
+                           Vec4<R>(0));
   std::copy(rest.begin(), rest.end(), c.control.skinned.begin() + 2 * std::ptrdiff_t(rest.size()));
 }
 
@@ -86,7 +92,9 @@ template <class R> uint32_t nearest_skinned_vertex(const Constants<R>& c, size_t
   // The collider's vertices are those of its groups' clusters' triangles.
   uint32_t best = 0;
   double best_d2 = std::numeric_limits<double>::max();
-  for (int g = skin.x; g < skin.x + skin.y; ++g)
+  const uint32_t first = c.skin.supers[size_t(skin.x)].x, last = c.skin.supers[size_t(skin.x + skin.y - 1)].x +
+                                                                  c.skin.supers[size_t(skin.x + skin.y - 1)].y;
+  for (uint32_t g = first; g < last; ++g)
     for (uint32_t k = c.skin.groups[size_t(g)].x; k < c.skin.groups[size_t(g)].x + c.skin.groups[size_t(g)].y; ++k)
       for (uint32_t t = c.skin.clusters[k].x; t < c.skin.clusters[k].x + c.skin.clusters[k].y; ++t)
         for (int corner = 0; corner < 3; ++corner) {
@@ -137,26 +145,36 @@ template <class R> void skin_colliders(Control<R>& control, const Constants<R>& 
 
 template <class R> void fit_collider_boxes(Control<R>& control, const Constants<R>& c) {
   const size_t n = c.skin_vertices, boxes = 3 * n, groups = boxes + 2 * c.skin.clusters.size();
+  const size_t supers = groups + 2 * c.skin.groups.size();
   std::vector<Vec4<R>>& sk = control.skinned;
-  for (size_t g = 0; g < c.skin.groups.size(); ++g) {
-    Vec3<R> glo, ghi;
-    for (uint32_t k = c.skin.groups[g].x; k < c.skin.groups[g].x + c.skin.groups[g].y; ++k) {
-      const glm::uvec4 cl = c.skin.clusters[k];
-      Vec3<R> lo, hi;
-      for (uint32_t t = cl.x; t < cl.x + cl.y; ++t)
-        for (int corner = 0; corner < 3; ++corner) {
-          const Vec3<R> q(sk[c.skin.triangles[t][corner]]);
-          const bool first = t == cl.x && corner == 0;
-          lo = first ? q : shared::min3(lo, q);
-          hi = first ? q : shared::max3(hi, q);
-        }
-      sk[boxes + 2 * k] = Vec4<R>(lo, R(0));
-      sk[boxes + 2 * k + 1] = Vec4<R>(hi, R(0));
-      glo = k == c.skin.groups[g].x ? lo : shared::min3(glo, lo);
-      ghi = k == c.skin.groups[g].x ? hi : shared::max3(ghi, hi);
+  // One box from the triangles' corners [first, last) or from the boxes [first, last) below it.
+  auto fit = [&](uint32_t first, uint32_t last, auto&& corners, size_t at) {
+    Vec3<R> lo, hi;
+    bool any = false;
+    for (uint32_t k = first; k < last; ++k)
+      corners(k, [&](const Vec3<R>& a, const Vec3<R>& b) {
+        lo = any ? shared::min3(lo, a) : a;
+        hi = any ? shared::max3(hi, b) : b;
+        any = true;
+      });
+    sk[at] = Vec4<R>(lo, R(0));
+    sk[at + 1] = Vec4<R>(hi, R(0));
+  };
+  auto triangle = [&](uint32_t t, auto&& add) {
+    for (int corner = 0; corner < 3; ++corner) add(Vec3<R>(sk[c.skin.triangles[t][corner]]), Vec3<R>(sk[c.skin.triangles[t][corner]]));
+  };
+  auto box = [&](size_t base) {
+    return [&sk, base](uint32_t k, auto&& add) { add(Vec3<R>(sk[base + 2 * k]), Vec3<R>(sk[base + 2 * k + 1])); };
+  };
+  // Each super-group's groups, each group's clusters, each cluster's triangles (as one invocation
+  // of fit_collider_boxes.comp does them).
+  for (size_t s = 0; s < c.skin.supers.size(); ++s) {
+    for (uint32_t g = c.skin.supers[s].x; g < c.skin.supers[s].x + c.skin.supers[s].y; ++g) {
+      for (uint32_t k = c.skin.groups[g].x; k < c.skin.groups[g].x + c.skin.groups[g].y; ++k)
+        fit(c.skin.clusters[k].x, c.skin.clusters[k].x + c.skin.clusters[k].y, triangle, boxes + 2 * k);
+      fit(c.skin.groups[g].x, c.skin.groups[g].x + c.skin.groups[g].y, box(boxes), groups + 2 * g);
     }
-    sk[groups + 2 * g] = Vec4<R>(glo, R(0));
-    sk[groups + 2 * g + 1] = Vec4<R>(ghi, R(0));
+    fit(c.skin.supers[s].x, c.skin.supers[s].x + c.skin.supers[s].y, box(groups), supers + 2 * s);
   }
 }
 
@@ -181,14 +199,19 @@ uint32_t nearest_skinned_triangle(const Constants<R>& c, const MeshColliderT<R>&
   };
   if (cached && *cached != kNoParticle) visit(*cached);  // the last search's: a bound to start from
   const size_t boxes = 3 * n, group_boxes = boxes + 2 * c.skin.clusters.size();
+  const size_t super_boxes = group_boxes + 2 * c.skin.groups.size();
   auto beyond = [&](size_t box) { return shared::box_beyond(shared::box_distance2(x, Vec3<R>(sk[box]), Vec3<R>(sk[box + 1])), best); };
-  for (int g = m.skin.x; g < m.skin.x + m.skin.y; ++g) {
-    if (beyond(group_boxes + 2 * size_t(g))) continue;
-    const glm::uvec4 gr = c.skin.groups[size_t(g)];
-    for (uint32_t k = gr.x; k < gr.x + gr.y; ++k) {
-      if (beyond(boxes + 2 * size_t(k))) continue;
-      const glm::uvec4 cl = c.skin.clusters[k];
-      for (uint32_t t = cl.x; t < cl.x + cl.y; ++t) visit(t);
+  for (int s = m.skin.x; s < m.skin.x + m.skin.y; ++s) {
+    if (beyond(super_boxes + 2 * size_t(s))) continue;
+    const glm::uvec4 su = c.skin.supers[size_t(s)];
+    for (uint32_t g = su.x; g < su.x + su.y; ++g) {
+      if (beyond(group_boxes + 2 * size_t(g))) continue;
+      const glm::uvec4 gr = c.skin.groups[size_t(g)];
+      for (uint32_t k = gr.x; k < gr.x + gr.y; ++k) {
+        if (beyond(boxes + 2 * size_t(k))) continue;
+        const glm::uvec4 cl = c.skin.clusters[k];
+        for (uint32_t t = cl.x; t < cl.x + cl.y; ++t) visit(t);
+      }
     }
   }
   if (cached) *cached = found;

@@ -28,13 +28,15 @@ struct SkinnedTimeline {
 // skinned collider's in turn: per vertex its bones and weights, per triangle its vertices (w its
 // mesh collider), per cluster of at most kClusterTriangles triangles near one another its
 // first triangle and count (x, y), per group of at most kGroupClusters clusters its first
-// cluster and count: a two-level tree of boxes, refitted every substep, that a mass's search
-// for its nearest triangle descends.
+// cluster and count, per super-group of at most kSuperGroups groups its first group and count:
+// a three-level tree of boxes, refitted every substep, that a mass's search for its nearest
+// triangle descends (and predict's test of whether it is near at all).
 template <class R> struct SkinLists {
-  std::vector<glm::uvec4> bones, triangles, clusters, groups;
+  std::vector<glm::uvec4> bones, triangles, clusters, groups, supers;
   std::vector<glm::vec<4, R>> weights;
 };
 inline constexpr uint32_t kClusterTriangles = 8;
 inline constexpr uint32_t kGroupClusters = 16;
+inline constexpr uint32_t kSuperGroups = 8;
 
 }  // namespace clothsim
