@@ -163,8 +163,7 @@ using uint = uint32_t;
 #endif
 // Elements one invocation of scan_cells sums serially (the block of the multi-level scan).
 #define SCAN_CHUNK 32
-// One spring of the model: x, y its ends, z the rest length's float bits, w type | material << 2
-// (type as SpringType: 0 structural, 1 shearing, 2 bending).
+// One spring of the model: x, y its ends, z the rest length's bits, w SpringType | material << 2 (3: a seam).
 struct SpringTexel {
   uvec4 ends_rest_code;
 };
@@ -296,7 +295,7 @@ struct ShadowFrame {
 // StepParamsT<double> is the double reference's, never uploaded).
 SCALAR_STRUCT(StepParams) { STEP_PARAMS_FIELDS(STEP_PARAMS_DECLARE) };
 
-// The substep's control (issue 42, item 4): the two scalars of the per-substep control that the
+// The substep's control (issue 42, item 4): the scalars of the per-substep control that the
 // passes read from a uniform block (Control<R> in host/core/reference/reference.hpp is built on
 // SubstepControlT<R>, with the colliders' arrays, which have buffers of their own). Set for the
 // substep's time by set_substep_time and uploaded on its own, every substep when something moves;

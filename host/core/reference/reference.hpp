@@ -61,9 +61,9 @@ inline constexpr double kMaxStepFraction = 0.25;
 // The substep's control (issue 42, item 4): everything set_substep_time writes, the rest of
 // Constants (the model) being fixed between edits. The colliders where they are at the
 // substep's end, with their motion over it (the pose; their shape and friction are fixed over a
-// run), and the block's two fields (layout::SubstepControlT): pin_offset (where moving pins are
-// at the substep's end) and gust_phase (at its start). The GPU uploads Control<float>'s arrays
-// and its block as they are, every substep when something moves.
+// run), and the block's fields (layout::SubstepControlT): pin_offset (where moving pins are at
+// the substep's end), gust_phase (at its start) and seam_shrink (at its end). The GPU uploads
+// Control<float>'s arrays and its block as they are, every substep when something moves.
 template <class R> struct Control : layout::SubstepControlT<R> {
   std::vector<SphereColliderT<R>> spheres;
   std::vector<PlaneColliderT<R>> planes;
