@@ -14,12 +14,6 @@ layout(local_size_x = WORKGROUP_SIZE) in;
 layout(std430, binding = BINDING_SKINNED) buffer Skinned { vec4 skinned[]; };
 layout(binding = TEXTURE_SKIN_INDICES) uniform usamplerBuffer skin_indices_view;
 
-// [lo, hi] widened to hold [a, b]; the first sets it.
-void widen(inout vec3 lo, inout vec3 hi, vec3 a, vec3 b, bool first) {
-  lo = first ? a : min3(lo, a);
-  hi = first ? b : max3(hi, b);
-}
-
 void main() {
   uint s = gl_GlobalInvocationID.x;
   if (s >= params.skin_supers) return;
@@ -36,16 +30,16 @@ void main() {
         uvec4 tri = texelFetch(skin_indices_view, int(params.skin_vertices + t));
         for (int corner = 0; corner < 3; ++corner) {
           vec3 q = skinned[tri[corner]].xyz;  // skin_colliders wrote them (its barrier: SHADER_STORAGE)
-          widen(lo, hi, q, q, t == cluster.x && corner == 0);
+          widen_box(lo, hi, q, q, t == cluster.x && corner == 0);
         }
       }
       skinned[tree.boxes + 2u * k] = vec4(lo, 0.0);
       skinned[tree.boxes + 2u * k + 1u] = vec4(hi, 0.0);
-      widen(glo, ghi, lo, hi, k == group.x);
+      widen_box(glo, ghi, lo, hi, k == group.x);
     }
     skinned[tree.group_boxes + 2u * g] = vec4(glo, 0.0);
     skinned[tree.group_boxes + 2u * g + 1u] = vec4(ghi, 0.0);
-    widen(slo, shi, glo, ghi, g == super_group.x);
+    widen_box(slo, shi, glo, ghi, g == super_group.x);
   }
   skinned[tree.super_boxes + 2u * s] = vec4(slo, 0.0);
   skinned[tree.super_boxes + 2u * s + 1u] = vec4(shi, 0.0);

@@ -75,6 +75,12 @@ template <class R> void exercise(const char* type) {
   expect(moved == V(i, i, o), "add_bone translates", type);
   expect(box_distance2(V(R(2), o, o), zero, ex) == i, "box_distance2", type);
   expect(min3(ex, up) == zero && max3(ex, up) == V(i, i, o), "min3 and max3", type);
+  {
+    V lo = zero, hi = zero;
+    widen_box(lo, hi, ex, ex, true);
+    widen_box(lo, hi, up, up, false);
+    expect(lo == min3(ex, up) && hi == max3(ex, up), "widen_box", type);
+  }
   expect(skinned_reach(R(1), R(0), zero) == R(3), "skinned_reach: three nodes", type);
   expect(nearer(o, 3u, i, 0xFFFFFFFFu) && !nearer(i, 3u, i, 0xFFFFFFFFu) && nearer(i, 2u, i, 3u) && !nearer(i, 4u, i, 3u),
          "nearer: the least distance, then the least index", type);

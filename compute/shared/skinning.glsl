@@ -28,6 +28,11 @@ SHARED_FN VEC3 add_bone(VEC3 sum, REAL w, VEC4 row0, VEC4 row1, VEC4 row2, VEC3 
 // The componentwise min and max (a box's corners, refitted).
 SHARED_FN VEC3 min3(VEC3 a, VEC3 b) { return VEC3(min(a.x, b.x), min(a.y, b.y), min(a.z, b.z)); }
 SHARED_FN VEC3 max3(VEC3 a, VEC3 b) { return VEC3(max(a.x, b.x), max(a.y, b.y), max(a.z, b.z)); }
+// The box [lo, hi] widened to hold [a, b]; the first sets it (fit_collider_boxes' refits).
+SHARED_FN void widen_box(INOUT(VEC3) lo, INOUT(VEC3) hi, VEC3 a, VEC3 b, bool first) {
+  lo = first ? a : min3(lo, a);
+  hi = first ? b : max3(hi, b);
+}
 
 // The squared distance from p to the box [lo, hi] (0 inside).
 SHARED_FN REAL box_distance2(VEC3 p, VEC3 lo, VEC3 hi) {

@@ -147,34 +147,32 @@ template <class R> void fit_collider_boxes(Control<R>& control, const Constants<
   const size_t n = c.skin_vertices, boxes = 3 * n, groups = boxes + 2 * c.skin.clusters.size();
   const size_t supers = groups + 2 * c.skin.groups.size();
   std::vector<Vec4<R>>& sk = control.skinned;
-  // One box from the triangles' corners [first, last) or from the boxes [first, last) below it.
-  auto fit = [&](uint32_t first, uint32_t last, auto&& corners, size_t at) {
-    Vec3<R> lo, hi;
-    bool any = false;
-    for (uint32_t k = first; k < last; ++k)
-      corners(k, [&](const Vec3<R>& a, const Vec3<R>& b) {
-        lo = any ? shared::min3(lo, a) : a;
-        hi = any ? shared::max3(hi, b) : b;
-        any = true;
-      });
+  auto store = [&](size_t at, const Vec3<R>& lo, const Vec3<R>& hi) {
     sk[at] = Vec4<R>(lo, R(0));
     sk[at + 1] = Vec4<R>(hi, R(0));
   };
-  auto triangle = [&](uint32_t t, auto&& add) {
-    for (int corner = 0; corner < 3; ++corner) add(Vec3<R>(sk[c.skin.triangles[t][corner]]), Vec3<R>(sk[c.skin.triangles[t][corner]]));
-  };
-  auto box = [&](size_t base) {
-    return [&sk, base](uint32_t k, auto&& add) { add(Vec3<R>(sk[base + 2 * k]), Vec3<R>(sk[base + 2 * k + 1])); };
-  };
-  // Each super-group's groups, each group's clusters, each cluster's triangles (as one invocation
-  // of fit_collider_boxes.comp does them).
+  // As one invocation of fit_collider_boxes.comp per super-group does it.
   for (size_t s = 0; s < c.skin.supers.size(); ++s) {
-    for (uint32_t g = c.skin.supers[s].x; g < c.skin.supers[s].x + c.skin.supers[s].y; ++g) {
-      for (uint32_t k = c.skin.groups[g].x; k < c.skin.groups[g].x + c.skin.groups[g].y; ++k)
-        fit(c.skin.clusters[k].x, c.skin.clusters[k].x + c.skin.clusters[k].y, triangle, boxes + 2 * k);
-      fit(c.skin.groups[g].x, c.skin.groups[g].x + c.skin.groups[g].y, box(boxes), groups + 2 * g);
+    const glm::uvec4 su = c.skin.supers[s];
+    Vec3<R> slo, shi;
+    for (uint32_t g = su.x; g < su.x + su.y; ++g) {
+      const glm::uvec4 gr = c.skin.groups[g];
+      Vec3<R> glo, ghi;
+      for (uint32_t k = gr.x; k < gr.x + gr.y; ++k) {
+        const glm::uvec4 cl = c.skin.clusters[k];
+        Vec3<R> lo, hi;
+        for (uint32_t t = cl.x; t < cl.x + cl.y; ++t)
+          for (int corner = 0; corner < 3; ++corner) {
+            const Vec3<R> q(sk[c.skin.triangles[t][corner]]);
+            shared::widen_box(lo, hi, q, q, t == cl.x && corner == 0);
+          }
+        store(boxes + 2 * k, lo, hi);
+        shared::widen_box(glo, ghi, lo, hi, k == gr.x);
+      }
+      store(groups + 2 * g, glo, ghi);
+      shared::widen_box(slo, shi, glo, ghi, g == su.x);
     }
-    fit(c.skin.supers[s].x, c.skin.supers[s].x + c.skin.supers[s].y, box(groups), supers + 2 * s);
+    store(supers + 2 * s, slo, shi);
   }
 }
 
