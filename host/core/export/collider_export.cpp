@@ -61,17 +61,21 @@ ColliderExport::ColliderExport(const Scene& scene, const std::string& dir, int64
     fs::create_directories(folder, ec);
     if (ec || !fs::is_directory(folder))
       throw std::runtime_error(fmt::format("{}: cannot create the directory ({})", folder, ec.message()));
+    caches_.push_back(std::make_unique<PendingFile>((fs::path(folder) / kColliderCache).string()));
+    writers_.push_back(std::make_unique<Pc2Writer>(caches_.back()->temp(), int(meshes_.back()->surface.positions.size()),
+                                                   float(start), float(every)));
   }
 }
 
 void ColliderExport::add(int64_t frame, double time) {
-  samples_.resize(meshes_.size());
   for (size_t k = 0; k < meshes_.size(); ++k) {
     const std::vector<glm::dvec3> posed =
         posed_positions(*meshes_[k], scene_.meshes[k], collider_origin(scene_, ColliderRef{3, k}, time), time);
     write_collider_obj((fs::path(collider_folder(dir_, k)) / frame_name(frame)).string(), *meshes_[k], posed,
                        mesh_key(scene_, k), time);
-    for (const glm::dvec3& p : posed) samples_[k].push_back(glm::dvec4(p, 0.0));
+    std::vector<glm::dvec4> sample;
+    for (const glm::dvec3& p : posed) sample.push_back(glm::dvec4(p, 0.0));
+    writers_[k]->add(sample);
   }
   if (written_++ == 0) first_ = frame;
   last_ = frame;
@@ -79,14 +83,8 @@ void ColliderExport::add(int64_t frame, double time) {
 
 void ColliderExport::finish() {
   for (size_t k = 0; k < meshes_.size() && written_ > 0; ++k) {
-    const size_t points = samples_[k].size() / size_t(written_);
-    write_replacing((fs::path(collider_folder(dir_, k)) / kColliderCache).string(), [&](const std::string& temp) {
-      Pc2Writer pc2(temp, int(points), float(first_), float(every_));
-      for (int f = 0; f < written_; ++f)
-        pc2.add({samples_[k].begin() + std::ptrdiff_t(size_t(f) * points),
-                 samples_[k].begin() + std::ptrdiff_t(size_t(f + 1) * points)});
-      pc2.close();
-    });
+    writers_[k]->close();
+    caches_[k]->commit();
   }
   cached_ = written_ > 0;
 }

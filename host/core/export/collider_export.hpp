@@ -11,6 +11,8 @@
 #include <vector>
 
 #include "colliders/mesh_collider.hpp"
+#include "io/output_file.hpp"
+#include "io/point_cache.hpp"
 
 namespace clothsim {
 
@@ -34,7 +36,9 @@ class ColliderExport {
   void add(int64_t frame, double time);
   // After the last frame of a run that ended well: every collider's frames as one point cache,
   // DIR/meshK/mesh.pc2 over the first frame's OBJ (Blender's Mesh Cache plays it), one sample
-  // per exported frame. Throws std::runtime_error naming a file that cannot be written.
+  // per exported frame, streamed into a temporary beside it as the frames come and renamed over
+  // it here (a run that stops early leaves no cache). Throws std::runtime_error naming a file
+  // that cannot be written.
   void finish();
   std::string summary() const;
 
@@ -44,7 +48,10 @@ class ColliderExport {
   int64_t start_;
   int every_;
   std::vector<std::shared_ptr<const ColliderMesh>> meshes_;
-  std::vector<std::vector<glm::dvec4>> samples_;  // per collider, every frame's vertices so far
+  // Per collider, the cache's temporary and its writer (destroyed first: closed, then removed
+  // unless finish() renamed it).
+  std::vector<std::unique_ptr<PendingFile>> caches_;
+  std::vector<std::unique_ptr<Pc2Writer>> writers_;
   int written_ = 0;
   bool cached_ = false;
   int64_t first_ = 0, last_ = 0;
