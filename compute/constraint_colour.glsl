@@ -27,7 +27,7 @@ bool colour_spring(uint k, out int i, out int j, out float rest, out uint type, 
   rest = uintBitsToFloat(s.z);
   type = s.w & 3u;
   material_index = int(s.w >> 2);
-  if (type == 3u) rest = seam_rest(rest, control.seam_shrink);
+  if (type == SEAM_SPRING) rest = seam_rest(rest, control.seam_shrink);
   return true;
 }
 

@@ -72,8 +72,9 @@ Material material_and_mass_of(int i, out float mass) {
   mass = particle.x;
   return material(int(particle.y));
 }
-// Type 3, a seam, is always on (its keep has no entry: the || skips the read).
-bool type_enabled(Material m, uint type) { return type == 3u || m.keep[1 + int(type)] != 0.0; }
+// SpringType::Seam (host/core/cloth/cloth.hpp): always on (its keep has no entry: the || skips the read).
+const uint SEAM_SPRING = 3u;
+bool type_enabled(Material m, uint type) { return type == SEAM_SPRING || m.keep[1 + int(type)] != 0.0; }
 float stiffness(Material m, uint type) { return type == 2u ? m.stiffness.y : m.stiffness.x; }
 float compliance(Material m, uint type) { return type == 2u ? m.stiffness.w : m.stiffness.z; }
 
@@ -89,7 +90,7 @@ bool gathered_spring(uint g, Material mat, out int other, out uint type, out flo
   k = 0.0;
   if (!type_enabled(mat, type)) return false;
   k = stiffness(mat, type);
-  if (type == 3u) {
+  if (type == SEAM_SPRING) {
     rest = seam_rest(rest, control.seam_shrink);
     k = min(k, material_of(other).stiffness.x);
   }

@@ -41,7 +41,7 @@ void main() {
     float len, sa, sd;
     bool taut = spring_terms(x, position_of(j).xyz, rest, k, n, len, sa, sd);
     // A seam's limit is enforce_stretch_limit's (its weld): this loop moves one end at a time.
-    if (type != 3u) headroom = min(headroom, 0.99 * params.stretch_limit * rest - len);
+    if (type != SEAM_SPRING) headroom = min(headroom, 0.99 * params.stretch_limit * rest - len);
     if (!taut) continue;
     f = add_spring_pull(f, n, len, rest, k);
     add_spring_hessian(hess, n, sa, sd);
@@ -73,7 +73,7 @@ void main() {
     int j;
     uint type;
     float rest, k;
-    if (!gathered_spring(g, mat, j, type, rest, k) || type == 3u) continue;
+    if (!gathered_spring(g, mat, j, type, rest, k) || type == SEAM_SPRING) continue;
     vec4 q = position_of(j);
     precise vec3 e = q.xyz - x;
     float len = length3(e);
