@@ -154,13 +154,13 @@ template <class R> void fit_collider_boxes(Control<R>& control, const Constants<
   // As one invocation of fit_collider_boxes.comp per super-group does it.
   for (size_t s = 0; s < c.skin.supers.size(); ++s) {
     const glm::uvec4 su = c.skin.supers[s];
-    Vec3<R> slo, shi;
+    Vec3<R> slo(0), shi(0);  // as the shader: the first box sets them
     for (uint32_t g = su.x; g < su.x + su.y; ++g) {
       const glm::uvec4 gr = c.skin.groups[g];
-      Vec3<R> glo, ghi;
+      Vec3<R> glo(0), ghi(0);
       for (uint32_t k = gr.x; k < gr.x + gr.y; ++k) {
         const glm::uvec4 cl = c.skin.clusters[k];
-        Vec3<R> lo, hi;
+        Vec3<R> lo(0), hi(0);
         for (uint32_t t = cl.x; t < cl.x + cl.y; ++t)
           for (int corner = 0; corner < 3; ++corner) {
             const Vec3<R> q(sk[c.skin.triangles[t][corner]]);
