@@ -84,7 +84,8 @@ PartSprings sew_seams(const Scene& scene, ClothModel& m) {
   std::vector<std::vector<uint32_t>> used(size_t(m.count()));
   std::vector<uint32_t> parent(size_t(m.count()));
   std::iota(parent.begin(), parent.end(), 0u);
-  for (const auto& [i, j] : pairs) {
+  for (const auto& pair : pairs) {
+    const uint32_t i = pair.first, j = pair.second;  // named: C++17 lambdas cannot capture structured bindings
     uint32_t colour = 0;
     auto taken = [&](uint32_t col) {
       return std::count(used[i].begin(), used[i].end(), col) + std::count(used[j].begin(), used[j].end(), col) > 0;
