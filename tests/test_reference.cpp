@@ -205,7 +205,7 @@ TEST_CASE("with simulation.max_speed no free mass moves faster than max_speed ov
     double longest = 0;
     for (int f = 0; f < 60; ++f) {
       cpu.step_frame();
-      for (size_t i = 0; i < m.count(); ++i)
+      for (int i = 0; i < m.count(); ++i)
         if (cpu.state().pos[i].w != 0) longest = std::max(longest, glm::length(glm::dvec3(cpu.state().disp[i])));
     }
     INFO(solver << ": longest move " << longest << " m, max_speed * dt " << max_move << " m");

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <limits>
 
+#include <fmt/format.h>
+
 #include "analysis/intersections.hpp"
 #include "io/output_file.hpp"
 
@@ -49,6 +51,21 @@ nlohmann::json stats_json(const Scene& scene, const ClothModel& model, Backend& 
   }
   j["finite"] = st.finite;
   j["self_intersections"] = count_self_intersections(model, snap);
+  return j;
+}
+
+void print_profile(const PassProfile& profile, int64_t frames, const std::string& clock) {
+  const double per_frame = frames > 0 ? 1e3 / double(frames) : 0.0, total = profile.total_seconds();
+  fmt::print("profile           {} frames, each pass on its own ({}); ms per frame:\n", frames, clock);
+  for (const PassProfile::Row& r : profile.rows())
+    fmt::print("  {:32} {:9.2f} ms  {:6.1f} runs/frame  {:5.1f} %\n", r.name, r.seconds * per_frame,
+               frames > 0 ? double(r.runs) / double(frames) : 0.0, total > 0 ? 100 * r.seconds / total : 0.0);
+  fmt::print("  {:32} {:9.2f} ms\n", "all passes", total * per_frame);
+}
+
+nlohmann::json profile_json(const PassProfile& profile, int64_t frames) {
+  nlohmann::json j = nlohmann::json::object();
+  for (const PassProfile::Row& r : profile.rows()) j[r.name] = frames > 0 ? 1e3 * r.seconds / double(frames) : 0.0;
   return j;
 }
 

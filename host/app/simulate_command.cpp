@@ -1,6 +1,6 @@
 // `clothsim simulate SCENE --frames N [--backend gpu|cpu] [--export FILE.obj|FILE.pc2|DIR/]
 //  [--export-every K] [--export-mesh FILE.obj] [--export-colliders DIR/] [--load-state FILE]
-//  [--save-state FILE] [--stats] [--stats-json FILE]
+//  [--save-state FILE] [--stats] [--profile] [--stats-json FILE]
 //  [--intersections-every K] [--stretch-every K]`
 // Every output replaces the file it names only once complete (docs/export.md).
 #include <algorithm>
@@ -114,7 +114,7 @@ void add_simulate_command(CLI::App& app, std::function<int()>& run) {
     std::string backend = "gpu";
     std::string export_path, export_mesh, load_path, save_path, colliders_path, stats_path;
     int export_every = 1;
-    bool stats = false;
+    bool stats = false, profile = false;
     int intersections_every = 0;
     int stretch_every = 0;
   };
@@ -139,6 +139,8 @@ void add_simulate_command(CLI::App& app, std::function<int()>& run) {
   cmd->add_option("--load-state", o->load_path, "continue from a state saved by --save-state")->check(non_empty_path());
   cmd->add_option("--save-state", o->save_path, "save the final state (positions, displacements, time)");
   cmd->add_flag("--stats", o->stats, "print frames, timing, stretch, energy, clearances, self-intersections");
+  cmd->add_flag("--profile", o->profile,
+                "time every pass on its own (a glFinish around each on the GPU) and print their ms per frame");
   cmd->add_option("--stats-json", o->stats_path, "write the --stats figures to FILE as JSON (docs/python.md lists the keys)")
       ->check(non_empty_path());
   cmd->add_option("--intersections-every", o->intersections_every,
@@ -225,6 +227,8 @@ void add_simulate_command(CLI::App& app, std::function<int()>& run) {
           throw ExitError(kExitCheckFailed, *message);
         }
       };
+      PassProfile profile;
+      if (o->profile) backend->set_profile(&profile);
       const auto t0 = std::chrono::steady_clock::now();
       for (int f = 1; f <= o->frames; ++f) {
         backend->step_frame();
@@ -253,6 +257,7 @@ void add_simulate_command(CLI::App& app, std::function<int()>& run) {
       }
       stop_if_diverged(backend->take_checks(true));
       progress.finish();
+      backend->set_profile(nullptr);
       const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       if (frames) {
         export_guarded([&] { frames->finish(); });
@@ -269,8 +274,14 @@ void add_simulate_command(CLI::App& app, std::function<int()>& run) {
           fmt::print("self-intersections {} (pairs of non-adjacent triangles)\n", count_self_intersections(model, snap));
         if (kind == ExportKind::Obj) export_obj(snap, "");
       }
+      if (o->profile)
+        print_profile(profile, o->frames, o->backend == "gpu" ? "glFinish before and after each" : "the CPU reference");
       if (!o->stats_path.empty())
-        guarded("--stats-json", [&] { write_stats_json(o->stats_path, stats_json(scene, model, *backend, o->frames, wall)); });
+        guarded("--stats-json", [&] {
+          nlohmann::json j = stats_json(scene, model, *backend, o->frames, wall);
+          if (o->profile) j["pass_ms_per_frame"] = profile_json(profile, o->frames);
+          write_stats_json(o->stats_path, j);
+        });
       if (!o->save_path.empty()) save_state(o->save_path, scene, model, *backend);
       return kExitOk;
     };

@@ -45,6 +45,9 @@ class Backend {
   virtual double time() const = 0;
   // enforce_stretch_limit's settling passes run so far (0 without them; the GPU reads it back).
   virtual uint64_t stretch_settling_passes() const { return 0; }
+  // Times every pass of the frames that follow into `profile` (null: no longer), each pass on its
+  // own (simulate --profile); the state evolves bit for bit as without.
+  virtual void set_profile(PassProfile* profile) = 0;
 };
 
 // The CPU reference as a backend, in float (what the GPU computes) or double.
@@ -60,17 +63,21 @@ template <class R> class CpuBackend final : public Backend {
   void step_frame() override {
     for (int k = 0; k < int(constants_.steps); ++k) {
       prepare_substep();
-      step(model_, constants_, state_);
+      step(model_, constants_, state_, profile_);
       time_ += dt_;  // per substep, exactly as GpuSimulator::step counts it
     }
-    compute_normals(model_, state_);
-    const FrameCheck check{++frame_, check_divergence(state_.pos)};
-    keep_last_good(check.bounds, limits_, check.frame, state_.pos, kept_);
+    profiled(profile_, "compute_normals", [&] { compute_normals(model_, state_); });
+    FrameCheck check{++frame_, {}};
+    profiled(profile_, "check_divergence", [&] {
+      check.bounds = check_divergence(state_.pos);
+      keep_last_good(check.bounds, limits_, check.frame, state_.pos, kept_);
+    });
     if (checks_.size() >= 2) checks_.erase(checks_.begin());
     checks_.push_back(check);
   }
   std::vector<FrameCheck> take_checks(bool) override { return std::exchange(checks_, {}); }
   uint64_t stretch_settling_passes() const override { return state_.stretch_settling_passes; }
+  void set_profile(PassProfile* profile) override { profile_ = profile; }
   ClothSnapshot last_good(int* frame) override {
     if (frame) *frame = kept_.frame;
     return snapshot_of_positions(model_, kept_.pos);
@@ -99,11 +106,12 @@ template <class R> class CpuBackend final : public Backend {
   const Constants<R>& constants() const { return constants_; }
   // The moving parts (colliders, pins, gusts) set for the substep that starts now.
   void prepare_substep() {
-    if (constants_.timeline.moves()) set_substep_time(constants_, time_);
-    if (!constants_.timeline.skins.empty()) {  // the twins of skin_colliders.comp and fit_collider_boxes.comp
-      skin_colliders(constants_.control, constants_);
-      fit_collider_boxes(constants_.control, constants_);
-    }
+    if (constants_.timeline.moves()) profiled(profile_, "substep control", [&] { set_substep_time(constants_, time_); });
+    if (!constants_.timeline.skins.empty())  // the twins of skin_colliders.comp and fit_collider_boxes.comp
+      profiled(profile_, "skin_colliders", [&] {
+        skin_colliders(constants_.control, constants_);
+        fit_collider_boxes(constants_.control, constants_);
+      });
   }
   double time() const override { return time_; }
 
@@ -117,6 +125,7 @@ template <class R> class CpuBackend final : public Backend {
   int frame_ = 0;
   double time_ = 0;  // simulated seconds
   std::vector<FrameCheck> checks_;  // not yet taken
+  PassProfile* profile_ = nullptr;  // simulate --profile's, while it times
 };
 
 }  // namespace clothsim

@@ -33,6 +33,9 @@ class GpuSimulator {
   // when glGetError reports one, before the frame's passes (raised since the last frame by
   // another GL user) or after them (raised by a pass); debug builds also check after each pass.
   void step_frame();
+  // Times every stage row, the substep's control upload, the normals and the divergence check of
+  // the frames that follow into `profile` (null: no longer), a glFinish before and after each.
+  void set_profile(PassProfile* profile) { profile_ = passes_.profile_ = profile; }
 
   // Simulated seconds at the start of the next substep. set_time also sets the moving parts
   // (colliders, pins, gusts) for the substep starting at t, as set_substep_time does on the
@@ -66,6 +69,10 @@ class GpuSimulator {
  private:
   std::vector<float> inverse_masses() const;  // of every particle for the current densities
   void apply_substep_time();  // the moving parts of constants_ for the substep at time_, uploaded
+  // Runs f; with a profile, timed as `name` between two glFinish calls.
+  template <class F> void timed(std::string_view name, F&& f) {
+    profiled(profile_, name, std::forward<F>(f), [] { glFinish(); });
+  }
 
   GpuState state_;  // first: its constructor checks the GPU's limits before anything is made
   Constants<float> constants_;
@@ -73,6 +80,7 @@ class GpuSimulator {
   std::vector<double> masses_;  // kg, for the current densities (particle_masses)
   double dt_;  // the substep length the displacements are per
   double time_ = 0;  // simulated seconds at the start of the next substep
+  PassProfile* profile_ = nullptr;  // simulate --profile's, while it times
 };
 
 // The GPU simulator as a Backend: owns the headless context it runs in.
@@ -92,6 +100,7 @@ class GpuBackend final : public Backend {
   int scalar_bytes() const override { return int(sizeof(float)); }
   double time() const override { return sim_->time(); }
   uint64_t stretch_settling_passes() const override { return sim_->state().stretch_settling_passes(); }
+  void set_profile(PassProfile* profile) override { sim_->set_profile(profile); }
   GpuSimulator& simulator() { return *sim_; }
   const GpuSimulator& simulator() const { return *sim_; }
 

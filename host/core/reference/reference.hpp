@@ -17,6 +17,7 @@
 #include "cloth/cloth.hpp"
 #include "cloth/hierarchy.hpp"
 #include "scene/scene.hpp"
+#include "reference/pass_profile.hpp"
 #include "reference/skin_lists.hpp"
 #include "reference/timeline.hpp"
 #include "reference/spatial_hash.hpp"
@@ -316,25 +317,27 @@ template <class R> void solve_multigrid(const ClothModel& m, const Constants<R>&
 // max_move from where it started (a fast collider cannot fling it faster either).
 template <class R> void limit_speed(const ClothModel& m, const Constants<R>& c, State<R>& s);
 
-// One substep: the pass list of docs/design.md §1, or of docs/model.md for xpbd.
-template <class R> void step(const ClothModel& m, const Constants<R>& c, State<R>& s) {
-  if (c.wind_enabled) compute_wind_forces(m, c, s);  // advance or predict add them
+// One substep: the pass list of docs/design.md §1, or of docs/model.md for xpbd; with a profile,
+// each pass timed (simulate --profile).
+template <class R> void step(const ClothModel& m, const Constants<R>& c, State<R>& s, PassProfile* profile = nullptr) {
+  auto pass = [profile](std::string_view name, auto&& f) { profiled(profile, name, f); };
+  if (c.wind_enabled) pass("compute_wind_forces", [&] { compute_wind_forces(m, c, s); });  // advance or predict add them
   if (c.xpbd) {
-    predict(m, c, s);
-    if (c.self_collision) collide_self(c, s);
-    collide_objects(c, s);
+    pass("predict", [&] { predict(m, c, s); });
+    if (c.self_collision) pass("collide_self", [&] { collide_self(c, s); });
+    pass("collide_objects", [&] { collide_objects(c, s); });
     if (c.multigrid)
-      solve_multigrid(m, c, s);
+      pass("solve_multigrid", [&] { solve_multigrid(m, c, s); });
     else
-      solve_distance_constraints(m, c, s);
-    enforce_stretch_limit(m, c, s);  // stretch_passes: the limit holds after either sweep
+      pass("solve_distance_constraints", [&] { solve_distance_constraints(m, c, s); });
+    pass("enforce_stretch_limit", [&] { enforce_stretch_limit(m, c, s); });  // the limit holds after either sweep
   } else {
-    advance(m, c, s);
-    if (c.self_collision) collide_self(c, s);
-    collide_objects(c, s);
-    solve_length_constraints(m, c, s);
+    pass("advance", [&] { advance(m, c, s); });
+    if (c.self_collision) pass("collide_self", [&] { collide_self(c, s); });
+    pass("collide_objects", [&] { collide_objects(c, s); });
+    pass("solve_length_constraints", [&] { solve_length_constraints(m, c, s); });
   }
-  if (c.max_move > R(0)) limit_speed(m, c, s);
+  if (c.max_move > R(0)) pass("limit_speed", [&] { limit_speed(m, c, s); });
 }
 
 }  // namespace clothsim
