@@ -51,9 +51,10 @@ MeshField mesh_field(int k) {
 // host/core/reference/reference_skinning.hpp): the substep's first collision of the mass
 // (g_search) looks for it, the least (distance, index) within reach, from the triangle its slot
 // holds (found the same without it, only sooner), descending the groups and clusters whose boxes
-// are not clearly further than the best so far, and keeps it in the slot; every later collision
-// of the substep reuses the slot's (none: no contact). g_self < 0 (a pass that does not say
-// whose collisions run): a search, kept nowhere.
+// are not clearly further than the best so far or the reach, and keeps it in the slot; every
+// later collision of the substep reuses the slot's (none: no contact). g_self < 0 (a pass that
+// does not say whose collisions run): a search, kept nowhere. The reach is each super-group's
+// (skinned_reach, with the largest move of its vertices that fit_collider_boxes left in its box).
 layout(std430, binding = BINDING_NEAREST) buffer Nearest { uint nearest[]; };
 int g_self = -1;         // the mass whose collisions run: set by the passes that know it
 bool g_search = false;   // and whether this is its substep's first collision
@@ -64,32 +65,45 @@ uint skin_slot(MeshField m) { return skin_slot_of(m, g_self); }
 bool skinned_beyond(uint box, vec3 x, float best) {
   return box_beyond(box_distance2(x, texelFetch(skinned_view, int(box)).xyz, texelFetch(skinned_view, int(box) + 1).xyz), best);
 }
-void visit_skinned_triangle(uint t, vec3 x, inout float best, inout uint found) {
+// Super-group s's reach, squared, for a mass at x that moved by d.
+float skinned_reach2(MeshField m, SkinTree tree, uint s, vec3 d) {
+  float reach = skinned_reach(m.inv_voxel, m.thickness, d, texelFetch(skinned_view, int(tree.super_boxes + 2u * s)).w);
+  precise float reach2 = reach * reach;
+  return reach2;
+}
+// Triangle t (w: its super-group) against the best so far; its super-group's reach squared is
+// reach2, or found here where negative.
+void visit_skinned_triangle(MeshField m, SkinTree tree, uint t, vec3 x, vec3 d, float reach2, inout float best,
+                            inout uint found) {
   uvec4 tri = texelFetch(skin_indices_view, int(params.skin_vertices + t));
+  if (reach2 < 0.0) reach2 = skinned_reach2(m, tree, tri.w, d);
   vec3 b3;
   vec3 q = closest_on_triangle(x, texelFetch(skinned_view, int(tri.x)).xyz, texelFetch(skinned_view, int(tri.y)).xyz,
                                texelFetch(skinned_view, int(tri.z)).xyz, b3);
   float d2 = dot3(x - q, x - q);
-  if (nearer(d2, t, best, found)) {
+  if (nearer(d2, t, reach2, best, found)) {
     best = d2;
     found = t;
   }
 }
-uint search_skinned_triangle(MeshField m, vec3 x, float reach) {
+uint search_skinned_triangle(MeshField m, vec3 x, vec3 d) {
   SkinTree tree = skin_tree();
-  float best = reach * reach;
+  float best = 0.0;  // (none found yet: the reach bounds alone)
   uint found = 0xFFFFFFFFu;
-  if (g_self >= 0 && nearest[skin_slot(m)] != 0xFFFFFFFFu) visit_skinned_triangle(nearest[skin_slot(m)], x, best, found);
+  if (g_self >= 0 && nearest[skin_slot(m)] != 0xFFFFFFFFu)
+    visit_skinned_triangle(m, tree, nearest[skin_slot(m)], x, d, -1.0, best, found);
   for (int s = m.skin.x; s < m.skin.x + m.skin.y; ++s) {
-    if (skinned_beyond(tree.super_boxes + 2u * uint(s), x, best)) continue;
+    float reach2 = skinned_reach2(m, tree, uint(s), d);
+    float bound = found == 0xFFFFFFFFu ? reach2 : min(best, reach2);
+    if (skinned_beyond(tree.super_boxes + 2u * uint(s), x, bound)) continue;
     uvec4 super_group = texelFetch(skin_indices_view, int(tree.supers_at) + s);
     for (uint g = super_group.x; g < super_group.x + super_group.y; ++g) {
-      if (skinned_beyond(tree.group_boxes + 2u * g, x, best)) continue;
+      if (skinned_beyond(tree.group_boxes + 2u * g, x, found == 0xFFFFFFFFu ? reach2 : min(best, reach2))) continue;
       uvec4 group = texelFetch(skin_indices_view, int(tree.groups_at + g));
       for (uint k = group.x; k < group.x + group.y; ++k) {
-        if (skinned_beyond(tree.boxes + 2u * k, x, best)) continue;
+        if (skinned_beyond(tree.boxes + 2u * k, x, found == 0xFFFFFFFFu ? reach2 : min(best, reach2))) continue;
         uvec4 cluster = texelFetch(skin_indices_view, int(tree.clusters_at + k));
-        for (uint t = cluster.x; t < cluster.x + cluster.y; ++t) visit_skinned_triangle(t, x, best, found);
+        for (uint t = cluster.x; t < cluster.x + cluster.y; ++t) visit_skinned_triangle(m, tree, t, x, d, reach2, best, found);
       }
     }
   }
@@ -101,8 +115,7 @@ uint search_skinned_triangle(MeshField m, vec3 x, float reach) {
 // nearest triangle (skinned_frame); false where it has none (nothing to collide with).
 bool mesh_at(inout MeshField m, vec3 x, vec3 d) {
   if (!SKINNED_MESHES || m.skin.y == 0) return true;
-  uint t = g_self < 0 || g_search ? search_skinned_triangle(m, x, skinned_reach(m.inv_voxel, m.thickness, d))
-                                  : nearest[skin_slot(m)];
+  uint t = g_self < 0 || g_search ? search_skinned_triangle(m, x, d) : nearest[skin_slot(m)];
   if (t == 0xFFFFFFFFu) return false;
   uint n = params.skin_vertices;
   uvec4 tri = texelFetch(skin_indices_view, int(n + t));
@@ -119,17 +132,17 @@ bool mesh_at(inout MeshField m, vec3 x, vec3 d) {
 }
 
 // Whether a skinned collider leaves a mass at x, moved by d, alone at the substep's first
-// collision: no group's box within its reach (a super-group's box beyond it holds none), where
-// the search finds no triangle. The mass is then not listed, so its slot is cleared here, as
-// that search would have.
+// collision: no group's box within its super-group's reach (a super-group's box beyond it holds
+// none), where the search finds no triangle. The mass is then not listed, so its slot is
+// cleared here, as that search would have.
 bool skinned_leaves_alone(MeshField m, vec3 x, vec3 d) {
   SkinTree tree = skin_tree();
-  float reach = skinned_reach(m.inv_voxel, m.thickness, d);
   for (int s = m.skin.x; s < m.skin.x + m.skin.y; ++s) {
-    if (skinned_beyond(tree.super_boxes + 2u * uint(s), x, reach * reach)) continue;
+    float reach2 = skinned_reach2(m, tree, uint(s), d);
+    if (skinned_beyond(tree.super_boxes + 2u * uint(s), x, reach2)) continue;
     uvec4 super_group = texelFetch(skin_indices_view, int(tree.supers_at) + s);
     for (uint g = super_group.x; g < super_group.x + super_group.y; ++g)
-      if (!skinned_beyond(tree.group_boxes + 2u * g, x, reach * reach)) return false;
+      if (!skinned_beyond(tree.group_boxes + 2u * g, x, reach2)) return false;
   }
   if (g_self >= 0) nearest[skin_slot(m)] = 0xFFFFFFFFu;
   return true;

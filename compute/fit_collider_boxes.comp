@@ -4,7 +4,8 @@
 // its nearest triangle descends (compute/collide_meshes.glsl). After skin_colliders (its row in
 // host/gpu/pass_table.hpp). CPU twin: fit_collider_boxes in
 // host/core/reference/reference_skinning.cpp. One invocation per super-group; writes its
-// groups' clusters', its groups' and its own boxes.
+// groups' clusters', its groups' and its own boxes, and in its own box's w the largest move of
+// its vertices over the substep (the searches' reach: skinned_reach).
 #include "layout.glsl"
 #include "common.glsl"
 #include "shared/skinning.glsl"
@@ -20,6 +21,7 @@ void main() {
   SkinTree tree = skin_tree();
   uvec4 super_group = texelFetch(skin_indices_view, int(tree.supers_at + s));
   vec3 slo = vec3(0.0), shi = vec3(0.0);
+  float motion = 0.0;
   for (uint g = super_group.x; g < super_group.x + super_group.y; ++g) {
     uvec4 group = texelFetch(skin_indices_view, int(tree.groups_at + g));
     vec3 glo = vec3(0.0), ghi = vec3(0.0);
@@ -29,8 +31,10 @@ void main() {
       for (uint t = cluster.x; t < cluster.x + cluster.y; ++t) {
         uvec4 tri = texelFetch(skin_indices_view, int(params.skin_vertices + t));
         for (int corner = 0; corner < 3; ++corner) {
-          vec3 q = skinned[tri[corner]].xyz;  // skin_colliders wrote them (its barrier: SHADER_STORAGE)
+          // skin_colliders wrote them, the substep's end and its start (its barrier: SHADER_STORAGE)
+          vec3 q = skinned[tri[corner]].xyz, start = skinned[params.skin_vertices + tri[corner]].xyz;
           widen_box(lo, hi, q, q, t == cluster.x && corner == 0);
+          motion = max(motion, length3(q - start));
         }
       }
       skinned[tree.boxes + 2u * k] = vec4(lo, 0.0);
@@ -41,6 +45,6 @@ void main() {
     skinned[tree.group_boxes + 2u * g + 1u] = vec4(ghi, 0.0);
     widen_box(slo, shi, glo, ghi, g == super_group.x);
   }
-  skinned[tree.super_boxes + 2u * s] = vec4(slo, 0.0);
+  skinned[tree.super_boxes + 2u * s] = vec4(slo, motion);
   skinned[tree.super_boxes + 2u * s + 1u] = vec4(shi, 0.0);
 }

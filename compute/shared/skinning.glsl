@@ -43,19 +43,26 @@ SHARED_FN REAL box_distance2(VEC3 p, VEC3 lo, VEC3 hi) {
   return d2;
 }
 
-// How far from x a skinned collider's triangle is looked for: its field's band (3 nodes, where
-// the field is exact) plus its thickness, plus the mass's move this substep.
-SHARED_FN REAL skinned_reach(REAL inv_voxel, REAL thickness, VEC3 d) {
-  PRECISE REAL band = REAL(3) / inv_voxel;
-  PRECISE REAL reach = (band + thickness) + length3(d);
+// How far from x a skinned collider's triangle is looked for (docs/model.md, "Skinned and
+// animated colliders"): the thickness, the mass's move d this substep and the surface's (at most
+// `motion`, its vertices' largest move over the substep: the refit's), so that a mass further
+// from every triangle can neither touch the surface nor cross it; plus one node spacing, since
+// the trilinear field at a point is at most sqrt(3)/2 of a spacing below the distance there
+// (each corner within its share of the cell's diagonal), and the frame's turn over the substep
+// moves a point within reach by far less than the rest. A mass further than this is left
+// alone, as it would be by the field of an unmoving body.
+SHARED_FN REAL skinned_reach(REAL inv_voxel, REAL thickness, VEC3 d, REAL motion) {
+  PRECISE REAL reach = ((thickness + length3(d)) + motion) + REAL(1) / inv_voxel;
   return reach;
 }
 
-// A skinned collider's search keeps the least (squared distance, triangle index) within its reach:
-// the same triangle whatever order it visits them in, and whatever bound it starts from (the
-// mass's nearest triangle of its last search, a cache). `found` is 0xFFFFFFFFu for none yet.
-SHARED_FN bool nearer(REAL d2, uint t, REAL best, uint found) {
-  return d2 < best || (d2 == best && found != 0xFFFFFFFFu && t < found);
+// A skinned collider's search keeps the least (squared distance, triangle index) of the triangles
+// within their reach (each its super-group's: reach2, squared): the same triangle whatever order
+// it visits them in, and whatever it starts from (the mass's nearest triangle of its last
+// search, a cache). The best so far is at `best`, `found` (0xFFFFFFFFu for none yet).
+SHARED_FN bool nearer(REAL d2, uint t, REAL reach2, REAL best, uint found) {
+  if (!(d2 < reach2)) return false;
+  return found == 0xFFFFFFFFu || d2 < best || (d2 == best && t < found);
 }
 // A box is passed over only when clearly further than the best so far (by 2^-10 of it): the
 // rounding of a triangle's distance can never put it below its box's.

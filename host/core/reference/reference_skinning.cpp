@@ -5,6 +5,7 @@
 // run the same loops on the GPU.
 #include <algorithm>
 #include <limits>
+#include <numeric>
 
 #include "colliders/mesh_collider.hpp"
 #include "scene/motion.hpp"
@@ -16,18 +17,29 @@
 namespace clothsim {
 namespace {
 
-// 30-bit Morton code of p in the box [lo, lo + size] (10 bits an axis).
-uint32_t morton(const glm::dvec3& p, const glm::dvec3& lo, const glm::dvec3& size) {
-  auto spread = [](uint32_t v) {
-    v = (v | (v << 16)) & 0x030000FFu;
-    v = (v | (v << 8)) & 0x0300F00Fu;
-    v = (v | (v << 4)) & 0x030C30C3u;
-    return (v | (v << 2)) & 0x09249249u;
-  };
-  auto cell = [](double at, double from, double span) {
-    return span > 0 ? uint32_t(std::clamp((at - from) / span * 1023.0, 0.0, 1023.0)) : 0u;
-  };
-  return spread(cell(p.x, lo.x, size.x)) | (spread(cell(p.y, lo.y, size.y)) << 1) | (spread(cell(p.z, lo.z, size.z)) << 2);
+// Orders triangles [begin, end) (their centroids in `at`) so that every run of 8, 128 and 1024
+// (a cluster, a group, a super-group: kClusterTriangles and the levels above) is a compact part
+// of the bind pose: split in two across the longest side of the centroids' box, at the multiple
+// of the largest level below the count nearest its half, each side ordered the same way (a k-d
+// tree's leaves in order). Morton order, used before, put far parts of a limb's surface in one
+// group (the curve's jumps), whose boxes every mass near either part then opened.
+void order_for_tree(std::vector<uint32_t>::iterator begin, std::vector<uint32_t>::iterator end,
+                    const std::vector<glm::dvec3>& at) {
+  const size_t n = size_t(end - begin);
+  if (n <= kClusterTriangles) return;
+  size_t level = kClusterTriangles;
+  for (size_t up : {kClusterTriangles * kGroupClusters, kClusterTriangles * kGroupClusters * kSuperGroups})
+    if (up < n) level = up;
+  const size_t half = std::clamp<size_t>((n / 2 + level / 2) / level * level, level, n - 1);
+  glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
+  for (auto t = begin; t != end; ++t) lo = glm::min(lo, at[*t]), hi = glm::max(hi, at[*t]);
+  const glm::dvec3 side = hi - lo;
+  const int axis = side.x >= side.y && side.x >= side.z ? 0 : side.y >= side.z ? 1 : 2;
+  std::nth_element(begin, begin + std::ptrdiff_t(half), end, [&](uint32_t a, uint32_t b) {
+    return at[a][axis] < at[b][axis] || (at[a][axis] == at[b][axis] && a < b);
+  });
+  order_for_tree(begin, begin + std::ptrdiff_t(half), at);
+  order_for_tree(begin + std::ptrdiff_t(half), end, at);
 }
 
 }  // namespace
@@ -47,17 +59,16 @@ void make_skins(const Scene& scene, const std::vector<std::shared_ptr<const Coll
       c.skin.bones.push_back(skin.bones[v] + glm::uvec4(palette));
       c.skin.weights.push_back(Vec4<R>(skin.weights[v]));
     }
-    // Triangles near one another in the bind pose make a cluster (Morton order of centroids),
-    // whose box skin_colliders refits every substep.
+    // Triangles near one another in the bind pose make a cluster, clusters near one another a
+    // group, groups a super-group (order_for_tree), whose boxes fit_collider_boxes refits
+    // every substep.
     const auto& tris = mesh.surface.triangles;
-    glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
-    for (const glm::dvec3& q : mesh.surface.positions) lo = glm::min(lo, q), hi = glm::max(hi, q);
-    std::vector<std::pair<uint32_t, uint32_t>> order;
-    for (uint32_t t = 0; t < tris.size(); ++t) {
-      const auto& ps = mesh.surface.positions;
-      order.push_back({morton((ps[tris[t].x] + ps[tris[t].y] + ps[tris[t].z]) / 3.0, lo, hi - lo), t});
-    }
-    std::stable_sort(order.begin(), order.end(), [](auto& a, auto& b) { return a.first < b.first; });
+    const auto& ps = mesh.surface.positions;
+    std::vector<glm::dvec3> centroids;
+    std::vector<uint32_t> order(tris.size());
+    for (uint32_t t = 0; t < tris.size(); ++t) centroids.push_back((ps[tris[t].x] + ps[tris[t].y] + ps[tris[t].z]) / 3.0);
+    std::iota(order.begin(), order.end(), 0u);
+    order_for_tree(order.begin(), order.end(), centroids);
     const size_t first_cluster = c.skin.clusters.size(), first_group = c.skin.groups.size();
     for (size_t i = 0; i < order.size(); i += kClusterTriangles)
       c.skin.clusters.push_back({uint32_t(c.skin.triangles.size() + i), uint32_t(std::min<size_t>(kClusterTriangles, order.size() - i)), 0, 0});
@@ -66,8 +77,12 @@ void make_skins(const Scene& scene, const std::vector<std::shared_ptr<const Coll
     const size_t first_super = c.skin.supers.size();
     for (size_t i = first_group; i < c.skin.groups.size(); i += kSuperGroups)
       c.skin.supers.push_back({uint32_t(i), uint32_t(std::min<size_t>(kSuperGroups, c.skin.groups.size() - i)), 0, 0});
-    for (const auto& [code, t] : order)
-      c.skin.triangles.push_back(glm::uvec4(tris[t] + glm::uvec3(first_vertex), uint32_t(k)));
+    for (const uint32_t t : order) c.skin.triangles.push_back(glm::uvec4(tris[t] + glm::uvec3(first_vertex), 0u));
+    for (size_t su = first_super; su < c.skin.supers.size(); ++su)  // w: its super-group (the reach its search uses)
+      for (uint32_t g = c.skin.supers[su].x; g < c.skin.supers[su].x + c.skin.supers[su].y; ++g)
+        for (uint32_t k = c.skin.groups[g].x; k < c.skin.groups[g].x + c.skin.groups[g].y; ++k)
+          for (uint32_t t = c.skin.clusters[k].x; t < c.skin.clusters[k].x + c.skin.clusters[k].y; ++t)
+            c.skin.triangles[t].w = uint32_t(su);
     c.control.meshes[k].skin = glm::ivec4(int(first_super), int(c.skin.supers.size() - first_super),
                                           int(c.timeline.skins.size()), 0);
     c.timeline.skins.push_back({mesh.skin, k, palette, p.scale, collider_rotation(p)});
@@ -155,6 +170,7 @@ template <class R> void fit_collider_boxes(Control<R>& control, const Constants<
   for (size_t s = 0; s < c.skin.supers.size(); ++s) {
     const glm::uvec4 su = c.skin.supers[s];
     Vec3<R> slo(0), shi(0);  // as the shader: the first box sets them
+    R motion(0);  // the largest move of its vertices over the substep (skinned_reach)
     for (uint32_t g = su.x; g < su.x + su.y; ++g) {
       const glm::uvec4 gr = c.skin.groups[g];
       Vec3<R> glo(0), ghi(0);
@@ -163,8 +179,9 @@ template <class R> void fit_collider_boxes(Control<R>& control, const Constants<
         Vec3<R> lo(0), hi(0);
         for (uint32_t t = cl.x; t < cl.x + cl.y; ++t)
           for (int corner = 0; corner < 3; ++corner) {
-            const Vec3<R> q(sk[c.skin.triangles[t][corner]]);
+            const Vec3<R> q(sk[c.skin.triangles[t][corner]]), start(sk[n + c.skin.triangles[t][corner]]);
             shared::widen_box(lo, hi, q, q, t == cl.x && corner == 0);
+            motion = std::max(motion, length3(q - start));
           }
         store(boxes + 2 * k, lo, hi);
         shared::widen_box(glo, ghi, lo, hi, k == gr.x);
@@ -173,42 +190,51 @@ template <class R> void fit_collider_boxes(Control<R>& control, const Constants<
       shared::widen_box(slo, shi, glo, ghi, g == su.x);
     }
     store(supers + 2 * s, slo, shi);
+    sk[supers + 2 * s].w = motion;
   }
 }
 
 namespace {
 
-// The least (distance, index) triangle of skinned collider m within its reach of x, or
-// kNoParticle; started from *cached (when given and set) and kept there.
+// The least (distance, index) triangle of skinned collider m within its reach of x (each
+// super-group's: skinned_reach, its vertices' largest move in its box's w), or kNoParticle;
+// started from *cached (when given and set) and kept there.
 template <class R>
 uint32_t nearest_skinned_triangle(const Constants<R>& c, const MeshColliderT<R>& m, const Vec3<R>& x, const Vec3<R>& d,
                                   uint32_t* cached) {
   const std::vector<Vec4<R>>& sk = c.control.skinned;
-  const size_t n = c.skin_vertices;
-  const R reach = shared::skinned_reach(m.grid.w, m.material.y, d);
-  R best = reach * reach;
+  const size_t n = c.skin_vertices, boxes = 3 * n, group_boxes = boxes + 2 * c.skin.clusters.size();
+  const size_t super_boxes = group_boxes + 2 * c.skin.groups.size();
+  auto reach2_of = [&](size_t s) {
+    const R reach = shared::skinned_reach(m.grid.w, m.material.y, d, sk[super_boxes + 2 * s].w);
+    return reach * reach;
+  };
+  R best(0);  // (none found yet: the reach bounds alone)
   uint32_t found = kNoParticle;
-  const auto visit = [&](uint32_t t) {
+  const auto visit = [&](uint32_t t, R reach2) {
     const glm::uvec4 tri = c.skin.triangles[t];
     Vec3<R> b3;
     const Vec3<R> q = shared::closest_on_triangle(x, Vec3<R>(sk[tri.x]), Vec3<R>(sk[tri.y]), Vec3<R>(sk[tri.z]), b3);
     const R d2 = dot3(x - q, x - q);
-    if (shared::nearer(d2, t, best, found)) best = d2, found = t;
+    if (shared::nearer(d2, t, reach2, best, found)) best = d2, found = t;
   };
-  if (cached && *cached != kNoParticle) visit(*cached);  // the last search's: a bound to start from
-  const size_t boxes = 3 * n, group_boxes = boxes + 2 * c.skin.clusters.size();
-  const size_t super_boxes = group_boxes + 2 * c.skin.groups.size();
-  auto beyond = [&](size_t box) { return shared::box_beyond(shared::box_distance2(x, Vec3<R>(sk[box]), Vec3<R>(sk[box + 1])), best); };
+  // The last search's: a bound to start from, within its own super-group's reach (its w).
+  if (cached && *cached != kNoParticle) visit(*cached, reach2_of(c.skin.triangles[*cached].w));
+  auto beyond = [&](size_t box, R reach2) {
+    const R bound = found == kNoParticle ? reach2 : std::min(best, reach2);
+    return shared::box_beyond(shared::box_distance2(x, Vec3<R>(sk[box]), Vec3<R>(sk[box + 1])), bound);
+  };
   for (int s = m.skin.x; s < m.skin.x + m.skin.y; ++s) {
-    if (beyond(super_boxes + 2 * size_t(s))) continue;
+    const R reach2 = reach2_of(size_t(s));
+    if (beyond(super_boxes + 2 * size_t(s), reach2)) continue;
     const glm::uvec4 su = c.skin.supers[size_t(s)];
     for (uint32_t g = su.x; g < su.x + su.y; ++g) {
-      if (beyond(group_boxes + 2 * size_t(g))) continue;
+      if (beyond(group_boxes + 2 * size_t(g), reach2)) continue;
       const glm::uvec4 gr = c.skin.groups[size_t(g)];
       for (uint32_t k = gr.x; k < gr.x + gr.y; ++k) {
-        if (beyond(boxes + 2 * size_t(k))) continue;
+        if (beyond(boxes + 2 * size_t(k), reach2)) continue;
         const glm::uvec4 cl = c.skin.clusters[k];
-        for (uint32_t t = cl.x; t < cl.x + cl.y; ++t) visit(t);
+        for (uint32_t t = cl.x; t < cl.x + cl.y; ++t) visit(t, reach2);
       }
     }
   }

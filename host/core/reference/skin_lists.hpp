@@ -26,7 +26,7 @@ struct SkinnedTimeline {
 
 // The skinned mesh colliders' fixed lists (TEXTURE_SKIN_INDICES, TEXTURE_SKIN_WEIGHTS), every
 // skinned collider's in turn: per vertex its bones and weights, per triangle its vertices (w its
-// mesh collider), per cluster of at most kClusterTriangles triangles near one another its
+// super-group), per cluster of at most kClusterTriangles triangles near one another its
 // first triangle and count (x, y), per group of at most kGroupClusters clusters its first
 // cluster and count, per super-group of at most kSuperGroups groups its first group and count:
 // a three-level tree of boxes, refitted every substep, that a mass's search for its nearest
