@@ -5,7 +5,8 @@
 // host/gpu/pass_table.hpp). CPU twin: fit_collider_boxes in
 // host/core/reference/reference_skinning.cpp. One invocation per super-group; writes its
 // groups' clusters', its groups' and its own boxes, and in its own box's w the largest move of
-// its vertices over the substep (the searches' reach: skinned_reach).
+// its vertices over the substep (the searches' reach: skinned_reach); the first of each
+// workgroup then writes the root box around the workgroup's super-groups (w: their largest move).
 #include "layout.glsl"
 #include "common.glsl"
 #include "shared/skinning.glsl"
@@ -15,13 +16,15 @@ layout(local_size_x = WORKGROUP_SIZE) in;
 layout(std430, binding = BINDING_SKINNED) buffer Skinned { vec4 skinned[]; };
 layout(binding = TEXTURE_SKIN_INDICES) uniform usamplerBuffer skin_indices_view;
 
-void main() {
-  uint s = gl_GlobalInvocationID.x;
-  if (s >= params.skin_supers) return;
-  SkinTree tree = skin_tree();
+shared vec4 lo_of[WORKGROUP_SIZE];  // each super-group's box (w: its largest move), for the root's
+shared vec3 hi_of[WORKGROUP_SIZE];
+
+// Super-group s's boxes (and those below it): its own, with its vertices' largest move.
+void fit_super_group(SkinTree tree, uint s, out vec3 slo, out vec3 shi, out float motion) {
   uvec4 super_group = texelFetch(skin_indices_view, int(tree.supers_at + s));
-  vec3 slo = vec3(0.0), shi = vec3(0.0);
-  float motion = 0.0;
+  slo = vec3(0.0);
+  shi = vec3(0.0);
+  motion = 0.0;
   for (uint g = super_group.x; g < super_group.x + super_group.y; ++g) {
     uvec4 group = texelFetch(skin_indices_view, int(tree.groups_at + g));
     vec3 glo = vec3(0.0), ghi = vec3(0.0);
@@ -47,4 +50,29 @@ void main() {
   }
   skinned[tree.super_boxes + 2u * s] = vec4(slo, motion);
   skinned[tree.super_boxes + 2u * s + 1u] = vec4(shi, 0.0);
+}
+
+void main() {
+  uint s = gl_GlobalInvocationID.x, local = gl_LocalInvocationID.x;
+  SkinTree tree = skin_tree();
+  if (s < params.skin_supers) {
+    vec3 slo, shi;
+    float motion;
+    fit_super_group(tree, s, slo, shi, motion);
+    lo_of[local] = vec4(slo, motion);
+    hi_of[local] = shi;
+  }
+  // The first invocation reads every other's box: their shared writes first.
+  memoryBarrierShared();
+  barrier();
+  if (local != 0u) return;
+  uint root = gl_WorkGroupID.x, count = min(uint(WORKGROUP_SIZE), params.skin_supers - root * uint(WORKGROUP_SIZE));
+  vec3 lo = vec3(0.0), hi = vec3(0.0);
+  float motion = 0.0;
+  for (uint i = 0u; i < count; ++i) {
+    widen_box(lo, hi, lo_of[i].xyz, hi_of[i], i == 0u);
+    motion = max(motion, lo_of[i].w);
+  }
+  skinned[tree.root_boxes + 2u * root] = vec4(lo, motion);
+  skinned[tree.root_boxes + 2u * root + 1u] = vec4(hi, 0.0);
 }

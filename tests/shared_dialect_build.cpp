@@ -81,7 +81,8 @@ template <class R> void exercise(const char* type) {
     widen_box(lo, hi, up, up, false);
     expect(lo == min3(ex, up) && hi == max3(ex, up), "widen_box", type);
   }
-  expect(skinned_reach(R(0.5), R(1), V(R(2), o, o), R(3)) == R(8), "skinned_reach: thickness, moves and a node", type);
+  expect(skinned_reach_base(R(1), V(R(2), o, o)) == R(3) && skinned_reach(R(3), R(3), R(0.5)) == R(8),
+         "skinned_reach: thickness, moves and a node", type);
   const R two(2), big(100);
   expect(nearer(o, 3u, i, i, 0xFFFFFFFFu) && nearer(i, 3u, two, big, 0xFFFFFFFFu) && !nearer(i, 3u, i, big, 0xFFFFFFFFu) &&
              nearer(o, 5u, two, i, 3u) && nearer(i, 2u, two, i, 3u) && !nearer(i, 4u, two, i, 3u) && !nearer(two, 1u, two, big, 3u),

@@ -50,9 +50,14 @@ SHARED_FN REAL box_distance2(VEC3 p, VEC3 lo, VEC3 hi) {
 // the trilinear field at a point is at most sqrt(3)/2 of a spacing below the distance there
 // (each corner within its share of the cell's diagonal), and the frame's turn over the substep
 // moves a point within reach by far less than the rest. A mass further than this is left
-// alone, as it would be by the field of an unmoving body.
-SHARED_FN REAL skinned_reach(REAL inv_voxel, REAL thickness, VEC3 d, REAL motion) {
-  PRECISE REAL reach = ((thickness + length3(d)) + motion) + REAL(1) / inv_voxel;
+// alone, as it would be by the field of an unmoving body. `base` is the mass's own part
+// (skinned_reach_base: once per mass), `motion` each super-group's.
+SHARED_FN REAL skinned_reach_base(REAL thickness, VEC3 d) {
+  PRECISE REAL base = thickness + length3(d);
+  return base;
+}
+SHARED_FN REAL skinned_reach(REAL base, REAL motion, REAL inv_voxel) {
+  PRECISE REAL reach = (base + motion) + REAL(1) / inv_voxel;
   return reach;
 }
 

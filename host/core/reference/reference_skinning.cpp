@@ -97,7 +97,8 @@ void make_skins(const Scene& scene, const std::vector<std::shared_ptr<const Coll
   c.skin_palette = palette;
   c.skin_meshes = uint32_t(c.timeline.skins.size());
   c.control.palette.assign(size_t(6) * palette, Vec4<R>(0));
-  c.control.skinned.assign(3 * rest.size() + 2 * (c.skin.clusters.size() + c.skin.groups.size() + c.skin.supers.size()),
+  const size_t roots = (c.skin.supers.size() + WORKGROUP_SIZE - 1) / WORKGROUP_SIZE;
+  c.control.skinned.assign(3 * rest.size() + 2 * (c.skin.clusters.size() + c.skin.groups.size() + c.skin.supers.size() + roots),
                            Vec4<R>(0));
   std::copy(rest.begin(), rest.end(), c.control.skinned.begin() + 2 * std::ptrdiff_t(rest.size()));
 }
@@ -192,6 +193,19 @@ template <class R> void fit_collider_boxes(Control<R>& control, const Constants<
     store(supers + 2 * s, slo, shi);
     sk[supers + 2 * s].w = motion;
   }
+  // A root box per WORKGROUP_SIZE super-groups (w: their largest move), as each workgroup's first
+  // invocation fits it.
+  const size_t roots = supers + 2 * c.skin.supers.size();
+  for (size_t first = 0; first < c.skin.supers.size(); first += WORKGROUP_SIZE) {
+    Vec3<R> lo(0), hi(0);
+    R motion(0);
+    for (size_t s = first; s < std::min<size_t>(first + WORKGROUP_SIZE, c.skin.supers.size()); ++s) {
+      shared::widen_box(lo, hi, Vec3<R>(sk[supers + 2 * s]), Vec3<R>(sk[supers + 2 * s + 1]), s == first);
+      motion = std::max(motion, sk[supers + 2 * s].w);
+    }
+    store(roots + 2 * (first / WORKGROUP_SIZE), lo, hi);
+    sk[roots + 2 * (first / WORKGROUP_SIZE)].w = motion;
+  }
 }
 
 namespace {
@@ -205,10 +219,12 @@ uint32_t nearest_skinned_triangle(const Constants<R>& c, const MeshColliderT<R>&
   const std::vector<Vec4<R>>& sk = c.control.skinned;
   const size_t n = c.skin_vertices, boxes = 3 * n, group_boxes = boxes + 2 * c.skin.clusters.size();
   const size_t super_boxes = group_boxes + 2 * c.skin.groups.size();
-  auto reach2_of = [&](size_t s) {
-    const R reach = shared::skinned_reach(m.grid.w, m.material.y, d, sk[super_boxes + 2 * s].w);
+  const R base = shared::skinned_reach_base(m.material.y, d);
+  auto reach2_of_box = [&](size_t box) {  // a super-group's or a root's (its w: the largest move under it)
+    const R reach = shared::skinned_reach(base, sk[box].w, m.grid.w);
     return reach * reach;
   };
+  auto reach2_of = [&](size_t s) { return reach2_of_box(super_boxes + 2 * s); };
   R best(0);  // (none found yet: the reach bounds alone)
   uint32_t found = kNoParticle;
   const auto visit = [&](uint32_t t, R reach2) {
@@ -224,10 +240,10 @@ uint32_t nearest_skinned_triangle(const Constants<R>& c, const MeshColliderT<R>&
     const R bound = found == kNoParticle ? reach2 : std::min(best, reach2);
     return shared::box_beyond(shared::box_distance2(x, Vec3<R>(sk[box]), Vec3<R>(sk[box + 1])), bound);
   };
-  for (int s = m.skin.x; s < m.skin.x + m.skin.y; ++s) {
-    const R reach2 = reach2_of(size_t(s));
-    if (beyond(super_boxes + 2 * size_t(s), reach2)) continue;
-    const glm::uvec4 su = c.skin.supers[size_t(s)];
+  auto search_super_group = [&](size_t s) {
+    const R reach2 = reach2_of(s);
+    if (beyond(super_boxes + 2 * s, reach2)) return;
+    const glm::uvec4 su = c.skin.supers[s];
     for (uint32_t g = su.x; g < su.x + su.y; ++g) {
       if (beyond(group_boxes + 2 * size_t(g), reach2)) continue;
       const glm::uvec4 gr = c.skin.groups[size_t(g)];
@@ -237,6 +253,13 @@ uint32_t nearest_skinned_triangle(const Constants<R>& c, const MeshColliderT<R>&
         for (uint32_t t = cl.x; t < cl.x + cl.y; ++t) visit(t, reach2);
       }
     }
+  };
+  // The root boxes, WORKGROUP_SIZE super-groups each (fit_collider_boxes), then their super-groups.
+  const size_t root_boxes = super_boxes + 2 * c.skin.supers.size(), first = size_t(m.skin.x), last = first + size_t(m.skin.y);
+  for (size_t r = first / WORKGROUP_SIZE; r <= (last - 1) / WORKGROUP_SIZE; ++r) {
+    if (beyond(root_boxes + 2 * r, reach2_of_box(root_boxes + 2 * r))) continue;
+    for (size_t s = std::max(first, r * WORKGROUP_SIZE); s < std::min(last, (r + 1) * WORKGROUP_SIZE); ++s)
+      search_super_group(s);
   }
   if (cached) *cached = found;
   return found;
