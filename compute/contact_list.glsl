@@ -36,6 +36,25 @@ float list_if_collider_may_move(int i, vec3 x, vec3 d) {
   return clearance;
 }
 
+// A workgroup's listed masses as one block of the list, in no particular order within it (one
+// atomicAdd on the header a workgroup): the masses a block holds are neighbours in the cloth,
+// so the lanes that collide_objects then runs side by side search the same part of a skinned
+// collider's tree, where masses appended one by one from two threads' workgroups interleave.
+// Called by every invocation of the workgroup, in uniform control flow (it has barriers).
+shared uint g_listed_count, g_listed_base;
+void list_block(bool listed, int i) {
+  if (gl_LocalInvocationIndex == 0u) g_listed_count = 0u;
+  barrier();  // (the count is zeroed before any invocation adds to it)
+  uint slot = listed ? atomicAdd(g_listed_count, 1u) : 0u;
+  barrier();  // (every invocation has added before the first reserves the block)
+  if (gl_LocalInvocationIndex == 0u && g_listed_count > 0u) {
+    g_listed_base = atomicAdd(contacts.header.w, g_listed_count);
+    atomicMax(contacts.header.x, (g_listed_base + g_listed_count - 1u) / uint(WORKGROUP_SIZE) + 1u);
+  }
+  barrier();  // (the block's base is set before the invocations write their entries)
+  if (listed) contacts.entries[g_listed_base + slot] = uint(i);
+}
+
 // The same after a sweep's correction (no friction: the push-out) for a spring's two ends, each
 // with the clearance predict left it, a pinned end (`free` false) never listed (xpbd's sweep).
 // The same bits as the response inline.

@@ -26,9 +26,8 @@ vec3 pin_position(int k) {
   return moving_pin_position(k, x) ? x : position_of(k).xyz;
 }
 
-void main() {
-  int i = int(gl_GlobalInvocationID.x);
-  if (i >= int(particle_count())) return;
+// Particle i's prediction; true where a collider may move it (listed for collide_objects).
+bool predict_particle(int i) {
   vec4 p = position_of(i);
   if (p.w == 0.0) {
     if (MULTIGRID_SOLVER) offset[i] = vec4(0.0);
@@ -38,7 +37,7 @@ void main() {
       pos[i] = next;
       disp[i] = vec4(moved, 0.0);
     }
-    return;
+    return false;
   }
   precise vec3 acc = params.gravity;
   if (WIND_ENABLED) acc = acc + wind_force[i].xyz * p.w;  // compute_wind_forces ran before
@@ -74,10 +73,20 @@ void main() {
   // w: the mass's clearance bound from the meshes, which the sweep's contact list reads
   // (mesh_leaves_alone_after) and every pass up to it keeps; 0 is no bound.
   float clearance = 0.0;
-  if (u_collide_objects)
-    clearance = list_if_collider_may_move(i, next, d);  // compute/contact_list.glsl
-  else if (has_colliders())
+  bool listed = false;
+  if (u_collide_objects) {
+    g_self = i;  // (a skinned collider's slot is cleared where it leaves the mass alone)
+    listed = may_collide(next, d, true, clearance);  // compute/collide_objects.glsl
+  } else if (has_colliders()) {
     meshes_leave_alone(next, d, clearance);  // the self-contacts collide before the sweep lists
+  }
   pos[i] = vec4(next, p.w);
   disp[i] = vec4(d, clearance);
+  return listed;
+}
+
+void main() {
+  int i = int(gl_GlobalInvocationID.x);
+  bool listed = i < int(particle_count()) && predict_particle(i);
+  if (u_collide_objects) list_block(listed, i);  // (uniform: every invocation reaches it)
 }
