@@ -65,22 +65,21 @@ uint skin_slot(MeshField m) { return skin_slot_of(m, g_self); }
 bool skinned_beyond(uint box, vec3 x, float best) {
   return box_beyond(box_distance2(x, texelFetch(skinned_view, int(box)).xyz, texelFetch(skinned_view, int(box) + 1).xyz), best);
 }
-// Super-group s's box (lo.w: its vertices' largest move), and its reach squared for a mass whose
-// own part of it is `base` (skinned_reach_base).
-float super_reach2(MeshField m, float base, vec4 lo) {
+// A reach squared (skinned_reach) for a mass whose own part of it is `base`, from a super-group's
+// or a root's box, whose lo.w is the largest move of the vertices under it.
+float reach2_of(MeshField m, float base, vec4 lo) {
   float reach = skinned_reach(base, lo.w, m.inv_voxel);
   precise float reach2 = reach * reach;
   return reach2;
 }
-vec4 super_lo(SkinTree tree, uint s) { return texelFetch(skinned_view, int(tree.super_boxes + 2u * s)); }
-vec3 super_hi(SkinTree tree, uint s) { return texelFetch(skinned_view, int(tree.super_boxes + 2u * s + 1u)).xyz; }
-// Whether root box r (WORKGROUP_SIZE super-groups; w their largest move) is clearly further from x
-// than `bound` or, none found yet (`none`), than its reach: none of its super-groups is nearer.
-bool root_beyond(MeshField m, SkinTree tree, uint r, vec3 x, float base, bool none, float best) {
-  vec4 lo = texelFetch(skinned_view, int(tree.root_boxes + 2u * r));
-  float reach2 = super_reach2(m, base, lo);
-  return box_beyond(box_distance2(x, lo.xyz, texelFetch(skinned_view, int(tree.root_boxes + 2u * r + 1u)).xyz),
-                    none ? reach2 : min(best, reach2));
+// What a box is passed over beyond: the reach, or the best so far once one is found.
+float search_bound(uint found, float best, float reach2) { return found == 0xFFFFFFFFu ? reach2 : min(best, reach2); }
+// Whether the super-group's or root's box at `box` is clearly further from x than search_bound,
+// with its reach squared in reach2 (for what lies under it).
+bool reach_box_beyond(MeshField m, uint box, vec3 x, float base, uint found, float best, out float reach2) {
+  vec4 lo = texelFetch(skinned_view, int(box));
+  reach2 = reach2_of(m, base, lo);
+  return box_beyond(box_distance2(x, lo.xyz, texelFetch(skinned_view, int(box) + 1).xyz), search_bound(found, best, reach2));
 }
 // Triangle t against the best so far, within reach2 (its super-group's reach, squared).
 void visit_skinned_triangle(uint t, vec3 x, float reach2, inout float best, inout uint found) {
@@ -97,15 +96,14 @@ void visit_skinned_triangle(uint t, vec3 x, float reach2, inout float best, inou
 // Super-group s's groups, clusters and triangles for the search (a box clearly further than the
 // best so far or the reach passed over).
 void search_super_group(MeshField m, SkinTree tree, uint s, vec3 x, float base, inout float best, inout uint found) {
-  vec4 lo = super_lo(tree, s);
-  float reach2 = super_reach2(m, base, lo);
-  if (box_beyond(box_distance2(x, lo.xyz, super_hi(tree, s)), found == 0xFFFFFFFFu ? reach2 : min(best, reach2))) return;
+  float reach2;
+  if (reach_box_beyond(m, tree.super_boxes + 2u * s, x, base, found, best, reach2)) return;
   uvec4 super_group = texelFetch(skin_indices_view, int(tree.supers_at + s));
   for (uint g = super_group.x; g < super_group.x + super_group.y; ++g) {
-    if (skinned_beyond(tree.group_boxes + 2u * g, x, found == 0xFFFFFFFFu ? reach2 : min(best, reach2))) continue;
+    if (skinned_beyond(tree.group_boxes + 2u * g, x, search_bound(found, best, reach2))) continue;
     uvec4 group = texelFetch(skin_indices_view, int(tree.groups_at + g));
     for (uint k = group.x; k < group.x + group.y; ++k) {
-      if (skinned_beyond(tree.boxes + 2u * k, x, found == 0xFFFFFFFFu ? reach2 : min(best, reach2))) continue;
+      if (skinned_beyond(tree.boxes + 2u * k, x, search_bound(found, best, reach2))) continue;
       uvec4 cluster = texelFetch(skin_indices_view, int(tree.clusters_at + k));
       for (uint t = cluster.x; t < cluster.x + cluster.y; ++t) visit_skinned_triangle(t, x, reach2, best, found);
     }
@@ -113,16 +111,16 @@ void search_super_group(MeshField m, SkinTree tree, uint s, vec3 x, float base, 
 }
 uint search_skinned_triangle(MeshField m, vec3 x, vec3 d) {
   SkinTree tree = skin_tree();
-  float base = skinned_reach_base(m.thickness, d), best = 0.0;  // (best: none found yet, the reach bounds alone)
+  float base = skinned_reach_base(m.thickness, d), best = 0.0, reach2;  // (best: none found yet, the reach bounds alone)
   uint found = 0xFFFFFFFFu;
   if (g_self >= 0 && nearest[skin_slot(m)] != 0xFFFFFFFFu) {
     uint t = nearest[skin_slot(m)];  // w of its texel: its super-group
     uint s = texelFetch(skin_indices_view, int(params.skin_vertices + t)).w;
-    visit_skinned_triangle(t, x, super_reach2(m, base, super_lo(tree, s)), best, found);
+    visit_skinned_triangle(t, x, reach2_of(m, base, texelFetch(skinned_view, int(tree.super_boxes + 2u * s))), best, found);
   }
   uint first = uint(m.skin.x), last = uint(m.skin.x + m.skin.y), size = uint(WORKGROUP_SIZE);
   for (uint r = first / size; r <= (last - 1u) / size; ++r) {
-    if (root_beyond(m, tree, r, x, base, found == 0xFFFFFFFFu, best)) continue;
+    if (reach_box_beyond(m, tree.root_boxes + 2u * r, x, base, found, best, reach2)) continue;
     for (uint s = max(first, r * size); s < min(last, (r + 1u) * size); ++s)
       search_super_group(m, tree, s, x, base, best, found);
   }
@@ -158,12 +156,11 @@ bool skinned_leaves_alone(MeshField m, vec3 x, vec3 d) {
   SkinTree tree = skin_tree();
   float base = skinned_reach_base(m.thickness, d);
   uint first = uint(m.skin.x), last = uint(m.skin.x + m.skin.y), size = uint(WORKGROUP_SIZE);
+  float reach2;
   for (uint r = first / size; r <= (last - 1u) / size; ++r) {
-    if (root_beyond(m, tree, r, x, base, true, 0.0)) continue;
+    if (reach_box_beyond(m, tree.root_boxes + 2u * r, x, base, 0xFFFFFFFFu, 0.0, reach2)) continue;
     for (uint s = max(first, r * size); s < min(last, (r + 1u) * size); ++s) {
-      vec4 lo = super_lo(tree, s);
-      float reach2 = super_reach2(m, base, lo);
-      if (box_beyond(box_distance2(x, lo.xyz, super_hi(tree, s)), reach2)) continue;
+      if (reach_box_beyond(m, tree.super_boxes + 2u * s, x, base, 0xFFFFFFFFu, 0.0, reach2)) continue;
       uvec4 super_group = texelFetch(skin_indices_view, int(tree.supers_at + s));
       for (uint g = super_group.x; g < super_group.x + super_group.y; ++g)
         if (!skinned_beyond(tree.group_boxes + 2u * g, x, reach2)) return false;

@@ -19,11 +19,21 @@ layout(std430, binding = BINDING_CONTACT_LIST) buffer ContactList {
   uint entries[];   // the masses' indices, in no particular order
 } contacts;
 
+// The indirect dispatch covers slot k: its workgroups reach that far.
+void cover_slot(uint k) { atomicMax(contacts.header.x, k / uint(WORKGROUP_SIZE) + 1u); }
+
 // Appends mass i: its slot, and the workgroups that cover every slot so far.
 void list_contact(int i) {
   uint k = atomicAdd(contacts.header.w, 1u);
   contacts.entries[k] = uint(i);
-  atomicMax(contacts.header.x, k / uint(WORKGROUP_SIZE) + 1u);
+  cover_slot(k);
+}
+
+// Whether a collider may move mass i at x, moved by d, at the end of advance or predict
+// (may_collide, with friction), and its clearance bound.
+bool collider_may_move(int i, vec3 x, vec3 d, out float clearance) {
+  g_self = i;  // (a skinned collider's slot is cleared where it leaves the mass alone)
+  return may_collide(x, d, true, clearance);
 }
 
 // Mass i at x, moved by d, at the end of advance or predict: listed for collide_objects (with
@@ -31,8 +41,7 @@ void list_contact(int i) {
 // its displacement's w, which the later passes of the substep keep.
 float list_if_collider_may_move(int i, vec3 x, vec3 d) {
   float clearance;
-  g_self = i;  // (a skinned collider's slot is cleared where it leaves the mass alone)
-  if (may_collide(x, d, true, clearance)) list_contact(i);
+  if (collider_may_move(i, x, d, clearance)) list_contact(i);
   return clearance;
 }
 
@@ -49,7 +58,7 @@ void list_block(bool listed, int i) {
   barrier();  // (every invocation has added before the first reserves the block)
   if (gl_LocalInvocationIndex == 0u && g_listed_count > 0u) {
     g_listed_base = atomicAdd(contacts.header.w, g_listed_count);
-    atomicMax(contacts.header.x, (g_listed_base + g_listed_count - 1u) / uint(WORKGROUP_SIZE) + 1u);
+    cover_slot(g_listed_base + g_listed_count - 1u);
   }
   barrier();  // (the block's base is set before the invocations write their entries)
   if (listed) contacts.entries[g_listed_base + slot] = uint(i);

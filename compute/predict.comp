@@ -74,12 +74,10 @@ bool predict_particle(int i) {
   // (mesh_leaves_alone_after) and every pass up to it keeps; 0 is no bound.
   float clearance = 0.0;
   bool listed = false;
-  if (u_collide_objects) {
-    g_self = i;  // (a skinned collider's slot is cleared where it leaves the mass alone)
-    listed = may_collide(next, d, true, clearance);  // compute/collide_objects.glsl
-  } else if (has_colliders()) {
+  if (u_collide_objects)
+    listed = collider_may_move(i, next, d, clearance);  // compute/contact_list.glsl (list_block appends)
+  else if (has_colliders())
     meshes_leave_alone(next, d, clearance);  // the self-contacts collide before the sweep lists
-  }
   pos[i] = vec4(next, p.w);
   disp[i] = vec4(d, clearance);
   return listed;

@@ -1,8 +1,8 @@
 // Where the skinned colliders' tree of boxes lies (docs/model.md, "Skinned and animated
 // colliders"; four levels: clusters of triangles, groups of clusters, super-groups of groups,
 // and a root box per WORKGROUP_SIZE super-groups): read by fit_collider_boxes, which refits it,
-// and by the searches that descend it (collide_meshes.glsl). The CPU twins index Control::skinned and SkinLists the same way
-// (host/core/reference/reference_skinning.cpp).
+// and by the searches that descend it (collide_meshes.glsl). The CPU twins index
+// Control::skinned and SkinLists the same way (host/core/reference/reference_skinning.cpp).
 #ifndef CLOTHSIM_SKIN_TREE_GLSL
 #define CLOTHSIM_SKIN_TREE_GLSL
 

@@ -85,6 +85,10 @@ class GpuPasses {
   void first_pass(PassId pass, bool then_collide_objects);  // advance or predict
   void colour_pass(PassId pass, int colour);  // one colour of a constraint sweep
   void timed_dispatch(PassId pass);  // dispatch_row, timed on its own row with a profile
+  // Runs f; with a profile (simulate --profile), timed as `name` between two glFinish calls.
+  template <class F> void timed(std::string_view name, F&& f) {
+    profiled(profile_, name, std::forward<F>(f), [] { glFinish(); });
+  }
   void level_pass(PassId pass, const PassArgs& args);  // a multigrid pass over a level or colour
   // `passes` sweeps of solve_length_constraints' shader over every enabled colour, as `row`.
   void length_constraint_passes(int passes, PassId row = PassId::solve_length_constraints);
@@ -102,7 +106,7 @@ class GpuPasses {
   bool in_step_ = false;
   bool in_frame_ = false;  // within step_frame's substeps
   int substep_ = 0;        // of the frame, while in_frame_
-  PassProfile* profile_ = nullptr;  // GpuSimulator::set_profile's
+  PassProfile* profile_ = nullptr;  // GpuSimulator::set_profile's, while simulate --profile times
   ShaderFeatures features_;  // what the programs were compiled for
   bool settling_loaded_ = false;
   std::array<gl::Program, kPassCount> programs_;  // by row; Build::shared and none rows have none

@@ -50,14 +50,14 @@ struct ScopedFlag {
 
 void GpuSimulator::step() {
   // Moving colliders, pins and gusts: the substep's control for its time (not the parameter block).
-  if (constants_.timeline.moves()) timed("substep control", [&] { apply_substep_time(); });
+  if (constants_.timeline.moves()) passes_.timed("substep control", [&] { apply_substep_time(); });
   passes_.ensure_multigrid();  // (after a live edit rebuilt the hierarchy) before the bindings
   state_.bind_all();  // once: nothing in the step binds over these (swap_positions rebinds its two)
   {
     const ScopedFlag in_step(passes_.in_step_);
     const uint16_t features = passes_.features();
     for (const PassRow& r : kPasses)
-      if (r.stage && runs(r, features)) timed(stage_name(r), [&] { run_stage(r.id); });
+      if (r.stage && runs(r, features)) passes_.timed(stage_name(r), [&] { run_stage(r.id); });
   }
   time_ += dt_;  // per substep, exactly as CpuBackend counts it
 }
@@ -91,9 +91,9 @@ void GpuSimulator::step_frame() {
   {
     const ScopedFlag in_frame(passes_.in_frame_);
     for (passes_.substep_ = 0; passes_.substep_ < int(constants_.steps); ++passes_.substep_) step();
-    timed("compute_normals", [&] { run(PassId::compute_normals); });
+    passes_.timed("compute_normals", [&] { run(PassId::compute_normals); });
   }
-  timed("check_divergence", [&] { passes_.guard_.check(state_.positions_); });
+  passes_.timed("check_divergence", [&] { passes_.guard_.check(state_.positions_); });
   gl::check_gl_errors_lazily([&] {
     return fmt::format("in frame {} on the GPU: raised by one of the frame's passes ({} substeps of {}; then "
                        "compute_normals, check_divergence, keep_last_good). A debug build (-DCMAKE_BUILD_TYPE=Debug) "

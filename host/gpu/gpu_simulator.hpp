@@ -35,7 +35,7 @@ class GpuSimulator {
   void step_frame();
   // Times every stage row, the substep's control upload, the normals and the divergence check of
   // the frames that follow into `profile` (null: no longer), a glFinish before and after each.
-  void set_profile(PassProfile* profile) { profile_ = passes_.profile_ = profile; }
+  void set_profile(PassProfile* profile) { passes_.profile_ = profile; }
 
   // Simulated seconds at the start of the next substep. set_time also sets the moving parts
   // (colliders, pins, gusts) for the substep starting at t, as set_substep_time does on the
@@ -69,10 +69,6 @@ class GpuSimulator {
  private:
   std::vector<float> inverse_masses() const;  // of every particle for the current densities
   void apply_substep_time();  // the moving parts of constants_ for the substep at time_, uploaded
-  // Runs f; with a profile, timed as `name` between two glFinish calls.
-  template <class F> void timed(std::string_view name, F&& f) {
-    profiled(profile_, name, std::forward<F>(f), [] { glFinish(); });
-  }
 
   GpuState state_;  // first: its constructor checks the GPU's limits before anything is made
   Constants<float> constants_;
@@ -80,7 +76,6 @@ class GpuSimulator {
   std::vector<double> masses_;  // kg, for the current densities (particle_masses)
   double dt_;  // the substep length the displacements are per
   double time_ = 0;  // simulated seconds at the start of the next substep
-  PassProfile* profile_ = nullptr;  // simulate --profile's, while it times
 };
 
 // The GPU simulator as a Backend: owns the headless context it runs in.

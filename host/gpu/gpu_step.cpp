@@ -67,7 +67,7 @@ void GpuPasses::first_pass(PassId pass, bool then_collide_objects) {
 void GpuPasses::timed_dispatch(PassId pass) {
   // Its own row in simulate --profile, taken off the stage's that runs it.
   const char* name = pass == PassId::collide_listed ? "collide_objects (first)" : "collide_objects (after a colour)";
-  profiled(profile_, name, [&] { dispatch_row(pass); }, [] { glFinish(); });
+  timed(name, [&] { dispatch_row(pass); });
 }
 
 void GpuPasses::colour_pass(PassId pass, int colour) {

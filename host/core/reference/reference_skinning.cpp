@@ -77,12 +77,10 @@ void make_skins(const Scene& scene, const std::vector<std::shared_ptr<const Coll
     const size_t first_super = c.skin.supers.size();
     for (size_t i = first_group; i < c.skin.groups.size(); i += kSuperGroups)
       c.skin.supers.push_back({uint32_t(i), uint32_t(std::min<size_t>(kSuperGroups, c.skin.groups.size() - i)), 0, 0});
-    for (const uint32_t t : order) c.skin.triangles.push_back(glm::uvec4(tris[t] + glm::uvec3(first_vertex), 0u));
-    for (size_t su = first_super; su < c.skin.supers.size(); ++su)  // w: its super-group (the reach its search uses)
-      for (uint32_t g = c.skin.supers[su].x; g < c.skin.supers[su].x + c.skin.supers[su].y; ++g)
-        for (uint32_t k = c.skin.groups[g].x; k < c.skin.groups[g].x + c.skin.groups[g].y; ++k)
-          for (uint32_t t = c.skin.clusters[k].x; t < c.skin.clusters[k].x + c.skin.clusters[k].y; ++t)
-            c.skin.triangles[t].w = uint32_t(su);
+    // w: its super-group (the reach its search uses): the lists above are full runs but the last.
+    const size_t per_super = size_t(kClusterTriangles) * kGroupClusters * kSuperGroups;
+    for (size_t i = 0; i < order.size(); ++i)
+      c.skin.triangles.push_back(glm::uvec4(tris[order[i]] + glm::uvec3(first_vertex), uint32_t(first_super + i / per_super)));
     c.control.meshes[k].skin = glm::ivec4(int(first_super), int(c.skin.supers.size() - first_super),
                                           int(c.timeline.skins.size()), 0);
     c.timeline.skins.push_back({mesh.skin, k, palette, p.scale, collider_rotation(p)});
