@@ -7,8 +7,6 @@
 
 #include "particle_views.glsl"
 #include "shared/mesh_field.glsl"
-#include "shared/skinning.glsl"
-#include "skin_tree.glsl"
 
 struct MeshField {
   vec3 rows[3];
@@ -47,128 +45,7 @@ MeshField mesh_field(int k) {
   return m;
 }
 
-// A skinned collider's nearest triangle to a mass (skinned_mesh_at and mesh_at in
-// host/core/reference/reference_skinning.hpp): the substep's first collision of the mass
-// (g_search) looks for it, the least (distance, index) within reach, from the triangle its slot
-// holds (found the same without it, only sooner), descending the groups and clusters whose boxes
-// are not clearly further than the best so far or the reach, and keeps it in the slot; every
-// later collision of the substep reuses the slot's (none: no contact). g_self < 0 (a pass that
-// does not say whose collisions run): a search, kept nowhere. The reach is each super-group's
-// (skinned_reach, with the largest move of its vertices that fit_collider_boxes left in its box).
-layout(std430, binding = BINDING_NEAREST) buffer Nearest { uint nearest[]; };
-int g_self = -1;         // the mass whose collisions run: set by the passes that know it
-bool g_search = false;   // and whether this is its substep's first collision
-
-// Mass `self`'s slot of skinned collider m in BINDING_NEAREST; skin_slot(m) is g_self's.
-uint skin_slot_of(MeshField m, int self) { return uint(self) * params.skin_meshes + uint(m.skin.z); }
-uint skin_slot(MeshField m) { return skin_slot_of(m, g_self); }
-bool skinned_beyond(uint box, vec3 x, float best) {
-  return box_beyond(box_distance2(x, texelFetch(skinned_view, int(box)).xyz, texelFetch(skinned_view, int(box) + 1).xyz), best);
-}
-// A reach squared (skinned_reach) for a mass whose own part of it is `base`, from a super-group's
-// or a root's box, whose lo.w is the largest move of the vertices under it.
-float reach2_of(MeshField m, float base, vec4 lo) {
-  float reach = skinned_reach(base, lo.w, m.inv_voxel);
-  precise float reach2 = reach * reach;
-  return reach2;
-}
-// What a box is passed over beyond: the reach, or the best so far once one is found.
-float search_bound(uint found, float best, float reach2) { return found == 0xFFFFFFFFu ? reach2 : min(best, reach2); }
-// Whether the super-group's or root's box at `box` is clearly further from x than search_bound,
-// with its reach squared in reach2 (for what lies under it).
-bool reach_box_beyond(MeshField m, uint box, vec3 x, float base, uint found, float best, out float reach2) {
-  vec4 lo = texelFetch(skinned_view, int(box));
-  reach2 = reach2_of(m, base, lo);
-  return box_beyond(box_distance2(x, lo.xyz, texelFetch(skinned_view, int(box) + 1).xyz), search_bound(found, best, reach2));
-}
-// Triangle t against the best so far, within reach2 (its super-group's reach, squared).
-void visit_skinned_triangle(uint t, vec3 x, float reach2, inout float best, inout uint found) {
-  uvec4 tri = texelFetch(skin_indices_view, int(params.skin_vertices + t));
-  vec3 b3;
-  vec3 q = closest_on_triangle(x, texelFetch(skinned_view, int(tri.x)).xyz, texelFetch(skinned_view, int(tri.y)).xyz,
-                               texelFetch(skinned_view, int(tri.z)).xyz, b3);
-  float d2 = dot3(x - q, x - q);
-  if (nearer(d2, t, reach2, best, found)) {
-    best = d2;
-    found = t;
-  }
-}
-// Super-group s's groups, clusters and triangles for the search (a box clearly further than the
-// best so far or the reach passed over).
-void search_super_group(MeshField m, SkinTree tree, uint s, vec3 x, float base, inout float best, inout uint found) {
-  float reach2;
-  if (reach_box_beyond(m, tree.super_boxes + 2u * s, x, base, found, best, reach2)) return;
-  uvec4 super_group = texelFetch(skin_indices_view, int(tree.supers_at + s));
-  for (uint g = super_group.x; g < super_group.x + super_group.y; ++g) {
-    if (skinned_beyond(tree.group_boxes + 2u * g, x, search_bound(found, best, reach2))) continue;
-    uvec4 group = texelFetch(skin_indices_view, int(tree.groups_at + g));
-    for (uint k = group.x; k < group.x + group.y; ++k) {
-      if (skinned_beyond(tree.boxes + 2u * k, x, search_bound(found, best, reach2))) continue;
-      uvec4 cluster = texelFetch(skin_indices_view, int(tree.clusters_at + k));
-      for (uint t = cluster.x; t < cluster.x + cluster.y; ++t) visit_skinned_triangle(t, x, reach2, best, found);
-    }
-  }
-}
-uint search_skinned_triangle(MeshField m, vec3 x, vec3 d) {
-  SkinTree tree = skin_tree();
-  float base = skinned_reach_base(m.thickness, d), best = 0.0, reach2;  // (best: none found yet, the reach bounds alone)
-  uint found = 0xFFFFFFFFu;
-  if (g_self >= 0 && nearest[skin_slot(m)] != 0xFFFFFFFFu) {
-    uint t = nearest[skin_slot(m)];  // w of its texel: its super-group
-    uint s = texelFetch(skin_indices_view, int(params.skin_vertices + t)).w;
-    visit_skinned_triangle(t, x, reach2_of(m, base, texelFetch(skinned_view, int(tree.super_boxes + 2u * s))), best, found);
-  }
-  uint first = uint(m.skin.x), last = uint(m.skin.x + m.skin.y), size = uint(WORKGROUP_SIZE);
-  for (uint r = first / size; r <= (last - 1u) / size; ++r) {
-    if (reach_box_beyond(m, tree.root_boxes + 2u * r, x, base, found, best, reach2)) continue;
-    for (uint s = max(first, r * size); s < min(last, (r + 1u) * size); ++s)
-      search_super_group(m, tree, s, x, base, best, found);
-  }
-  if (g_self >= 0) nearest[skin_slot(m)] = found;
-  return found;
-}
-
-// Mesh collider m as it meets a mass at x that moved by d: a skinned one takes the frame of its
-// nearest triangle (skinned_frame); false where it has none (nothing to collide with).
-bool mesh_at(inout MeshField m, vec3 x, vec3 d) {
-  if (!SKINNED_MESHES || m.skin.y == 0) return true;
-  uint t = g_self < 0 || g_search ? search_skinned_triangle(m, x, d) : nearest[skin_slot(m)];
-  if (t == 0xFFFFFFFFu) return false;
-  uint n = params.skin_vertices;
-  uvec4 tri = texelFetch(skin_indices_view, int(n + t));
-  vec3 a = texelFetch(skinned_view, int(tri.x)).xyz, b = texelFetch(skinned_view, int(tri.y)).xyz;
-  vec3 c = texelFetch(skinned_view, int(tri.z)).xyz, bary, origin, motion;
-  closest_on_triangle(x, a, b, c, bary);
-  skinned_frame(a, b, c, texelFetch(skinned_view, int(n + tri.x)).xyz, texelFetch(skinned_view, int(n + tri.y)).xyz,
-                texelFetch(skinned_view, int(n + tri.z)).xyz, texelFetch(skinned_view, int(2u * n + tri.x)).xyz,
-                texelFetch(skinned_view, int(2u * n + tri.y)).xyz, texelFetch(skinned_view, int(2u * n + tri.z)).xyz, bary,
-                x, d, m.rows[0], m.rows[1], m.rows[2], origin, motion);
-  m.origin = origin;
-  m.motion = motion;
-  return true;
-}
-
-// Whether a skinned collider leaves a mass at x, moved by d, alone at the substep's first
-// collision: no group's box within its super-group's reach (a super-group's box beyond it holds
-// none), where the search finds no triangle. The mass is then not listed, so its slot is
-// cleared here, as that search would have.
-bool skinned_leaves_alone(MeshField m, vec3 x, vec3 d) {
-  SkinTree tree = skin_tree();
-  float base = skinned_reach_base(m.thickness, d);
-  uint first = uint(m.skin.x), last = uint(m.skin.x + m.skin.y), size = uint(WORKGROUP_SIZE);
-  float reach2;
-  for (uint r = first / size; r <= (last - 1u) / size; ++r) {
-    if (reach_box_beyond(m, tree.root_boxes + 2u * r, x, base, 0xFFFFFFFFu, 0.0, reach2)) continue;
-    for (uint s = max(first, r * size); s < min(last, (r + 1u) * size); ++s) {
-      if (reach_box_beyond(m, tree.super_boxes + 2u * s, x, base, 0xFFFFFFFFu, 0.0, reach2)) continue;
-      uvec4 super_group = texelFetch(skin_indices_view, int(tree.supers_at + s));
-      for (uint g = super_group.x; g < super_group.x + super_group.y; ++g)
-        if (!skinned_beyond(tree.group_boxes + 2u * g, x, reach2)) return false;
-    }
-  }
-  if (g_self >= 0) nearest[skin_slot(m)] = 0xFFFFFFFFu;
-  return true;
-}
+#include "skinned_search.glsl"  // mesh_at, skinned_leaves_alone: a skinned collider through its nearest triangle
 
 vec3 mesh_local(MeshField m, vec3 v) { return to_local(m.rows[0], m.rows[1], m.rows[2], v); }
 

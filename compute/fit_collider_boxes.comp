@@ -11,6 +11,7 @@
 #include "common.glsl"
 #include "shared/skinning.glsl"
 #include "skin_tree.glsl"
+#include "nearest.glsl"
 
 layout(local_size_x = WORKGROUP_SIZE) in;
 layout(std430, binding = BINDING_SKINNED) buffer Skinned { vec4 skinned[]; };
@@ -74,5 +75,6 @@ void main() {
     motion = max(motion, lo_of[i].w);
   }
   skinned[tree.root_boxes + 2u * root] = vec4(lo, motion);
+  atomicMax(nearest[skin_motion_at()], floatBitsToUint(motion));  // the substep's largest (nearest.glsl)
   skinned[tree.root_boxes + 2u * root + 1u] = vec4(hi, 0.0);
 }

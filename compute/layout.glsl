@@ -98,9 +98,9 @@ using uint = uint32_t;
 // passes do.
 #define BINDING_SKINNED BINDING_SCAN_SUMS
 // Per particle and skinned collider (particle * skin_meshes + MeshCollider::skin.z), uint: the
-// nearest triangle of its last search, where the next starts (0xFFFFFFFF none; a cache, the
-// search finds the same triangle without it). Shares the layout test's probe point, which binds
-// its own buffer there.
+// nearest triangle of its last search, which the substep's later collisions reuse; then the far
+// records and the summed moves (compute/nearest.glsl says how they lie). Shares the layout
+// test's probe point, which binds its own buffer there.
 #define BINDING_NEAREST 21
 // Texture units of the read-only texel views (GL_TEXTURE_BUFFER) of the simulation's buffers,
 // through which the hot passes read (compute/particle_views.glsl says why). Above the units

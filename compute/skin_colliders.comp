@@ -3,10 +3,12 @@
 // position and its bones' matrices at both times (the palette, set by the host for the substep).
 // First pass of every substep of a scene with a skinned collider (its row in
 // host/gpu/pass_table.hpp). CPU twin: skin_colliders in host/core/reference/reference_skinning.cpp.
-// One invocation per skinned vertex; writes its own two texels.
+// One invocation per skinned vertex; writes its own two texels (the first also the summed
+// moves of compute/nearest.glsl).
 #include "layout.glsl"
 #include "common.glsl"
 #include "shared/skinning.glsl"
+#include "nearest.glsl"
 
 layout(local_size_x = WORKGROUP_SIZE) in;
 layout(std430, binding = BINDING_SKINNED) buffer Skinned { vec4 skinned[]; };
@@ -17,6 +19,11 @@ layout(binding = TEXTURE_SKIN_PALETTE) uniform samplerBuffer skin_palette_view;
 
 void main() {
   uint i = gl_GlobalInvocationID.x, n = params.skin_vertices;
+  if (i == 0u) {  // the last substep's largest move into the sum (nearest.glsl); this one's from 0
+    precise float moved = uintBitsToFloat(nearest[skin_moved_at()]) + skin_motion();
+    nearest[skin_moved_at()] = floatBitsToUint(moved);
+    nearest[skin_motion_at()] = 0u;
+  }
   if (i >= n) return;
   vec3 r = texelFetch(skinned_view, int(2u * n + i)).xyz;  // the bind pose's section
   uvec4 bones = texelFetch(skin_indices_view, int(i));

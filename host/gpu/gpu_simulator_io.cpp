@@ -21,9 +21,15 @@ void GpuSimulator::upload(const State<float>& s) {
       offset.clear_to_zero();
   }
   // The skinned colliders' nearest triangles, where the state has them (each substep's first
-  // collision rebuilds them before any pass reads them: a pass check runs later passes alone).
-  if (!s.nearest.empty() && s.nearest.size() * sizeof(uint32_t) == state_.nearest_.size())
-    state_.nearest_.upload(0, state_.nearest_.size(), s.nearest.data());
+  // collision rebuilds them before any pass reads them: a pass check runs later passes alone);
+  // the far records and the summed moves after them void (compute/nearest.glsl): they hold only
+  // for the run that made them.
+  if (constants_.skin_meshes > 0 && state_.nearest_.size() == state_.nearest_words() * sizeof(uint32_t)) {
+    const size_t slots = state_.nearest_slots_ * sizeof(uint32_t);
+    if (s.nearest.size() == state_.nearest_slots_) state_.nearest_.upload(0, slots, s.nearest.data());
+    const std::vector<uint32_t> zero(state_.nearest_words() - state_.nearest_slots_, 0u);
+    state_.nearest_.upload(slots, zero.size() * sizeof(uint32_t), zero.data());
+  }
   // The Jacobi/ping-pong output matches the buffer it stands in for.
   state_.positions_out_.allocate(state_.positions_.size());
   state_.attach_views();
@@ -40,7 +46,7 @@ void GpuSimulator::download(State<float>& s) {
   s.lambda = gl::download_vector<Vec4<float>>(state_.multipliers_);
   s.lambda.resize(state_.model_.springs.size());  // less the dummy of a cloth without springs
   if (state_.multigrid_) s.offset = gl::download_vector<Vec4<float>>(state_.multigrid_->offset);
-  if (constants_.skin_meshes > 0) s.nearest = gl::download_vector<uint32_t>(state_.nearest_);
+  if (constants_.skin_meshes > 0) s.nearest = gl::download_vector<uint32_t>(state_.nearest_, 0, state_.nearest_slots_);
 }
 
 // A checkpoint is the two state buffers as they are, read back and uploaded bit for bit.

@@ -30,9 +30,12 @@ void GpuState::upload_skins(const Constants<float>& c) {
   gl::upload_vector(skin_weights_, or_dummy({c.skin.weights.begin(), c.skin.weights.end()}), GL_STATIC_DRAW);
   // The bind pose's section is read from here on; the others are the passes' from the first substep.
   gl::upload_vector(skinned_, or_dummy({c.control.skinned.begin(), c.control.skinned.end()}), GL_DYNAMIC_COPY);
-  // Each mass's nearest skinned triangle, none yet (a cache: the searches find the same without it).
-  const size_t slots = std::max<size_t>(1, size_t(c.count) * c.skin_meshes);
-  gl::upload_vector(nearest_, std::vector<uint32_t>(slots, 0xFFFFFFFFu), GL_DYNAMIC_COPY);
+  // Each mass's nearest skinned triangle, none yet (a cache: the searches find the same without
+  // it), then the far records and the summed moves, zero: void (compute/nearest.glsl).
+  nearest_slots_ = std::max<size_t>(1, size_t(c.count) * c.skin_meshes);
+  std::vector<uint32_t> nearest(nearest_words(), 0u);
+  std::fill_n(nearest.begin(), nearest_slots_, 0xFFFFFFFFu);
+  gl::upload_vector(nearest_, nearest, GL_DYNAMIC_COPY);
   skin_indices_view_.attach(skin_indices_, GL_RGBA32UI);
   skin_weights_view_.attach(skin_weights_, GL_RGBA32F);
   skinned_view_.attach(skinned_, GL_RGBA32F);

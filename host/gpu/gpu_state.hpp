@@ -108,7 +108,9 @@ class GpuState {
   // Skinned mesh colliders (TEXTURE_SKINNED and its three inputs; layout.glsl).
   gl::Buffer skinned_{"skinned colliders"}, skin_indices_{"skin indices"}, skin_weights_{"skin weights"};
   gl::Buffer skin_palette_{"skin palette"};
-  gl::Buffer nearest_{"nearest skinned triangles"};  // BINDING_NEAREST (one element without a skinned collider)
+  gl::Buffer nearest_{"nearest skinned triangles"};  // BINDING_NEAREST (compute/nearest.glsl's sections)
+  size_t nearest_slots_ = 1;  // particles * skinned colliders, at least 1: the state's part of nearest_
+  size_t nearest_words() const { return 5 * nearest_slots_ + 2; }
   const Vec4<float>* skin_source_ = nullptr;  // the Control::skinned its lists came with
   gl::BufferTexture skinned_view_{"skinned view"}, skin_indices_view_{"skin indices view"};
   gl::BufferTexture skin_weights_view_{"skin weights view"}, skin_palette_view_{"skin palette view"};  // ContactListHeader, then a uint per listed mass

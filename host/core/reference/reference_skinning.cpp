@@ -17,29 +17,64 @@
 namespace clothsim {
 namespace {
 
-// Orders triangles [begin, end) (their centroids in `at`) so that every run of 8, 128 and 1024
-// (a cluster, a group, a super-group: kClusterTriangles and the levels above) is a compact part
-// of the bind pose: split in two across the longest side of the centroids' box, at the multiple
-// of the largest level below the count nearest its half, each side ordered the same way (a k-d
-// tree's leaves in order). Morton order, used before, put far parts of a limb's surface in one
-// group (the curve's jumps), whose boxes every mass near either part then opened.
+// Orders triangles [begin, end) (their centroids in `at`, one list per pose) so that every run of
+// 8, 128 and 1024 (a cluster, a group, a super-group: kClusterTriangles and the levels above) is
+// a compact part of the body in every pose: split in two across the longest side of the
+// centroids' boxes, of whichever pose it is longest in, at the multiple of the largest level
+// below the count nearest its half, each side ordered the same way (a k-d tree's leaves in
+// order). The poses are the bind pose and kTreePoses of the animation (tree_poses): in the
+// bind pose alone a hand resting on a thigh shared their clusters, whose boxes then spanned a
+// metre once the arm rose, and half the cloth was within reach of one. (Morton order, used
+// before, put far parts of a limb's surface in one group: the curve's jumps.)
 void order_for_tree(std::vector<uint32_t>::iterator begin, std::vector<uint32_t>::iterator end,
-                    const std::vector<glm::dvec3>& at) {
+                    const std::vector<std::vector<glm::dvec3>>& at) {
   const size_t n = size_t(end - begin);
   if (n <= kClusterTriangles) return;
   size_t level = kClusterTriangles;
   for (size_t up : {kClusterTriangles * kGroupClusters, kClusterTriangles * kGroupClusters * kSuperGroups})
     if (up < n) level = up;
   const size_t half = std::clamp<size_t>((n / 2 + level / 2) / level * level, level, n - 1);
-  glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
-  for (auto t = begin; t != end; ++t) lo = glm::min(lo, at[*t]), hi = glm::max(hi, at[*t]);
-  const glm::dvec3 side = hi - lo;
-  const int axis = side.x >= side.y && side.x >= side.z ? 0 : side.y >= side.z ? 1 : 2;
+  size_t pose = 0;
+  int axis = 0;
+  double longest = -1;
+  for (size_t j = 0; j < at.size(); ++j) {
+    glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
+    for (auto t = begin; t != end; ++t) lo = glm::min(lo, at[j][*t]), hi = glm::max(hi, at[j][*t]);
+    for (int a = 0; a < 3; ++a)
+      if (hi[a] - lo[a] > longest) longest = hi[a] - lo[a], pose = j, axis = a;
+  }
+  const std::vector<glm::dvec3>& key = at[pose];
   std::nth_element(begin, begin + std::ptrdiff_t(half), end, [&](uint32_t a, uint32_t b) {
-    return at[a][axis] < at[b][axis] || (at[a][axis] == at[b][axis] && a < b);
+    return key[a][axis] < key[b][axis] || (key[a][axis] == key[b][axis] && a < b);
   });
   order_for_tree(begin, begin + std::ptrdiff_t(half), at);
   order_for_tree(begin + std::ptrdiff_t(half), end, at);
+}
+
+// The triangles' centroids in the bind pose and at kTreePoses times spread over the animation,
+// in the collider's units before its rotation and origin (which move every pose alike).
+std::vector<std::vector<glm::dvec3>> tree_poses(const ColliderMesh& mesh, const Skin& skin, double scale) {
+  const auto& tris = mesh.surface.triangles;
+  const auto& ps = mesh.surface.positions;
+  const double rate = skin.time_scale * skin.ticks_per_second;
+  const int poses = skin.duration_ticks > 0 && rate > 0 ? kTreePoses : 0;
+  std::vector<std::vector<glm::dvec3>> at(size_t(1 + poses));
+  for (int j = 0; j <= poses; ++j) {
+    std::vector<glm::dvec3> v(ps);
+    if (j > 0) {  // linear blend skinning as skin_colliders does it, in double
+      const std::vector<glm::dmat4> bones = skin.palette_at(skin.duration_ticks * (j - 1) / poses / rate);
+      for (size_t i = 0; i < ps.size(); ++i) {
+        glm::dvec3 sum(0);
+        for (int k = 0; k < kBonesPerVertex; ++k) {
+          const glm::dmat4& b = bones[skin.bones[i][k]];
+          sum += skin.weights[i][k] * (glm::dmat3(b) * ps[i] + scale * glm::dvec3(b[3]));
+        }
+        v[i] = sum;
+      }
+    }
+    for (const glm::uvec3& t : tris) at[size_t(j)].push_back((v[t.x] + v[t.y] + v[t.z]) / 3.0);
+  }
+  return at;
 }
 
 }  // namespace
@@ -63,12 +98,9 @@ void make_skins(const Scene& scene, const std::vector<std::shared_ptr<const Coll
     // group, groups a super-group (order_for_tree), whose boxes fit_collider_boxes refits
     // every substep.
     const auto& tris = mesh.surface.triangles;
-    const auto& ps = mesh.surface.positions;
-    std::vector<glm::dvec3> centroids;
     std::vector<uint32_t> order(tris.size());
-    for (uint32_t t = 0; t < tris.size(); ++t) centroids.push_back((ps[tris[t].x] + ps[tris[t].y] + ps[tris[t].z]) / 3.0);
     std::iota(order.begin(), order.end(), 0u);
-    order_for_tree(order.begin(), order.end(), centroids);
+    order_for_tree(order.begin(), order.end(), tree_poses(mesh, skin, p.scale));
     const size_t first_cluster = c.skin.clusters.size(), first_group = c.skin.groups.size();
     for (size_t i = 0; i < order.size(); i += kClusterTriangles)
       c.skin.clusters.push_back({uint32_t(c.skin.triangles.size() + i), uint32_t(std::min<size_t>(kClusterTriangles, order.size() - i)), 0, 0});

@@ -38,5 +38,8 @@ template <class R> struct SkinLists {
 inline constexpr uint32_t kClusterTriangles = 8;
 inline constexpr uint32_t kGroupClusters = 16;
 inline constexpr uint32_t kSuperGroups = 8;
+// The poses of its animation, besides the bind pose, that the triangles' order keeps compact in
+// (order_for_tree in reference_skinning.cpp).
+inline constexpr int kTreePoses = 8;
 
 }  // namespace clothsim
