@@ -169,10 +169,9 @@ bool far_from_skin(MeshField m, vec3 x, float base) {
 bool skinned_leaves_alone(MeshField m, vec3 x, vec3 d) {
   float best = 0.0, low2 = 3.0e38, base = skinned_reach_base(m.thickness, d);
   uint found = 0xFFFFFFFFu;
-  if (g_self >= 0 && far_from_skin(m, x, base)) {
-    nearest[skin_slot(m)] = 0xFFFFFFFFu;
-    return true;
-  }
+  // A record that holds was kept by a walk or search that found none, and the slot has held none
+  // since (a search that finds one voids the record; a state loaded voids them all): no write.
+  if (g_self >= 0 && far_from_skin(m, x, base)) return true;
   if (walk_skinned_tree(m, x, base, SKIN_FAR_MARGIN / m.inv_voxel, false, best, found, low2)) return false;
   if (g_self >= 0) {
     nearest[skin_slot(m)] = 0xFFFFFFFFu;
