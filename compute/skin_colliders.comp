@@ -20,8 +20,7 @@ layout(binding = TEXTURE_SKIN_PALETTE) uniform samplerBuffer skin_palette_view;
 void main() {
   uint i = gl_GlobalInvocationID.x, n = params.skin_vertices;
   if (i == 0u) {  // the last substep's largest move into the sum (nearest.glsl); this one's from 0
-    precise float moved = uintBitsToFloat(nearest[skin_moved_at()]) + skin_motion();
-    nearest[skin_moved_at()] = floatBitsToUint(moved);
+    nearest[skin_moved_at()] = floatBitsToUint(skin_moved());
     nearest[skin_motion_at()] = 0u;
   }
   if (i >= n) return;

@@ -158,14 +158,15 @@ bool mesh_at(inout MeshField m, vec3 x, vec3 d) {
 bool far_from_skin(MeshField m, vec3 x, float base) {
   uint at = far_record_at(skin_slot(m));
   vec4 record = uintBitsToFloat(uvec4(nearest[at], nearest[at + 1u], nearest[at + 2u], nearest[at + 3u]));
-  precise float room = (record.w - skin_moved()) - length3(x - record.xyz);
-  precise float reach = skinned_reach(base, skin_motion(), m.inv_voxel), needed = (reach * (1.0 + 1.0 / 512.0) + 1e-5) + skin_moved() * 1e-6;
+  float moved = skin_moved();
+  precise float room = (record.w - moved) - length3(x - record.xyz);
+  precise float reach = skinned_reach(base, skin_motion(), m.inv_voxel), needed = (reach * (1.0 + 1.0 / 512.0) + 1e-5) + moved * 1e-6;
   return room > needed;
 }
 // Whether a skinned collider leaves a mass at x, moved by d, alone at the substep's first
-// collision: no group's box within its super-group's reach (a super-group's box beyond it holds
-// none), where the search finds no triangle. The mass is then not listed, so its slot is
-// cleared here, as that search would have.
+// collision: its far record holds, or no group's box is within its super-group's reach (a
+// super-group's box beyond it holds none), where the search finds no triangle. The mass is then
+// not listed, so its slot is cleared here, as that search would have, and its record kept.
 bool skinned_leaves_alone(MeshField m, vec3 x, vec3 d) {
   float best = 0.0, low2 = 3.0e38, base = skinned_reach_base(m.thickness, d);
   uint found = 0xFFFFFFFFu;

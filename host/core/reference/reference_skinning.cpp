@@ -4,6 +4,7 @@
 // compute/shared/skinning.glsl's; compute/skin_colliders.comp and compute/collide_meshes.glsl
 // run the same loops on the GPU.
 #include <algorithm>
+#include <array>
 #include <limits>
 #include <numeric>
 
@@ -51,6 +52,14 @@ void order_for_tree(std::vector<uint32_t>::iterator begin, std::vector<uint32_t>
   order_for_tree(begin + std::ptrdiff_t(half), end, at);
 }
 
+// A palette entry's three rows, as add_bone reads them: row r is (L[0][r], L[1][r], L[2][r], t[r])
+// for the entry's linear part L and move t.
+std::array<glm::dvec4, 3> bone_rows(const glm::dmat3& linear, const glm::dvec3& move) {
+  std::array<glm::dvec4, 3> rows;
+  for (int r = 0; r < 3; ++r) rows[size_t(r)] = glm::dvec4(linear[0][r], linear[1][r], linear[2][r], move[r]);
+  return rows;
+}
+
 // The triangles' centroids in the bind pose and at kTreePoses times spread over the animation,
 // in the collider's units before its rotation and origin (which move every pose alike).
 std::vector<std::vector<glm::dvec3>> tree_poses(const ColliderMesh& mesh, const Skin& skin, double scale) {
@@ -61,13 +70,15 @@ std::vector<std::vector<glm::dvec3>> tree_poses(const ColliderMesh& mesh, const 
   std::vector<std::vector<glm::dvec3>> at(size_t(1 + poses));
   for (int j = 0; j <= poses; ++j) {
     std::vector<glm::dvec3> v(ps);
-    if (j > 0) {  // linear blend skinning as skin_colliders does it, in double
-      const std::vector<glm::dmat4> bones = skin.palette_at(skin.duration_ticks * (j - 1) / poses / rate);
+    if (j > 0) {  // linear blend skinning as skin_colliders does it (add_bone), in double
+      std::vector<std::array<glm::dvec4, 3>> rows;
+      for (const glm::dmat4& b : skin.palette_at(skin.duration_ticks * (j - 1) / poses / rate))
+        rows.push_back(bone_rows(glm::dmat3(b), scale * glm::dvec3(b[3])));
       for (size_t i = 0; i < ps.size(); ++i) {
         glm::dvec3 sum(0);
         for (int k = 0; k < kBonesPerVertex; ++k) {
-          const glm::dmat4& b = bones[skin.bones[i][k]];
-          sum += skin.weights[i][k] * (glm::dmat3(b) * ps[i] + scale * glm::dvec3(b[3]));
+          const std::array<glm::dvec4, 3>& b = rows[skin.bones[i][k]];
+          sum = shared::add_bone(sum, skin.weights[i][k], b[0], b[1], b[2], ps[i]);
         }
         v[i] = sum;
       }
@@ -162,10 +173,10 @@ template <class R> void set_skin_palette(Constants<R>& c, double start, double e
       for (size_t j = 0; j < bones.size(); ++j) {
         // origin + rotation (scale B r_file): the linear part rotation B3, the translation
         // origin + rotation (scale b), on the scaled rest positions.
-        const glm::dmat3 linear = s.rotation * glm::dmat3(bones[j]);
-        const glm::dvec3 move = origin + s.rotation * (s.scale * glm::dvec3(bones[j][3]));
+        const std::array<glm::dvec4, 3> rows = bone_rows(s.rotation * glm::dmat3(bones[j]),
+                                                         origin + s.rotation * (s.scale * glm::dvec3(bones[j][3])));
         const size_t base = 3 * (size_t(end) * c.skin_palette + s.palette_first + j);
-        for (int r = 0; r < 3; ++r) c.control.palette[base + size_t(r)] = Vec4<R>(R(linear[0][r]), R(linear[1][r]), R(linear[2][r]), R(move[r]));
+        for (size_t r = 0; r < 3; ++r) c.control.palette[base + r] = Vec4<R>(rows[r]);
       }
     }
   }
