@@ -1,8 +1,9 @@
-// The multigrid solver (issue 22; docs/model.md, "One substep (multigrid solver)"): its
-// hierarchy, and the two checks of the issue against physics that CPU-equals-GPU cannot make:
+// The multigrid solver (issue 22; docs/model.md, "One substep (multigrid solver)"): the
+// two checks of the issue against physics that CPU-equals-GPU cannot make:
 // a cloth hanging from two corners as stiff at 129² as at 33² (its rest state Newton's static
 // equilibrium, which grows only as the continuum's does), and an unpinned cloth draped over a
-// sphere without stretching. The GPU twins run in test_gpu_multigrid.cpp.
+// sphere without stretching. The GPU twins run in test_gpu_multigrid.cpp, the hierarchy's tests in
+// test_hierarchy.cpp.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -18,28 +19,6 @@
 using namespace clothsim;
 
 namespace {
-
-// Every spring of `m` (all types) joins particles of different colours of the fine sweep, and
-// every coarse spring coarse vertices of different colours of their level.
-void check_colourings(const ClothModel& m, const Hierarchy& h) {
-  std::vector<int> colour(size_t(m.count()), -1);
-  for (int k = 0; k < h.fine_colours(); ++k)
-    for (uint32_t e = h.fine_colour_start[k]; e < h.fine_colour_start[k + 1]; ++e) colour[h.fine_order[e]] = k;
-  size_t clashes = 0;
-  for (const Spring& s : m.springs) clashes += colour[s.i] == colour[s.j];
-  CHECK(std::count(colour.begin(), colour.end(), -1) == 0);
-  CHECK(clashes == 0);
-  std::vector<int> coarse_colour(h.coarse_count(), -1);
-  for (const HierarchyLevel& l : h.levels)
-    for (size_t k = 0; k + 1 < l.colour_start.size(); ++k)
-      for (uint32_t e = l.colour_start[k]; e < l.colour_start[k + 1]; ++e) coarse_colour[h.order[e]] = int(k);
-  size_t coarse_clashes = 0;
-  for (uint32_t g = 0; g < h.coarse_count(); ++g)
-    for (uint32_t k = h.spring_start[g]; k < h.spring_start[g + 1]; ++k)
-      coarse_clashes += coarse_colour[g] == coarse_colour[h.spring_other[k]];
-  CHECK(std::count(coarse_colour.begin(), coarse_colour.end(), -1) == 0);
-  CHECK(coarse_clashes == 0);
-}
 
 // The 1 m cloth of scenes/hang_xpbd.json at n x n, tethers off, hanging from its top corners.
 Scene hanging_cloth(int n) {
@@ -65,72 +44,6 @@ Hung hang(int n, int frames) {
 }
 
 }  // namespace
-
-TEST_CASE("multigrid hierarchy of a grid: every second particle of every second row, bilinear weights", "[multigrid]") {
-  const Scene s = test::make_scene(33, 17, 0, {"simulation.solver=\"multigrid\""});
-  const ClothModel m = build_cloth(s);
-  const Hierarchy h = build_hierarchy(m, {5000.0});
-  REQUIRE(h.levels.size() == 2);  // 561 -> 153 (17 x 9) -> 45 (9 x 5), at most 64 on the coarsest
-  CHECK(h.levels[0].count == 17 * 9);
-  CHECK(h.levels[1].count == 9 * 5);
-  for (uint32_t g = 0; g < h.levels[0].count; ++g) {
-    const uint32_t p = h.particle[g];
-    CHECK(int(p) % 33 % 2 == 0);
-    CHECK(int(p) / 33 % 2 == 0);
-    CHECK(h.spring_start[g + 1] - h.spring_start[g] <= 8);  // its 8 neighbours on the coarse grid, fewer at edges
-  }
-  // A particle between two coarse ones takes half of each, one in a cell's middle a quarter of four.
-  auto weights = [&](int x, int y) {
-    std::vector<double> w;
-    const int i = y * 33 + x;
-    for (uint32_t k = h.fine_parent_start[i]; k < h.fine_parent_start[i + 1]; ++k) w.push_back(h.fine_parent_weight[k]);
-    return w;
-  };
-  CHECK(weights(4, 2) == std::vector<double>{1.0});
-  CHECK(weights(5, 2) == std::vector<double>{0.5, 0.5});
-  CHECK(weights(4, 3) == std::vector<double>{0.5, 0.5});
-  CHECK(weights(5, 3) == std::vector<double>{0.25, 0.25, 0.25, 0.25});
-  // A coarse vertex stands for four cells' worth of particles: its children's weights sum to 4 inside.
-  double inner = 0;
-  const uint32_t g = 4 * 17 + 4;  // coarse (4, 4): particle (8, 8)
-  REQUIRE(h.particle[g] == 8 * 33 + 8);
-  for (uint32_t k = h.child_start[g]; k < h.child_start[g + 1]; ++k) inner += h.child_weight[k];
-  CHECK(inner == 4.0);
-  check_colourings(m, h);
-}
-
-TEST_CASE("multigrid hierarchy of a mesh: pins held on the coarse level, every particle interpolated, colourings valid", "[multigrid]") {
-  for (const char* name : {"disc_hole", "two_cloths", "tablecloth"}) {
-    INFO(name);
-    const Scene s = load_scene(std::filesystem::path(CLOTHSIM_SOURCE_DIR) / "scenes" / (std::string(name) + ".json"),
-                               {"simulation.solver=\"multigrid\""});
-    const ClothModel m = build_cloth(s);
-    std::vector<double> ks;
-    for (const ClothParams* c : s.cloths()) ks.push_back(c->ks);
-    const Hierarchy h = build_hierarchy(m, ks);
-    REQUIRE(!h.levels.empty());
-    CHECK(h.levels.back().count <= kCoarsestVertices);
-    for (uint32_t i = 0; i < uint32_t(m.count()); ++i) {
-      double sum = 0;
-      for (uint32_t k = h.fine_parent_start[i]; k < h.fine_parent_start[i + 1]; ++k) sum += h.fine_parent_weight[k];
-      CHECK(sum == Approx(1.0));
-    }
-    // Each level at most 4/5 of the one before: the cycle's cost stays a fraction of the sweep's.
-    uint32_t finer = uint32_t(m.count());
-    for (const HierarchyLevel& l : h.levels) {
-      CHECK(l.count * 5 <= finer * 4);
-      finer = l.count;
-    }
-    // Pins are taken first: every pin is a coarse vertex, or next to a pin that is (a row of pins).
-    for (uint32_t i = 0; i < uint32_t(m.count()); ++i) {
-      if (!m.pinned[i]) continue;
-      bool held = false;
-      for (uint32_t k = h.fine_parent_start[i]; k < h.fine_parent_start[i + 1]; ++k) held |= m.pinned[h.particle[h.fine_parent[k]]] != 0;
-      CHECK(held);
-    }
-    check_colourings(m, h);
-  }
-}
 
 TEST_CASE("multigrid: a cloth hung from two corners is as stiff at 65² and 129² as at 33² and rests where Newton does",
           "[multigrid][slow]") {

@@ -122,6 +122,27 @@ Hierarchy build_hierarchy(const ClothModel& m, const std::vector<double>& ks) {
     for (uint32_t v : visit)
       if (m.pinned[particles[v]]) take(v);
     for (uint32_t v : visit) take(v);
+    // Every spring between two fine vertices must have a coarse parent at both ends (Ruge and
+    // Stüben's second pass): else the coarse graph, which joins vertices that share a child,
+    // has a crack there, and the coarse cloth on one side of it floats free of the other, pins
+    // included. An MIS leaves such cracks wherever two coarse vertices land three springs apart:
+    // a grid whose pinned row has the other parity (a 20-row strip pinned along row 19: rows
+    // 16 and 19 coarse, 17 and 18 not, so the coarse strip hung from nothing and its
+    // correction threw it off at frame 2), and anywhere on a mesh. The later end of such a
+    // spring becomes coarse too, so the set is no longer independent there.
+    auto shares_parent = [&](uint32_t a, uint32_t b) {
+      for (uint32_t p : graph[a])
+        if (coarse_of[p] >= 0 && std::binary_search(graph[b].begin(), graph[b].end(), p)) return true;
+      return false;
+    };
+    for (uint32_t v : visit) {
+      if (coarse_of[v] >= 0) continue;
+      for (uint32_t u : graph[v])
+        if (coarse_of[u] < 0 && coarse_of[v] < 0 && !shares_parent(v, u)) {
+          coarse_of[u] = int64_t(coarse.size());
+          coarse.push_back(u);
+        }
+    }
     // Not worth a level: the graph hardly coarsens (a cloud of loose particles).
     if (coarse.size() * 5 > n * 4) break;
     // With the MIS in the canonical order the coarse vertices are not ascending: number them in
@@ -147,6 +168,10 @@ Hierarchy build_hierarchy(const ClothModel& m, const std::vector<double>& ks) {
       for (uint32_t a : parents[v])
         for (uint32_t b : parents[v])
           if (a != b) coarse_graph[a].push_back(b);
+    // and when they are neighbours themselves (the second pass above makes such pairs).
+    for (uint32_t v = 0; v < n; ++v)
+      for (uint32_t u : graph[v])
+        if (coarse_of[v] >= 0 && coarse_of[u] >= 0) coarse_graph[uint32_t(coarse_of[v])].push_back(uint32_t(coarse_of[u]));
     sort_unique(coarse_graph);
 
     // Prolongation of the current level (the cloth's particles, or the previous coarse level).
