@@ -85,7 +85,6 @@ void GpuPasses::ensure_multigrid() {
   g.rhs_view.attach(g.rhs, GL_RGBA32F);
   programs_[size_t(PassId::cycle_small_levels)].set("u_first", table_at);  // where its table starts, fixed with the hierarchy
   g.hierarchy = constants_.hierarchy;
-  if (getenv("CS_H")) { fprintf(stderr, "particles %u fine colours %d small %d levels", n, h.fine_colours(), first_small_level(h)); for (auto& l : h.levels) fprintf(stderr, " %u/%zu", l.count, l.colour_start.size()-1); fprintf(stderr, "\n"); }
   state_.bind_multigrid();
 }
 
