@@ -138,7 +138,7 @@ Hierarchy build_hierarchy(const ClothModel& m, const std::vector<double>& ks) {
     for (uint32_t v : visit) {
       if (coarse_of[v] >= 0) continue;
       for (uint32_t u : graph[v])
-        if (coarse_of[u] < 0 && coarse_of[v] < 0 && !shares_parent(v, u)) {
+        if (coarse_of[u] < 0 && !shares_parent(v, u)) {
           coarse_of[u] = int64_t(coarse.size());
           coarse.push_back(u);
         }
