@@ -8,14 +8,14 @@
 #ifndef CLOTHSIM_COARSE_LEVELS_GLSL
 #define CLOTHSIM_COARSE_LEVELS_GLSL
 
-// Coarse vertex g (its row v) in a fold: a coarse spring shorter than FOLDED_CHORD of its rest
+// Coarse vertex g (its row v) in a fold: a coarse spring shorter than params.folded_chord of its rest
 // length (folded in host/core/reference/reference_multigrid.cpp).
 bool folded(uint g, uvec4 v) {
   vec3 p = position_of(int(v.x)).xyz;
   uint last = mg_vertex(g + 1u).w;
   for (uint k = v.w; k < last; ++k) {
     uvec4 s = mg_entry(k);  // y rest bits, w the other end's particle
-    precise float shortest = FOLDED_CHORD * uintBitsToFloat(s.y);
+    precise float shortest = params.folded_chord * uintBitsToFloat(s.y);
     if (length3(position_of(int(s.w)).xyz - p) < shortest) return true;
   }
   return false;

@@ -246,11 +246,10 @@ struct ShadowFrame {
 
 // Everything a pass needs that is constant over a substep: the CPU reference's own (Constants<R>
 // in host/core/reference/reference.hpp is built on StepParamsT<R>), uploaded from
-// Constants<float> as it is, so both sides see identical floats. One
-// named scalar per value (std140 packs consecutive scalars as C++ does, and the vec3 first
-// leaves exactly the 4 bytes the scalar after it takes), declared once through
-// STEP_PARAMS_FIELDS so that tests/test_gpu_layout.cpp checks every field's offset and
-// value, a field added later included.
+// Constants<float> as it is, so both sides see identical floats. One named scalar per value
+// (std140 packs consecutive scalars as C++ does, and the vec3 first leaves exactly the 4 bytes
+// the scalar after it takes), declared once through STEP_PARAMS_FIELDS so that
+// tests/test_gpu_layout.cpp checks every field's offset and value, a field added later included.
 #define STEP_PARAMS_FIELDS(F)                                                               \
   F(VEC3, gravity)             /* m/s^2 */                                                 \
   F(REAL, dt2)                 /* s^2, the substep squared */                              \
@@ -289,7 +288,8 @@ struct ShadowFrame {
   F(UINT, skin_supers)         /* and super-groups of groups */                             \
   F(UINT, skin_palette)        /* and palette entries (bones) */                            \
   F(UINT, skin_meshes)         /* skinned mesh colliders (BINDING_NEAREST's slots per particle) */ \
-  F(UINT, welds)               /* 1 = seams: TEXTURE_REST_POSITIONS' w is each particle's weld (ClothModel::weld) */
+  F(UINT, welds)               /* 1 = seams: TEXTURE_REST_POSITIONS' w is each particle's weld (ClothModel::weld) */ \
+  F(REAL, folded_chord)        /* multigrid, fabric: a coarse spring shorter than this share of its rest length is in a fold */
 #define STEP_PARAMS_DECLARE(type, name) type name;
 // std140 rounds the block's size up to 16 bytes; alignas makes sizeof agree (for REAL = float:
 // StepParamsT<double> is the double reference's, never uploaded).

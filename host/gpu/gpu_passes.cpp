@@ -18,7 +18,6 @@ gl::Defines defines_for(Build build) {
     case Build::frictionless: return {{"LISTED", "1"}, {"FRICTIONLESS", "1"}};
     case Build::multigrid:
       return {{"CONTACT_REACH", fmt::format("{:.9e}", float(kContactReach))},
-              {"FOLDED_CHORD", fmt::format("{:.9e}", float(kFoldedChord))},
               {"COARSEST_SWEEPS", std::to_string(kCoarsestSweeps)},
               {"LEVEL_SWEEPS", std::to_string(kLevelSweeps)}};
     case Build::settling:

@@ -222,6 +222,7 @@ Constants<R> make_constants(const Scene& scene, const ClothModel& model, std::sh
   // the external forces' move, fabric where the last substep's acceleration says.
   c.adaptive_start = sp.solver == Solver::Fabric ? 1u : 0u;
   c.sweep_friction = sp.solver == Solver::Fabric ? 1u : 0u;  // relax_vertices' push-out
+  c.folded_chord = R(sp.solver == Solver::Fabric ? kFoldedChordFabric : kFoldedChordMultigrid);
   c.inv_dt2 = R(1.0 / (dt * dt));
   c.max_move = R(sp.max_speed * dt);  // 0: no speed clamp
   if (c.multigrid) {

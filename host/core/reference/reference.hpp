@@ -284,11 +284,14 @@ inline bool arm_stretch_pass(bool& over) { return std::exchange(over, false); }
 inline constexpr int kLevelSweeps = 1;     // Gauss-Seidel sweeps per level on the way up
 // A mass this close to a collider's surface (m) is held by it: left out of the coarse problem.
 inline constexpr double kContactReach = 1e-3;
-// A coarse spring shorter than this times its rest length marks a fold: the cloth between its
-// ends may have buckled, so the coarse vertex is fixed. 0.95 let the 513² hang's buckling top
-// edge fold the cloth up; 1 (any slack chord) also fixes the slightly compressed lower cloth
-// and slows its hanging (docs/solvers.md).
-inline constexpr double kFoldedChord = 0.99;
+// A coarse spring shorter than this times its rest length marks a fold (StepParams::folded_chord):
+// the cloth between its ends may have buckled, so the coarse vertex is fixed. Multigrid: 0.95
+// let the 513² hang's buckling top edge fold the cloth up; 1 (any slack chord) also fixes the
+// slightly compressed lower cloth and slows its hanging. fabric: 0.99 held back a swinging
+// cloth (its free edge's chords shorten by 1-3 % as it swings) and let the 257² hang tear at
+// its pins (docs/solvers.md).
+inline constexpr double kFoldedChordMultigrid = 0.99;
+inline constexpr double kFoldedChordFabric = 0.95;
 inline constexpr int kCoarsestSweeps = 4;  // on the coarsest level (solve_coarsest)
 // A level of at most this many vertices, and every level below it, is small: the GPU runs
 // their part of the cycle in one workgroup (cycle_small_levels), where a dispatch and a

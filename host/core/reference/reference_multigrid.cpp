@@ -78,14 +78,14 @@ template <class R> bool touches_colliders(const Constants<R>& c, const Vec3<R>& 
   return false;
 }
 
-// Coarse vertex g in a fold: one of its coarse springs is shorter than kFoldedChord of its rest
+// Coarse vertex g in a fold: one of its coarse springs is shorter than c.folded_chord of its rest
 // length, the cloth between its ends buckled or folded. A coarse spring's chord says nothing of
 // the cloth there, and the local sweep does well where the cloth is slack: such a vertex is
 // fixed in the coarse problem, which carries tension where the cloth is taut.
-template <class R> bool folded(const Hierarchy& h, const State<R>& s, uint32_t g) {
+template <class R> bool folded(const Hierarchy& h, const Constants<R>& c, const State<R>& s, uint32_t g) {
   const Vec3<R> p(s.pos[h.particle[g]]);
   for (uint32_t k = h.spring_start[g]; k < h.spring_start[g + 1]; ++k)
-    if (length3(Vec3<R>(s.pos[h.particle[h.spring_other[k]]]) - p) < R(kFoldedChord) * R(h.spring_rest[k])) return true;
+    if (length3(Vec3<R>(s.pos[h.particle[h.spring_other[k]]]) - p) < c.folded_chord * R(h.spring_rest[k])) return true;
   return false;
 }
 
@@ -127,7 +127,7 @@ template <class R> void restrict_residuals(const Constants<R>& c, int level, Sta
     s.coarse_corr[g] = Vec4<R>(0);
     const uint32_t p = h.particle[g];
     if (s.pos[p].w == R(0) || (c.has_colliders() && touches_colliders(c, Vec3<R>(s.pos[p]) + Vec3<R>(s.offset[p]), skin_slots(c, s, p))) ||
-        folded(h, s, g)) {
+        folded(h, c, s, g)) {
       // Pinned, held, held by a collider or in a fold: fixed in the coarse problem (w -1 says so).
       s.coarse_rhs[g] = Vec4<R>(0, 0, 0, -1);
       s.residual[s.pos.size() + g] = Vec4<R>(0);
