@@ -66,11 +66,9 @@ void check_sag_against_static(int n) {
 // rest (0.75 m) of the centre of mass's peaks (local maxima of its per-frame height after the
 // release), in order.
 std::vector<double> swing_peaks(int substeps) {
-  std::string pins;
-  for (int x = 0; x < 17; ++x) pins += fmt::format("{}[{}, 0]", x ? ", " : "", x);
   const Scene s = test::make_scene(17, 17, 0,
                                    {"cloth.width=0.5", "cloth.height=0.5", "cloth.density=0.15", "cloth.ks=5000",
-                                    "cloth.damping=0", "cloth.pinned=[" + pins + "]", "simulation.max_stretch=10",
+                                    "cloth.damping=0", test::pin_row(17, 0), "simulation.max_stretch=10",
                                     "simulation.self_collision=false", "simulation.solver=\"fabric\"",
                                     fmt::format("simulation.simulation_steps={}", substeps)});
   const ClothModel m = build_cloth(s);

@@ -229,10 +229,8 @@ namespace {
 // A vertical 33x33 cloth hanging from its top row; a sphere of radius 0.2 keyframed from
 // z = -0.5 to z = +0.5 through it in 1 s at mid-height (and held there after).
 Scene sphere_through(bool moving) {
-  std::string pins;
-  for (int x = 0; x < 33; ++x) pins += fmt::format("{}[{},32]", x ? "," : "", x);
   const std::string motion = moving ? R"(, "motion": {"keyframes": [[0, [0.5, 0.5, -0.5]], [1, [0.5, 0.5, 0.5]]]})" : "";
-  return test::make_scene(33, 33, 1, {"cloth.pinned=[" + pins + "]", "simulation.self_collision=false"},
+  return test::make_scene(33, 33, 1, {test::pin_row(33, 32), "simulation.self_collision=false"},
                           R"(, "sphere": {"origin": [0.5, 0.5, -0.5], "radius": 0.2, "friction": 0.3)" + motion + "}");
 }
 

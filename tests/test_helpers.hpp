@@ -43,6 +43,13 @@ inline Scene make_scene(int nw, int nh, int orientation, std::vector<std::string
   return parse_scene(text, "<test>", sets);
 }
 
+// The --set override that pins every particle of grid row `row` of a cloth `width` points wide.
+inline std::string pin_row(int width, int row) {
+  std::string pins = "cloth.pinned=[";
+  for (int x = 0; x < width; ++x) pins += fmt::format("{}[{},{}]", x ? "," : "", x, row);
+  return pins + "]";
+}
+
 // Elements that differ bit for bit (so -0 vs 0 and NaN payloads count too); a size
 // difference counts as the longer size.
 template <class T> size_t mismatches(const std::vector<T>& a, const std::vector<T>& b) {

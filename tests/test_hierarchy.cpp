@@ -169,13 +169,11 @@ TEST_CASE("multigrid and fabric: a strip of real fabric pinned along a row of th
   // coarse rows are the even ones. Without the second pass of build_hierarchy the coarse strip
   // hung from nothing (rows 16 and 19 coarse, 17 and 18 not, no coarse spring between them) and
   // its correction threw the strip off at frame 2.
-  std::string pins = "cloth.pinned=[";
-  for (int x = 0; x < 9; ++x) pins += fmt::format("{}[{},19]", x ? "," : "", x);
   for (const char* solver : {"multigrid", "fabric"}) {
     INFO(solver);
     const Scene s = test::make_scene(9, 20, 1,
                                      {"cloth.width=0.0232", "cloth.height=0.0551", "cloth.density=0.2", "cloth.ks=5000",
-                                      "cloth.damping=0.5", pins + "]", "simulation.max_stretch=10",
+                                      "cloth.damping=0.5", test::pin_row(9, 19), "simulation.max_stretch=10",
                                       "simulation.self_collision=false", fmt::format("simulation.solver=\"{}\"", solver)});
     check_crack_free_run(s, 1.01);
   }
