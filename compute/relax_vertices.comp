@@ -8,7 +8,6 @@
 #include "layout.glsl"
 #include "common.glsl"
 #include "collide_objects.glsl"
-#include "contact_list.glsl"
 #include "multigrid.glsl"
 
 layout(local_size_x = WORKGROUP_SIZE) in;
@@ -83,9 +82,18 @@ void main() {
     x = x + corr;
     d = d + corr;
   }
-  // A correction must not push a mass into a collider or through a plane (as in xpbd's sweep).
-  // Applied after this colour to the masses it lists (compute/contact_list.glsl).
-  if (has_colliders()) list_if_collider_may_push(i, x, d, moved.w);
+  // A correction must not push a mass into a collider or through a plane (as in xpbd's sweep);
+  // with Coulomb friction under fabric (params.sweep_friction), as the prediction's contacts
+  // are. Inline, in this dispatch (the mass's own state only, and no mass of the colour reads
+  // another's), as a loop of one trip or none rather than an if: llvmpipe runs an if's body
+  // for every lane, taken or not, but skips a loop that no lane of the batch enters, so a
+  // batch with no mass near a collider pays only may_collide_pair_after's test (the contact
+  // list's reason, compute/contact_list.glsl, without its dispatch after each colour).
+  bool push = has_colliders() && may_collide_pair_after(i, x, d, moved.w, i, x, d, moved.w, params.sweep_friction != 0u).x;
+  for (uint trip = 0u; trip < (push ? u_count : 0u); trip = u_count) {
+    g_self = i;
+    collide_with_objects_friction(x, d, params.sweep_friction != 0u);
+  }
   // Only xyz, every w unchanged (as in prolong_to_cloth).
   pos[i].xyz = x;
   disp[i].xyz = d;

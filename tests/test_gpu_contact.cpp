@@ -140,10 +140,12 @@ TEST_CASE("the contact list holds every mass a mesh collider moves, and only mas
       Scene s = test::drop_onto_mesh(obj, solver, "", {}, 1.0);
       check_contact_list(s, 45, solver);
     }
-    // xpbd's and multigrid's sweeps list from the clearance bound predict left in each
-    // displacement's w (mesh_leaves_alone_after), with no field sample: the same sweep from the
-    // same prediction with the bound taken away (a state read back and uploaded has w = 0, which
-    // lists every mass in the field's grid) gives the same bits, and listed more.
+    // xpbd's and multigrid's sweeps decide whether a mass may need the push-out from the
+    // clearance bound predict left in each displacement's w (mesh_leaves_alone_after), with no
+    // field sample: the same sweep from the same prediction with the bound taken away (a state
+    // read back and uploaded has w = 0, which takes every mass in the field's grid) gives the
+    // same bits; xpbd's lists those masses for the push-out after each colour, and listed more
+    // without it (multigrid's relax_vertices pushes out inline, listing nothing).
     for (const char* solver : {"xpbd", "multigrid"}) {
       INFO(shape.name << ", " << solver << "'s sweep");
       const bool multigrid = std::string(solver) == "multigrid";
@@ -173,6 +175,7 @@ TEST_CASE("the contact list holds every mass a mesh collider moves, and only mas
       INFO(listed << " listed by the last colour, " << listed_without << " without the bound, of " << m.count());
       CHECK(mismatches(with_bound.pos, without.pos) == 0);
       CHECK(mismatches(with_bound.disp, without.disp) == 0);
+      if (multigrid) continue;
       CHECK(listed > 0);
       CHECK(listed < listed_without);
     }

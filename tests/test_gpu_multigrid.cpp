@@ -64,8 +64,8 @@ TEST_CASE("a multigrid run on the GPU follows the reference frame by frame, and 
   const GpuCounters after = gpu.passes().counters();
   // Its two coarse levels are both small (kSmallLevelVertices): the whole V-cycle is one
   // dispatch, with compute_residuals, prolong_to_cloth and a dispatch per colour of the sweep,
-  // each followed by its push-out over the contact list (spheres and planes, no mesh).
-  CHECK(gpu.passes().multigrid_dispatches() == 3 + 2 * gpu.constants().hierarchy->fine_colours());
+  // each with its push-out inline (spheres and planes, no mesh: no dispatch of the contact list).
+  CHECK(gpu.passes().multigrid_dispatches() == 3 + gpu.constants().hierarchy->fine_colours());
   // The substeps' dispatches, then the frame's own: normals and the divergence guard's two.
   CHECK(uint64_t(after.dispatches - before.dispatches) ==
         uint64_t(scene.simulation.simulation_steps * gpu.passes().dispatches_per_substep() + 3));

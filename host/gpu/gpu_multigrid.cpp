@@ -90,7 +90,7 @@ void GpuPasses::ensure_multigrid() {
 
 // restrict_residuals and prolong_corrections over a level's vertices, smooth_corrections over
 // one of its colours (or `sweeps` sweeps of every colour), relax_vertices over a fine colour
-// (or every one), each followed by the contact list's push-out where the step collides through it.
+// (or every one), its push-out inline (relax_vertices.comp).
 void GpuPasses::level_pass(PassId pass, const PassArgs& a) {
   const Hierarchy& h = *constants_.hierarchy;
   if (pass == PassId::relax_vertices || pass == PassId::smooth_corrections) {
@@ -102,11 +102,8 @@ void GpuPasses::level_pass(PassId pass, const PassArgs& a) {
       return;
     }
     const uint32_t first = starts[size_t(a.colour)], last = starts[size_t(a.colour) + 1];
-    const bool listed = fine && uses_contact_list() && last > first;
-    if (listed) start_contact_list();
     // The coarse vertices follow the particles in the multigrid's buffers.
-    dispatch_row(pass, {(fine ? 0u : uint32_t(state_.model_.count())) + first, last - first}, listed);
-    if (listed) dispatch_row(PassId::collide_listed_frictionless);
+    dispatch_row(pass, {(fine ? 0u : uint32_t(state_.model_.count())) + first, last - first});
     return;
   }
   const HierarchyLevel& l = h.levels[size_t(a.level)];

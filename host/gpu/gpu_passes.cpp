@@ -133,10 +133,7 @@ SubstepShape GpuPasses::shape() const {
   s.listed_sweep_colours = listed && !c.multigrid ? s.enabled_colours : 0;
   if (!c.multigrid) return s;
   const Hierarchy& h = *c.hierarchy;
-  s.fine_colours = h.fine_colours();
-  if (listed)
-    for (int k = 0; k < h.fine_colours(); ++k)
-      s.listed_sweep_colours += h.fine_colour_start[size_t(k) + 1] > h.fine_colour_start[size_t(k)];
+  s.fine_colours = h.fine_colours();  // (relax_vertices pushes out inline: no listed colours)
   if (h.levels.empty()) return s;
   s.large_levels = first_small_level(h);
   s.levels = int(h.levels.size());
@@ -151,7 +148,7 @@ int GpuPasses::multigrid_dispatches() const {
   const SubstepShape s = shape();
   int count = 0;
   for (const PassRow& r : kPasses)
-    if (r.need & kMultigrid || r.id == PassId::collide_listed_frictionless) count += dispatches_of(r, s);
+    if (r.need & kMultigrid) count += dispatches_of(r, s);
   return count;
 }
 

@@ -193,9 +193,8 @@ inline constexpr PassRow kPasses[] = {
      kComputeReads, 0, kMultigrid, 0, C::once, nullptr, "solve_multigrid", true,
      "relax_vertices reads the positions (views), displacements and offsets"},
     {P::relax_vertices, "relax_vertices", "relax_vertices", B::multigrid, P::relax_vertices, D::range,
-     kComputeReads, kCommand, kMultigrid, 0, C::fine_colours, nullptr, "solve_multigrid", true,
-     "the next colour (or the next substep's first pass) reads these positions, or first collide_objects the "
-     "listed ones (COMMAND)"},
+     kComputeReads, 0, kMultigrid, 0, C::fine_colours, nullptr, "solve_multigrid", true,
+     "the next colour (or the next substep's first pass) reads these positions"},
     {P::collide_listed_frictionless, "collide_objects", "collide_objects", B::frictionless,
      P::collide_listed_frictionless, D::contact_list, kComputeReads | kUpdate, 0, kXpbd | kListed, 0,
      C::listed_sweep_colours, nullptr, nullptr, false,
