@@ -11,11 +11,13 @@
 // Coarse vertex g (its row v) in a fold: a coarse spring shorter than params.folded_chord of its rest
 // length (folded in host/core/reference/reference_multigrid.cpp).
 bool folded(uint g, uvec4 v) {
-  vec3 p = position_of(int(v.x)).xyz;
+  vec4 q = position_of(int(v.x));
+  vec3 p = q.xyz;
+  float chord = folded_chord_at(material_of(int(v.x)).stiffness.x * q.w, params);
   uint last = mg_vertex(g + 1u).w;
   for (uint k = v.w; k < last; ++k) {
     uvec4 s = mg_entry(k);  // y rest bits, w the other end's particle
-    precise float shortest = params.folded_chord * uintBitsToFloat(s.y);
+    precise float shortest = chord * uintBitsToFloat(s.y);
     if (length3(position_of(int(s.w)).xyz - p) < shortest) return true;
   }
   return false;

@@ -1,7 +1,8 @@
 // Reads positions, displacements and the colliders; writes positions and displacements in
 // place. One invocation per particle; compiled with LISTED, one per mass of the contact list
 // (compute/contact_list.glsl): the step's own use, after advance or predict listed them (with
-// FRICTIONLESS too, the push-out after a colour of xpbd's or multigrid's sweep). Compiled
+// FRICTIONLESS too, the push-out after a colour of xpbd's sweep; multigrid's relax_vertices
+// pushes out inline). Compiled
 // without, one per particle: the pass checks' own. With self-collision the step fuses it into
 // resolve_self_contacts instead (the particle's state makes one trip).
 #include "layout.glsl"

@@ -130,8 +130,8 @@ bool may_collide(vec3 x, vec3 d, bool friction, out float clearance) {
 // The same for masses i and j in the passes after predict (xpbd's and multigrid's sweeps), each
 // with the clearance predict kept: the meshes decide without a field sample
 // (mesh_leaves_alone_after), listing a mass near a mesh that the response may then leave
-// alone. The passes list the masses it is true for, and collide_objects runs on those alone
-// (compute/contact_list.glsl).
+// alone. xpbd's sweep lists the masses it is true for, and collide_objects runs on those alone
+// (compute/contact_list.glsl); relax_vertices pushes those out inline.
 bvec2 may_collide_pair_after(int i, vec3 xi, vec3 di, float ci, int j, vec3 xj, vec3 dj, float cj, bool friction) {
   bvec2 may = analytic_may_move_pair(xi, di, xj, dj, friction);
   for (int k = 0; k < mesh_count(); ++k) {

@@ -1,5 +1,5 @@
 // The contact list (docs/performance.md, "The contact list"): advance and predict, and each
-// colour of xpbd's and multigrid's sweeps, append the masses that may_collide says a collider
+// colour of xpbd's sweep, append the masses that may_collide says a collider
 // could move, and collide_objects then runs on those alone, one indirect dispatch for as many
 // as there are. llvmpipe runs every branch of a shader for
 // every invocation, so the sphere's and the plane's full response cost every mass of the cloth
@@ -73,11 +73,5 @@ void list_ends_if_collider_may_move(int i, vec3 xi, vec3 di, float ci, int j, ve
   if (may.y && free.y) list_contact(j);
 }
 
-// One free mass after its correction, with its clearance (multigrid's relax_vertices): both
-// halves of the pair get the same values, so the compiler merges them (as in may_collide).
-void list_if_collider_may_push(int i, vec3 x, vec3 d, float clearance) {
-  // With friction under fabric, as collide_objects' listed push-out responds (params.sweep_friction).
-  if (may_collide_pair_after(i, x, d, clearance, i, x, d, clearance, params.sweep_friction != 0u).x) list_contact(i);
-}
 
 #endif

@@ -278,7 +278,7 @@ struct ShadowFrame {
   F(UINT, mesh_count)          /* MeshCollider entries in use */                         \
   F(REAL, inv_dt2)             /* 1/s^2, 1 / dt^2: a mass's inertia per kg (multigrid) */   \
   F(UINT, multigrid)           /* 1 = the multigrid solve (multigrid, fabric) */            \
-  F(UINT, adaptive_start)      /* 1 = fabric: the multigrid solve starts where the last substep's acceleration says */ \
+  F(REAL, adaptive_rho)        /* fabric: > 0, the multigrid solve starts where the last substep's move says, scaled above this ks dt^2 / m */ \
   F(UINT, sweep_friction)      /* 1 = fabric: the push-out after the multigrid sweep takes Coulomb friction */ \
   F(REAL, max_move)            /* m, simulation.max_speed * dt: integration's move limit per substep (0: none) */ \
   F(UINT, skin_vertices)       /* every skinned collider's vertices (TEXTURE_SKINNED's sections) */ \

@@ -5,6 +5,7 @@
 #define CLOTHSIM_MULTIGRID_GLSL
 
 #include "particle_views.glsl"
+#include "shared/integration.glsl"
 #include "shared/springs.glsl"
 
 layout(binding = TEXTURE_MG_VERTICES) uniform usamplerBuffer mg_vertices_view;

@@ -61,7 +61,7 @@ bool predict_particle(int i) {
   precise vec3 next = p.xyz + d;
   // The multigrid solve's offset: the external forces' share, which it applies with the
   // springs (predict in host/core/reference/reference_forces.cpp).
-  if (MULTIGRID_SOLVER) offset[i] = vec4(solve_start_offset(acc, offset[i].xyz, params), 0.0);
+  if (MULTIGRID_SOLVER) offset[i] = vec4(solve_start_offset(acc, offset[i].xyz, material_of(i).stiffness.x * p.w, params), 0.0);
   // The tether to the nearest pin (long-range attachments, host/core/cloth/tethers.cpp): xpbd's only,
   // the multigrid solve needs none (docs/solvers.md).
   vec4 tether = MULTIGRID_SOLVER ? vec4(-1.0) : texelFetch(tethers_view, i);

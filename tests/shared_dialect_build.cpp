@@ -125,11 +125,16 @@ template <class R> void exercise(const char* type) {
   layout::StepParamsT<R> params{};
   params.dt2 = R(1);
   t = verlet_move(up, R(1), up, R(1), params) + predicted_move(up, R(1), up, up, R(1), params);
-  expect(solve_start_offset(up, zero, params) == -up, "solve_start_offset, multigrid: the whole move", type);
-  params.adaptive_start = 1u;
-  expect(length3(solve_start_offset(up, zero, params)) == R(0), "solve_start_offset, fabric falling: none", type);
-  expect(solve_start_offset(up, -up, params) == -up, "solve_start_offset, fabric at rest: the whole move", type);
-  params.adaptive_start = 0u;
+  expect(solve_start_offset(up, zero, R(1), params) == -up, "solve_start_offset, multigrid: the whole move", type);
+  params.adaptive_rho = R(2);
+  expect(length3(solve_start_offset(up, zero, R(1), params)) == R(0), "solve_start_offset, fabric falling: none", type);
+  expect(solve_start_offset(up, -up, R(1), params) == -up, "solve_start_offset, fabric at rest: the whole move", type);
+  expect(solve_start_offset(up, zero, R(8), params) == up * R(-0.75),
+         "solve_start_offset, fabric falling at rho 4 times the bound: a quarter of the share", type);
+  params.folded_chord = R(0.95);
+  expect(folded_chord_at(R(1), params) == R(0.95), "folded_chord_at, fabric below the bound: its own", type);
+  expect(folded_chord_at(R(8), params) > R(0.97), "folded_chord_at, fabric at rho 4 times the bound: near 0.99", type);
+  params.adaptive_rho = R(0);
   params.max_move = R(0.5);
   expect(speed_clamped(up, params) == up * R(0.5), "speed_clamped to max_move", type);
   expect(limit_step(e, R(1)) == e * R(0.2), "limit_step", type);

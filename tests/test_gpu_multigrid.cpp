@@ -35,6 +35,19 @@ TEST_CASE("each multigrid pass matches the reference from an identical state on 
   CHECK_NO_GL_ERRORS();
 }
 
+// fabric's adaptive start and fold threshold take their other branch where a mass is stiff for
+// its inertia (adaptive_share, folded_chord_at: rho = ks dt^2 / m above kAdaptiveStartRho).
+TEST_CASE("each fabric pass matches the reference on a 33x17 cloth stiff for its masses (rho above the start's bound)",
+          "[gpu]") {
+  REQUIRE_GL_CONTEXT();
+  const Scene scene = pressed_cloth(33, 17, {"simulation.solver=\"fabric\"", "cloth.ks=3e9"});
+  const ClothModel model = build_cloth(scene);
+  const Constants<float> c = make_constants<float>(scene, model);
+  REQUIRE(double(c.particle_ks[0]) * double(c.dt2) / double(c.mass[0]) > 4 * kAdaptiveStartRho);
+  check_multigrid_passes(scene, kWarmupFrames);
+  CHECK_NO_GL_ERRORS();
+}
+
 TEST_CASE("each multigrid pass matches the reference on the two-cloth mesh scene (self-collision, a sphere)", "[gpu]") {
   REQUIRE_GL_CONTEXT();
   check_multigrid_passes(load_scene(test::source_path("scenes/two_cloths.json"), {"simulation.solver=\"multigrid\""}), 2);

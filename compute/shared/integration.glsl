@@ -50,19 +50,44 @@ SHARED_FN VEC3 verlet_move(VEC3 d, REAL keep, VEC3 f, REAL w, PARAMS params) {
 // Where the multigrid solve starts, as its offset x - y from the prediction y (predict.comp and
 // the reference's predict; docs/solvers.md, "The fabric solver"). multigrid: back by the whole
 // external move u = acc dt^2, which its solve then applies with the springs, so a cloth at rest
-// starts where it rests. fabric (adaptive_start): back by the share of u that the mass did not
+// starts where it rests. fabric (adaptive_rho > 0): back by the share of u that the mass did not
 // take in the substep before, read from that substep's offset `last` (x - y at its end, so
 // last + u is its move beyond inertia): a falling or buckling mass starts at y, with all of it,
 // a resting one where it rests, with none (the adaptive start of Chen et al. 2024, VBD).
-SHARED_FN VEC3 solve_start_offset(VEC3 acc, VEC3 last, PARAMS params) {
+// Where the mass is stiff for its inertia, rho = ks dt^2 / m above params.adaptive_rho, that
+// share is scaled by adaptive_share: one V-cycle and one sweep do not take back a whole
+// substep's fall there, and a start that hands them one tears the cloth at the pins (the 513²
+// hang at rho 1,200: docs/solvers.md). `stiffness_per_mass` is ks / m (ks w).
+// a * (1 / b), not a / b here: GLSL may compute a quotient as that product, the reference must too.
+SHARED_FN REAL adaptive_share(REAL stiffness_per_mass, PARAMS params) {
+  PRECISE REAL rho = stiffness_per_mass * params.dt2;
+  PRECISE REAL ratio = params.adaptive_rho * (REAL(1) / rho);
+  PRECISE REAL scaled = ratio * ratio;
+  return rho > params.adaptive_rho ? scaled : REAL(1);
+}
+
+SHARED_FN VEC3 solve_start_offset(VEC3 acc, VEC3 last, REAL stiffness_per_mass, PARAMS params) {
   PRECISE VEC3 u = acc * params.dt2;
   REAL uu = dot3(u, u);
-  if (params.adaptive_start == 0u || !(uu > REAL(0))) return -u;
+  if (!(params.adaptive_rho > REAL(0)) || !(uu > REAL(0))) return -u;
   PRECISE VEC3 taken_move = last + u;
-  // a * (1 / b), not a / b: GLSL may compute a quotient as that product, the reference must too.
   REAL taken = min(max(dot3(taken_move, u) * (REAL(1) / uu), REAL(0)), REAL(1));
-  PRECISE VEC3 back = u * (REAL(1) - taken);
+  PRECISE REAL share = taken * adaptive_share(stiffness_per_mass, params);
+  PRECISE VEC3 back = u * (REAL(1) - share);
   return -back;
+}
+
+// The fold threshold at a coarse vertex whose particle has `stiffness_per_mass` (ks w):
+// params.folded_chord where fabric's start keeps its whole share, moving towards multigrid's
+// 99 % as the share drops (adaptive_share). A slack chord's vertex left free in the coarse
+// problem steers its correction by a chord that says nothing of the buckled cloth; where the
+// coarse problem carries most of the stiffness (high rho) that correction tears the cloth (the
+// 513² hang at 95 %), where it carries little the free vertex lets a swing swing (docs/solvers.md).
+// Multigrid (folded_chord 0.99, adaptive_rho 0): 0.99.
+SHARED_FN REAL folded_chord_at(REAL stiffness_per_mass, PARAMS params) {
+  REAL share = params.adaptive_rho > REAL(0) ? adaptive_share(stiffness_per_mass, params) : REAL(1);
+  PRECISE REAL chord = params.folded_chord + (REAL(0.99) - params.folded_chord) * (REAL(1) - share * share);
+  return chord;
 }
 
 SHARED_FN VEC3 predicted_move(VEC3 d, REAL keep, VEC3 acc, VEC3 warm, REAL w, PARAMS params) {

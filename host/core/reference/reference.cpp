@@ -216,11 +216,13 @@ Constants<R> make_constants(const Scene& scene, const ClothModel& model, std::sh
   }
   // From the scene, so a live density edit takes effect.
   for (double m : particle_masses(scene, model)) c.mass.push_back(R(m));
+  for (uint32_t i = 0; i < uint32_t(model.count()); ++i) c.particle_ks.push_back(c.materials[model.material[i]].ks);
   c.xpbd = sp.solver != Solver::Classic;
   c.multigrid = sp.solver == Solver::Multigrid || sp.solver == Solver::Fabric;
   // Where the multigrid solve starts (shared/integration.glsl, solve_start_offset): multigrid less
-  // the external forces' move, fabric where the last substep's acceleration says.
-  c.adaptive_start = sp.solver == Solver::Fabric ? 1u : 0u;
+  // the external forces' move, fabric where the last substep's move says (scaled down where a
+  // mass is stiffer for its inertia than kAdaptiveStartRho).
+  c.adaptive_rho = R(sp.solver == Solver::Fabric ? kAdaptiveStartRho : 0.0);
   c.sweep_friction = sp.solver == Solver::Fabric ? 1u : 0u;  // relax_vertices' push-out
   c.folded_chord = R(sp.solver == Solver::Fabric ? kFoldedChordFabric : kFoldedChordMultigrid);
   c.inv_dt2 = R(1.0 / (dt * dt));

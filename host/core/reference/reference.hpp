@@ -98,6 +98,7 @@ template <class R> struct Constants : layout::StepParamsT<R> {
   std::vector<Vec3<R>> rest;
   std::vector<MaterialC<R>> materials;  // by cloth, Scene::cloths() order
   std::vector<R> mass;  // kg, per particle (particle_masses: follows a live density edit)
+  std::vector<R> particle_ks;  // N/m, per particle: its cloth's ks (fabric's fold threshold)
   int iterations;
   int stretch_passes = 0;  // xpbd, multigrid: enforce_stretch_limit's passes after the sweep
   // xpbd, multigrid: enforce_stretch_limit's passes in all, the settling ones included (not above
@@ -292,6 +293,10 @@ inline constexpr double kContactReach = 1e-3;
 // its pins (docs/solvers.md).
 inline constexpr double kFoldedChordMultigrid = 0.99;
 inline constexpr double kFoldedChordFabric = 0.95;
+// fabric's adaptive start takes its whole share up to a mass's rho = ks dt^2 / m of this, and
+// rho_c / rho of it above (solve_start_offset): the 257² hang (rho 300) rests with the whole
+// share, the 513² one (rho 1,200) tore with half of it and rests with a quarter (docs/solvers.md).
+inline constexpr double kAdaptiveStartRho = 300.0;
 inline constexpr int kCoarsestSweeps = 4;  // on the coarsest level (solve_coarsest)
 // A level of at most this many vertices, and every level below it, is small: the GPU runs
 // their part of the cycle in one workgroup (cycle_small_levels), where a dispatch and a

@@ -125,7 +125,7 @@ template <class R> void predict(const ClothModel& m, const Constants<R>& c, Stat
     // and applies it with the springs, so a cloth at rest starts where it rests and stays
     // exactly there (docs/model.md). The contacts still see the full prediction (Coulomb
     // friction takes its depth from it); prolong_to_cloth moves the masses by the offset.
-    if (c.multigrid) s.offset[i] = Vec4<R>(shared::solve_start_offset(acc, Vec3<R>(s.offset[i]), c), R(0));
+    if (c.multigrid) s.offset[i] = Vec4<R>(shared::solve_start_offset(acc, Vec3<R>(s.offset[i]), c.particle_ks[i] * w, c), R(0));
     // The tether to the nearest pin: xpbd's, whose sweep alone cannot carry the pins' pull
     // across a fine cloth; the multigrid solve does (docs/solvers.md), and takes none.
     if (const int pin = c.multigrid ? -1 : m.tether_pin[i]; pin >= 0) {

@@ -9,6 +9,7 @@
 #include "reference/reference_detail.hpp"
 #include "reference/reference_skinning.hpp"
 #include "../../../compute/shared/collisions.glsl"
+#include "../../../compute/shared/integration.glsl"
 #include "../../../compute/shared/springs.glsl"
 
 #include <algorithm>
@@ -83,9 +84,11 @@ template <class R> bool touches_colliders(const Constants<R>& c, const Vec3<R>& 
 // the cloth there, and the local sweep does well where the cloth is slack: such a vertex is
 // fixed in the coarse problem, which carries tension where the cloth is taut.
 template <class R> bool folded(const Hierarchy& h, const Constants<R>& c, const State<R>& s, uint32_t g) {
-  const Vec3<R> p(s.pos[h.particle[g]]);
+  const uint32_t i = h.particle[g];
+  const Vec3<R> p(s.pos[i]);
+  const R chord = shared::folded_chord_at(c.particle_ks[i] * s.pos[i].w, c);
   for (uint32_t k = h.spring_start[g]; k < h.spring_start[g + 1]; ++k)
-    if (length3(Vec3<R>(s.pos[h.particle[h.spring_other[k]]]) - p) < c.folded_chord * R(h.spring_rest[k])) return true;
+    if (length3(Vec3<R>(s.pos[h.particle[h.spring_other[k]]]) - p) < chord * R(h.spring_rest[k])) return true;
   return false;
 }
 
