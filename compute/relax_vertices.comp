@@ -15,6 +15,22 @@ layout(std430, binding = BINDING_POSITIONS) writeonly buffer Positions { vec4 po
 layout(std430, binding = BINDING_DISPLACEMENT) writeonly buffer Displacements { vec4 disp[]; };
 layout(std430, binding = BINDING_MG_OFFSET) writeonly buffer Offsets { vec4 offset[]; };
 
+// A correction must not push a mass into a collider or through a plane (as in xpbd's sweep);
+// with Coulomb friction under fabric (params.sweep_friction), as the prediction's contacts are.
+// Inline, in this dispatch (the mass's own state only, and no mass of the colour reads
+// another's), as a loop of one trip or none rather than an if: llvmpipe runs an if's body for
+// every lane, taken or not, but skips a loop that no lane of the batch enters, so a batch with
+// no mass near a collider pays only may_collide_pair_after's test (the contact list's reason,
+// compute/contact_list.glsl, without its dispatch after each colour). u_count (at least 1) is
+// the bound, not 1, so that the compiler cannot see the loop has one trip and make it an if.
+void push_out(int i, inout vec3 x, inout vec3 d, float clearance) {
+  bool push = may_collide_pair_after(i, x, d, clearance, i, x, d, clearance, params.sweep_friction != 0u).x;
+  for (uint trip = 0u; trip < (push ? u_count : 0u); trip = u_count) {
+    g_self = i;
+    collide_with_objects_friction(x, d, params.sweep_friction != 0u);
+  }
+}
+
 void main() {
   if (gl_GlobalInvocationID.x >= u_count) return;
   int i = int(texelFetch(mg_order_view, int(u_first + gl_GlobalInvocationID.x)).x);
@@ -82,18 +98,7 @@ void main() {
     x = x + corr;
     d = d + corr;
   }
-  // A correction must not push a mass into a collider or through a plane (as in xpbd's sweep);
-  // with Coulomb friction under fabric (params.sweep_friction), as the prediction's contacts
-  // are. Inline, in this dispatch (the mass's own state only, and no mass of the colour reads
-  // another's), as a loop of one trip or none rather than an if: llvmpipe runs an if's body
-  // for every lane, taken or not, but skips a loop that no lane of the batch enters, so a
-  // batch with no mass near a collider pays only may_collide_pair_after's test (the contact
-  // list's reason, compute/contact_list.glsl, without its dispatch after each colour).
-  bool push = has_colliders() && may_collide_pair_after(i, x, d, moved.w, i, x, d, moved.w, params.sweep_friction != 0u).x;
-  for (uint trip = 0u; trip < (push ? u_count : 0u); trip = u_count) {
-    g_self = i;
-    collide_with_objects_friction(x, d, params.sweep_friction != 0u);
-  }
+  if (has_colliders()) push_out(i, x, d, moved.w);
   // Only xyz, every w unchanged (as in prolong_to_cloth).
   pos[i].xyz = x;
   disp[i].xyz = d;

@@ -129,8 +129,10 @@ template <class R> void exercise(const char* type) {
   params.adaptive_rho = R(2);
   expect(length3(solve_start_offset(up, zero, R(1), params)) == R(0), "solve_start_offset, fabric falling: none", type);
   expect(solve_start_offset(up, -up, R(1), params) == -up, "solve_start_offset, fabric at rest: the whole move", type);
-  expect(solve_start_offset(up, zero, R(8), params) == up * R(-0.75),
-         "solve_start_offset, fabric falling at rho 4 times the bound: a quarter of the share", type);
+  expect(adaptive_share(R(1), params) == R(1) && adaptive_share(R(8), params) == R(0.0625),
+         "adaptive_share: whole below the bound, (bound / rho)^2 above", type);
+  expect(solve_start_offset(up, zero, R(8), params) == up * R(-0.9375),
+         "solve_start_offset, fabric falling at rho 4 times the bound: a 16th of the share", type);
   params.folded_chord = R(0.95);
   expect(folded_chord_at(R(1), params) == R(0.95), "folded_chord_at, fabric below the bound: its own", type);
   expect(folded_chord_at(R(8), params) > R(0.97), "folded_chord_at, fabric at rho 4 times the bound: near 0.99", type);

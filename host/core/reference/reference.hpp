@@ -293,9 +293,8 @@ inline constexpr double kContactReach = 1e-3;
 // its pins (docs/solvers.md).
 inline constexpr double kFoldedChordMultigrid = 0.99;
 inline constexpr double kFoldedChordFabric = 0.95;
-// fabric's adaptive start takes its whole share up to a mass's rho = ks dt^2 / m of this, and
-// rho_c / rho of it above (solve_start_offset): the 257² hang (rho 300) rests with the whole
-// share, the 513² one (rho 1,200) tore with half of it and rests with a quarter (docs/solvers.md).
+// fabric's adaptive start takes its whole share up to a mass's rho = ks dt^2 / m of this, less
+// above (adaptive_share, folded_chord_at: the 513² hang at rho 1,200 tore; docs/solvers.md).
 inline constexpr double kAdaptiveStartRho = 300.0;
 inline constexpr int kCoarsestSweeps = 4;  // on the coarsest level (solve_coarsest)
 // A level of at most this many vertices, and every level below it, is small: the GPU runs
