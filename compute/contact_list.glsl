@@ -73,5 +73,4 @@ void list_ends_if_collider_may_move(int i, vec3 xi, vec3 di, float ci, int j, ve
   if (may.y && free.y) list_contact(j);
 }
 
-
 #endif
