@@ -208,8 +208,8 @@ void collide_with_mesh(int k, bool friction, inout vec3 x, inout vec3 d) {
       n = along;
     }
   }
-  respond_to_contact(friction && COULOMB_FRICTION, t_minus_x, n, friction ? m.keep : 1.0, m.mu, m.motion,
-                     x, d);
+  bool held = takes_friction(friction, g_friction_still_only, m.motion);
+  respond_to_contact(held && COULOMB_FRICTION, t_minus_x, n, held ? m.keep : 1.0, m.mu, m.motion, x, d);
   keep_out_of_mesh(m, x, d);
 }
 

@@ -30,6 +30,7 @@ void main() {
   g_self = i;  // a skinned collider's nearest triangle: searched for by the substep's first
 #ifdef FRICTIONLESS
   // The push-out after a sweep's correction: frictionless but under fabric (params.sweep_friction).
+  g_friction_still_only = true;
   collide_with_objects_friction(x, d, params.sweep_friction != 0u);
 #else
   g_search = true;  // collision (the listed one after advance or predict), reused by the later ones

@@ -10,6 +10,9 @@
 #include "features.glsl"
 
 #include "shared/collisions.glsl"
+// Set by fabric's sweep (relax_vertices, and the push-out after its stretch passes): friction
+// only against colliders that did not move this substep (takes_friction).
+bool g_friction_still_only = false;
 #include "collide_meshes.glsl"
 
 // With `friction` false every contact keeps all of its tangential motion (keep = 1): the pure
@@ -19,8 +22,9 @@ void collide_with_objects_friction(inout vec3 x, inout vec3 d, bool friction) {
   for (int s = 0; s < sphere_count(); ++s) {
     vec4 origin_radius = texelFetch(spheres_view, SPHERE_TEXELS * s);
     vec4 keep_mu = texelFetch(spheres_view, SPHERE_TEXELS * s + 1);
-    float keep = friction ? keep_mu.x : 1.0;
     vec3 m = collider_motion(texelFetch(spheres_view, SPHERE_TEXELS * s + 2).xyz);
+    bool held = takes_friction(friction, g_friction_still_only, m);
+    float keep = held ? keep_mu.x : 1.0;
     float r = origin_radius.w;
     vec3 e = x - origin_radius.xyz;
     float dist = length3(e);
@@ -37,7 +41,7 @@ void collide_with_objects_friction(inout vec3 x, inout vec3 d, bool friction) {
       frame_motion = vec3(0.0);
       t_minus_x = static_sphere_push(e, dist, r, d);
     }
-    respond_to_sphere(friction && COULOMB_FRICTION, origin_radius.xyz, keep, keep_mu.y, frame_motion, t_minus_x, x,
+    respond_to_sphere(held && COULOMB_FRICTION, origin_radius.xyz, keep, keep_mu.y, frame_motion, t_minus_x, x,
                       d);
     keep_out_of_sphere(origin_radius.xyz, r, x, d);
   }
@@ -48,8 +52,9 @@ void collide_with_objects_friction(inout vec3 x, inout vec3 d, bool friction) {
     vec3 m = collider_motion(motion_mu.xyz);
     vec3 n = normal_keep.xyz;
     float front = point_front.w;
-    bool coulomb = friction && COULOMB_FRICTION;
-    if (!friction) normal_keep.w = 1.0;
+    bool coulomb = friction && COULOMB_FRICTION;  // the contact test's (resting contact)
+    bool held = takes_friction(friction, g_friction_still_only, m);
+    if (!held) normal_keep.w = 1.0;
     // The classic crossing test (in the plane's frame, x_prev - p_prev = (x - p) - (d - m), so a
     // sweep is seen at any speed), and a mass found behind the front at both ends of the
     // substep is lifted to the front (docs/model.md); with Coulomb friction a mass within the
@@ -58,7 +63,7 @@ void collide_with_objects_friction(inout vec3 x, inout vec3 d, bool friction) {
     bool crossed = plane_sides(x, d, point_front.xyz, n, m, dist, dist_prev);
     if (!crossed && stays_in_front(dist, front, coulomb)) continue;
     float side = plane_side(crossed, dist_prev, front);
-    respond_to_plane(coulomb, n, front, normal_keep.w, motion_mu.w, m, dist, side, x, d);
+    respond_to_plane(held && COULOMB_FRICTION, n, front, normal_keep.w, motion_mu.w, m, dist, side, x, d);
     // The blend of a mass found behind starts from x_prev, behind too: it can end behind.
     if (side == front) keep_in_front_of_plane(point_front.xyz, n, front, x, d);
   }

@@ -27,6 +27,7 @@ void push_out(int i, inout vec3 x, inout vec3 d, float clearance) {
   bool push = may_collide_pair_after(i, x, d, clearance, i, x, d, clearance, params.sweep_friction != 0u).x;
   for (uint trip = 0u; trip < (push ? u_count : 0u); trip = u_count) {
     g_self = i;
+    g_friction_still_only = true;
     collide_with_objects_friction(x, d, params.sweep_friction != 0u);
   }
 }

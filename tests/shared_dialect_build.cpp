@@ -40,6 +40,9 @@ template <class R> void exercise(const char* type) {
   blend_to_moving(up, R(1), up, x, d);
   coulomb_respond(up, up, R(0.5), zero, x, d);
   respond_to_contact(true, up, up, R(1), R(0.5), zero, x, d);
+  expect(takes_friction(true, true, zero) && !takes_friction(true, true, up) && takes_friction(true, false, up) &&
+             !takes_friction(false, false, zero),
+         "takes_friction: in fabric's sweep only against a collider that did not move", type);
   t = sphere_push(e, R(5), R(6), e);
   expect(t == e * R(0.2), "sphere_push out along e", type);
   t = moving_sphere_push(e, R(5), R(6), zero, zero) + static_sphere_push(e, R(5), R(6), zero);

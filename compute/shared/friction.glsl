@@ -53,6 +53,16 @@ SHARED_FN void coulomb_respond(VEC3 t_minus_x, VEC3 n, REAL mu, VEC3 m, INOUT(VE
   d = next_d;
 }
 
+// Whether a contact takes friction: always where `friction`, but in fabric's sweep
+// (`still_only`) only against a collider that did not move this substep (m = 0). There the
+// push-out's depth is mostly the local solve pulling a mass the collider pushed back towards its
+// neighbours, which have not followed yet, not a normal force: friction on it held the cloth to a
+// moving sphere far beyond Coulomb (sphere_sweep's largest stretch 6.9, against 1.36 when the
+// model is integrated at 400 substeps; docs/solvers.md, "A fast collider").
+SHARED_FN bool takes_friction(bool friction, bool still_only, VEC3 m) {
+  return friction && !(still_only && nonzero3(m));
+}
+
 // A contact's response along the outward normal n: xpbd's Coulomb friction when `coulomb`,
 // else the CS184 blend keeping `keep` (1: no friction), in the collider's frame when it moves
 // by m.

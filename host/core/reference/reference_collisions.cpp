@@ -53,8 +53,8 @@ template <class R> void resolve_self_contacts(const Constants<R>& c, State<R>& s
 // keeps all of its tangential motion (keep = 1): the pure push-out of xpbd's constraint pass.
 // The formulas are compute/shared/collisions.glsl's.
 template <class R> void collide_particle(const Constants<R>& c, Vec3<R>& x, Vec3<R>& d, bool friction, uint32_t* slots,
-                                         bool search) {
-  const bool coulomb = friction && c.xpbd;
+                                         bool search, bool still_only) {
+  const bool coulomb = friction && c.xpbd;  // the plane's contact test (resting contact)
   for (const SphereColliderT<R>& sp : c.control.spheres) {
     const Vec3<R> origin(sp.origin_radius), motion(sp.motion);
     const R radius = sp.origin_radius.w, keep = sp.keep.x, mu = sp.keep.y;
@@ -69,7 +69,8 @@ template <class R> void collide_particle(const Constants<R>& c, Vec3<R>& x, Vec3
     } else {
       t_minus_x = static_sphere_push(e, dist, radius, d);
     }
-    respond_to_sphere(coulomb, origin, friction ? keep : R(1), mu, motion, t_minus_x, x, d);
+    const bool held = shared::takes_friction(friction, still_only, motion);
+    respond_to_sphere(held && c.xpbd, origin, held ? keep : R(1), mu, motion, t_minus_x, x, d);
     keep_out_of_sphere(origin, radius, x, d);
   }
   for (const PlaneColliderT<R>& pl : c.control.planes) {
@@ -85,12 +86,14 @@ template <class R> void collide_particle(const Constants<R>& c, Vec3<R>& x, Vec3
     const bool crossed = plane_sides(x, d, point, normal, motion, dist, dist_prev);
     if (!crossed && stays_in_front(dist, front, coulomb)) continue;
     const R side = plane_side(crossed, dist_prev, front);
-    respond_to_plane(coulomb, normal, front, friction ? keep : R(1), mu, motion, dist, side, x, d);
+    const bool held = shared::takes_friction(friction, still_only, motion);
+    respond_to_plane(held && c.xpbd, normal, front, held ? keep : R(1), mu, motion, dist, side, x, d);
     if (side == front) keep_in_front_of_plane(point, normal, front, x, d);
   }
   MeshColliderT<R> frame;  // a skinned collider's, at this mass
   for (const MeshColliderT<R>& m : c.control.meshes)
-    if (const MeshColliderT<R>* at = mesh_at(c, m, x, d, frame, slots, search)) collide_with_mesh(c, *at, friction, x, d);
+    if (const MeshColliderT<R>* at = mesh_at(c, m, x, d, frame, slots, search))
+      collide_with_mesh(c, *at, shared::takes_friction(friction, still_only, Vec3<R>(at->motion)), x, d);
 }
 
 template <class R> void keep_out_of_colliders(const Constants<R>& c, Vec3<R>& x, Vec3<R>& d, uint32_t* slots) {
@@ -115,7 +118,7 @@ template <class R> void collide_objects(const Constants<R>& c, State<R>& s) {
   template void collide_self<R>(const Constants<R>&, State<R>&); \
   template void resolve_self_contacts<R>(const Constants<R>&, State<R>&); \
   template void collide_objects<R>(const Constants<R>&, State<R>&); \
-  template void collide_particle<R>(const Constants<R>&, Vec3<R>&, Vec3<R>&, bool, uint32_t*, bool); \
+  template void collide_particle<R>(const Constants<R>&, Vec3<R>&, Vec3<R>&, bool, uint32_t*, bool, bool); \
   template void keep_out_of_colliders<R>(const Constants<R>&, Vec3<R>&, Vec3<R>&, uint32_t*);
 CLOTHSIM_INSTANTIATE(float)
 CLOTHSIM_INSTANTIATE(double)

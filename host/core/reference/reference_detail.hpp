@@ -11,9 +11,11 @@ namespace clothsim {
 // `friction` false every contact keeps all of its tangential motion (keep = 1): the pure
 // push-out of xpbd's constraint pass.
 // `slots`, `search`: the mass's nearest skinned triangles, found anew (the substep's first
-// collision) or reused (reference_skinning.hpp, mesh_at).
+// collision) or reused (reference_skinning.hpp, mesh_at). `still_only`: fabric's sweep, whose
+// friction holds only against colliders that did not move this substep (shared::takes_friction;
+// g_friction_still_only in compute/collide_objects.glsl).
 template <class R> void collide_particle(const Constants<R>& c, Vec3<R>& x, Vec3<R>& d, bool friction,
-                                         uint32_t* slots = nullptr, bool search = false);
+                                         uint32_t* slots = nullptr, bool search = false, bool still_only = false);
 // A mass deeper than 0.1 mm inside a sphere, or behind a plane's front, goes back to the
 // surface (a plane's: its surface offset on the front), without friction; otherwise nothing.
 template <class R> void keep_out_of_colliders(const Constants<R>& c, Vec3<R>& x, Vec3<R>& d, uint32_t* slots = nullptr);

@@ -243,9 +243,10 @@ template <class R> void relax_vertices(const ClothModel& m, const Constants<R>& 
       d = d + corr;
     }
     // A correction must not push a mass into a collider or through a plane (as in xpbd's sweep).
-    // fabric: with Coulomb friction, so the sweep's own moves along a surface are held as the
-    // prediction's are (without it a drape creeps off a sphere: 22 mm over frames 90-300).
-    if (c.has_colliders()) collide_particle(c, x, d, c.sweep_friction != 0u, skin_slots(c, s, i));
+    // fabric: with Coulomb friction against colliders that did not move this substep, so the
+    // sweep's own moves along a surface are held as the prediction's are (without it a drape
+    // creeps off a sphere: 22 mm over frames 90-300); none against a moving one (takes_friction).
+    if (c.has_colliders()) collide_particle(c, x, d, c.sweep_friction != 0u, skin_slots(c, s, i), false, true);
     s.pos[i] = Vec4<R>(x, wi);
     s.disp[i] = Vec4<R>(d, R(0));
     s.offset[i] = Vec4<R>(off, R(0));
