@@ -95,10 +95,13 @@ TEST_CASE("save and resume is bitwise on a moving scene (living: wind, gusts, a 
   check_resumes_bitwise<float>(s, 12);
 }
 
-TEST_CASE("save and resume is bitwise on a windy xpbd scene (flag_pole) and on hang_xpbd", "[checkpoint][long]") {
+TEST_CASE("save and resume is bitwise on a windy fabric scene (flag_pole), on hang_xpbd and on it under xpbd",
+          "[checkpoint][long]") {
   check_resumes_bitwise<double>(scene_file("flag_pole"), 6);
   check_resumes_bitwise<double>(scene_file("hang_xpbd"), 10);
   check_resumes_bitwise<float>(scene_file("hang_xpbd"), 10);
+  // xpbd's carried multipliers are state too.
+  check_resumes_bitwise<float>(scene_file("hang_xpbd", {"simulation.solver=\"xpbd\""}), 10);
 }
 
 // fabric's predict reads the multigrid solve's offsets of the substep before: version 4 saves

@@ -85,12 +85,15 @@ void check_gpu_resumes_bitwise(const Scene& s, int n) {
 
 }  // namespace
 
-TEST_CASE("GPU: save and resume is bitwise on living (moving sphere and pins, gusts), flag_pole (wind, xpbd) and hang_xpbd",
+TEST_CASE("GPU: save and resume is bitwise on living (moving sphere and pins, gusts), flag_pole (wind, fabric) and hang_xpbd",
           "[gpu][checkpoint][long]") {
   REQUIRE_GL_CONTEXT();
   SECTION("living") { check_gpu_resumes_bitwise(gpu_scene_file("living"), 10); }
   SECTION("flag_pole") { check_gpu_resumes_bitwise(gpu_scene_file("flag_pole"), 4); }
   SECTION("hang_xpbd") { check_gpu_resumes_bitwise(gpu_scene_file("hang_xpbd"), 8); }
+  SECTION("hang_xpbd under xpbd") {
+    check_gpu_resumes_bitwise(gpu_scene_file("hang_xpbd", {"simulation.solver=\"xpbd\""}), 8);
+  }
   CHECK_NO_GL_ERRORS();
 }
 

@@ -152,9 +152,10 @@ TEST_CASE("the passes compile in what each scene can reach, and no more", "[gpu]
   // spheres, planes, meshes, a collider moves, Coulomb friction, pins move, multigrid, wind, attachments, skinned
   CHECK(features("living") == ShaderFeatures{true, true, false, true, false, true, false, true, false, false});
   CHECK(features("pinned2") == ShaderFeatures{false, false, false, false, false, false, false, false, false, false});
-  CHECK(features("hang_xpbd") == ShaderFeatures{false, false, false, false, true, false, false, false, false, false});
-  CHECK(features("hang_xpbd", {"simulation.solver=multigrid"}) ==
-        ShaderFeatures{false, false, false, false, true, false, true, false, false, false});  // (multigrid takes xpbd's friction)
-  CHECK(features("flag_pole") == ShaderFeatures{false, false, true, false, true, false, false, true, false, false});
+  CHECK(features("hang_xpbd", {"simulation.solver=xpbd"}) ==
+        ShaderFeatures{false, false, false, false, true, false, false, false, false, false});
+  CHECK(features("hang_xpbd") ==
+        ShaderFeatures{false, false, false, false, true, false, true, false, false, false});  // (fabric takes xpbd's friction)
+  CHECK(features("flag_pole") == ShaderFeatures{false, false, true, false, true, false, true, true, false, false});
   CHECK(features("cape") == ShaderFeatures{true, false, false, true, true, false, true, false, true, false});
 }
