@@ -143,6 +143,21 @@ Hierarchy build_hierarchy(const ClothModel& m, const std::vector<double>& ks) {
           coarse.push_back(u);
         }
     }
+    // No extrapolation: a vertex with one coarse neighbour would take a copy of that parent's
+    // correction. On a grid of even size the MIS leaves the last row and column out, and each
+    // level's overhang beyond its edge doubles (2^l - 1 cells at level l), copied whole from
+    // the edge: a coarse correction that turns or bends there strained the overhang, and in
+    // float a 512² flag falling free tore at its far corner (docs/solvers.md, "Even grids").
+    // Such a vertex becomes coarse too (an odd grid has none).
+    for (uint32_t v : visit) {
+      if (coarse_of[v] >= 0) continue;
+      size_t coarse_neighbours = 0;
+      for (uint32_t u : graph[v]) coarse_neighbours += coarse_of[u] >= 0 ? 1 : 0;
+      if (coarse_neighbours == 1) {
+        coarse_of[v] = int64_t(coarse.size());
+        coarse.push_back(v);
+      }
+    }
     // Not worth a level: the graph hardly coarsens (a cloud of loose particles).
     if (coarse.size() * 5 > n * 4) break;
     // With the MIS in the canonical order the coarse vertices are not ascending: number them in
