@@ -194,3 +194,23 @@ TEST_CASE("fabric: a small mesh disc of real fabric drapes on a sphere, where th
                               "disc.json");
   check_crack_free_run(s, 1.02);
 }
+
+// No extrapolation (docs/model.md, "levels"): a particle or coarse vertex with one parent is that
+// parent. On a grid of even size the MIS left the last row and column out, each level's overhang
+// doubled and took a copy of the edge's correction, and in float a 512² flag of 2 m falling free
+// tore at its far corner (docs/solvers.md, "Even grids").
+TEST_CASE("multigrid hierarchy: no particle or coarse vertex takes a single parent's correction but its own",
+          "[multigrid]") {
+  for (auto [w, h_points] : {std::pair{64, 64}, std::pair{33, 32}, std::pair{48, 17}}) {
+    INFO(w << " x " << h_points);
+    const Scene s = test::make_scene(w, h_points, 0, {"simulation.solver=\"fabric\""});
+    const ClothModel m = build_cloth(s);
+    const Hierarchy h = build_hierarchy(m, {5000.0});
+    REQUIRE(!h.levels.empty());
+    for (int i = 0; i < m.count(); ++i)
+      if (h.fine_parent_start[i + 1] - h.fine_parent_start[i] == 1) CHECK(h.particle[h.fine_parent[h.fine_parent_start[i]]] == uint32_t(i));
+    for (uint32_t g = 0; g < h.coarse_count(); ++g)
+      if (h.parent_start[g + 1] - h.parent_start[g] == 1) CHECK(h.particle[h.parent[h.parent_start[g]]] == h.particle[g]);
+    check_no_cracks(m, h);
+  }
+}
