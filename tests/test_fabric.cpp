@@ -86,6 +86,24 @@ std::vector<double> swing_peaks(int substeps) {
   return peaks;
 }
 
+// scenes/sweep129.json at 33² (its sphere of 0.18 m through the hanging curtain at 5 m/s,
+// friction 0.4; pins every 8th mass of the top row), without self-collision: the largest
+// spring stretch over its first 60 frames (the sphere reaches the cloth at frame 33).
+double sweep_worst_stretch(int substeps) {
+  const Scene s = load_scene(std::filesystem::path(CLOTHSIM_SOURCE_DIR) / "scenes" / "sweep129.json",
+                             {"cloth.num_width_points=33", "cloth.num_height_points=33",
+                              "cloth.pinned=[[0,32],[8,32],[16,32],[24,32],[32,32]]", "simulation.self_collision=false",
+                              "simulation.solver=\"fabric\"", fmt::format("simulation.simulation_steps={}", substeps)});
+  const ClothModel m = build_cloth(s);
+  CpuBackend<float> cpu(s, m);
+  double worst = 0;
+  for (int f = 1; f <= 60; ++f) {
+    cpu.step_frame();
+    worst = std::max(worst, measure(s, m, cpu.snapshot()).max_stretch_ratio);
+  }
+  return worst;
+}
+
 }  // namespace
 
 TEST_CASE("fabric: a swinging cloth keeps its centre of mass's peaks within 5 % of its run at 16x the substeps",
@@ -121,29 +139,6 @@ TEST_CASE("fabric: a cloth hung from two corners rests within 5 % of Newton's sa
 TEST_CASE("fabric: a cloth hung from two corners rests within 5 % of Newton's sag at 65²", "[fabric][slow]") {
   check_sag_against_static(65);
 }
-
-
-namespace {
-
-// scenes/sweep129.json at 33² (its sphere of 0.18 m through the hanging curtain at 5 m/s,
-// friction 0.4; pins every 8th mass of the top row), without self-collision: the largest
-// spring stretch over its first 60 frames (the sphere reaches the cloth at frame 33).
-double sweep_worst_stretch(int substeps) {
-  const Scene s = load_scene(std::filesystem::path(CLOTHSIM_SOURCE_DIR) / "scenes" / "sweep129.json",
-                             {"cloth.num_width_points=33", "cloth.num_height_points=33",
-                              "cloth.pinned=[[0,32],[8,32],[16,32],[24,32],[32,32]]", "simulation.self_collision=false",
-                              "simulation.solver=\"fabric\"", fmt::format("simulation.simulation_steps={}", substeps)});
-  const ClothModel m = build_cloth(s);
-  CpuBackend<float> cpu(s, m);
-  double worst = 0;
-  for (int f = 1; f <= 60; ++f) {
-    cpu.step_frame();
-    worst = std::max(worst, measure(s, m, cpu.snapshot()).max_stretch_ratio);
-  }
-  return worst;
-}
-
-}  // namespace
 
 // The sweep's push-out takes no friction against a collider that moves (shared::takes_friction):
 // with it, the local solve's pull of each pushed mass back towards its neighbours read as a

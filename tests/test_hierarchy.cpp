@@ -208,9 +208,11 @@ TEST_CASE("multigrid hierarchy: no particle or coarse vertex takes a single pare
     const Hierarchy h = build_hierarchy(m, {5000.0});
     REQUIRE(!h.levels.empty());
     for (int i = 0; i < m.count(); ++i)
-      if (h.fine_parent_start[i + 1] - h.fine_parent_start[i] == 1) CHECK(h.particle[h.fine_parent[h.fine_parent_start[i]]] == uint32_t(i));
+      if (h.fine_parent_start[i + 1] - h.fine_parent_start[i] == 1)
+        CHECK(h.particle[h.fine_parent[h.fine_parent_start[i]]] == uint32_t(i));
     for (uint32_t g = 0; g < h.coarse_count(); ++g)
-      if (h.parent_start[g + 1] - h.parent_start[g] == 1) CHECK(h.particle[h.parent[h.parent_start[g]]] == h.particle[g]);
+      if (h.parent_start[g + 1] - h.parent_start[g] == 1)
+        CHECK(h.particle[h.parent[h.parent_start[g]]] == h.particle[g]);
     check_no_cracks(m, h);
   }
 }

@@ -110,8 +110,8 @@ void solve_distance_constraint_colour(const ClothModel& m, const Constants<R>& c
     // FRICTIONLESS): xpbd's sweep runs under fabric only in the pass checks, from a fabric state.
     if (c.has_colliders()) {
       const bool friction = c.sweep_friction != 0u;
-      if (wi != R(0)) collide_particle(c, xi, di, friction, skin_slots(c, s, i), false, true);
-      if (wj != R(0)) collide_particle(c, xj, dj, friction, skin_slots(c, s, j), false, true);
+      if (wi != R(0)) collide_particle(c, xi, di, friction, skin_slots(c, s, i), /*search=*/false, /*still_only=*/true);
+      if (wj != R(0)) collide_particle(c, xj, dj, friction, skin_slots(c, s, j), /*search=*/false, /*still_only=*/true);
     }
     s.pos[i] = Vec4<R>(xi, wi);
     s.pos[j] = Vec4<R>(xj, wj);

@@ -246,7 +246,8 @@ template <class R> void relax_vertices(const ClothModel& m, const Constants<R>& 
     // fabric: with Coulomb friction against colliders that did not move this substep, so the
     // sweep's own moves along a surface are held as the prediction's are (without it a drape
     // creeps off a sphere: 22 mm over frames 90-300); none against a moving one (takes_friction).
-    if (c.has_colliders()) collide_particle(c, x, d, c.sweep_friction != 0u, skin_slots(c, s, i), false, true);
+    if (c.has_colliders()) collide_particle(c, x, d, c.sweep_friction != 0u, skin_slots(c, s, i), /*search=*/false,
+                                           /*still_only=*/true);
     s.pos[i] = Vec4<R>(x, wi);
     s.disp[i] = Vec4<R>(d, R(0));
     s.offset[i] = Vec4<R>(off, R(0));
