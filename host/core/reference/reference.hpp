@@ -294,9 +294,8 @@ inline constexpr double kContactReach = 1e-3;
 inline constexpr double kFoldedChordMultigrid = 0.99;
 inline constexpr double kFoldedChordFabric = 0.95;
 // fabric's adaptive start takes its whole share up to a mass's rho = ks dt^2 / m of this, less
-// above (adaptive_share, folded_chord_at: the 513² hang at rho 1,200 tore; flag512, at rho 300
-// inside, exploded on landing at 300 and lands whole at 250; docs/solvers.md).
-inline constexpr double kAdaptiveStartRho = 250.0;
+// above (adaptive_share, folded_chord_at: the 513² hang at rho 1,200 tore; docs/solvers.md).
+inline constexpr double kAdaptiveStartRho = 300.0;
 inline constexpr int kCoarsestSweeps = 4;  // on the coarsest level (solve_coarsest)
 // A level of at most this many vertices, and every level below it, is small: the GPU runs
 // their part of the cycle in one workgroup (cycle_small_levels), where a dispatch and a
