@@ -111,10 +111,13 @@ Hierarchy build_hierarchy(const ClothModel& m, const std::vector<double>& ks) {
     std::vector<char> taken(n, 0);
     std::vector<int64_t> coarse_of(n, -1);
     std::vector<uint32_t> coarse;
-    auto take = [&](uint32_t v) {
-      if (taken[v]) return;
+    auto make_coarse = [&](uint32_t v) {
       coarse_of[v] = int64_t(coarse.size());
       coarse.push_back(v);
+    };
+    auto take = [&](uint32_t v) {
+      if (taken[v]) return;
+      make_coarse(v);
       taken[v] = 1;
       for (uint32_t u : graph[v]) taken[u] = 1;
     };
@@ -138,10 +141,7 @@ Hierarchy build_hierarchy(const ClothModel& m, const std::vector<double>& ks) {
     for (uint32_t v : visit) {
       if (coarse_of[v] >= 0) continue;
       for (uint32_t u : graph[v])
-        if (coarse_of[u] < 0 && !shares_parent(v, u)) {
-          coarse_of[u] = int64_t(coarse.size());
-          coarse.push_back(u);
-        }
+        if (coarse_of[u] < 0 && !shares_parent(v, u)) make_coarse(u);
     }
     // No extrapolation: a vertex with one coarse neighbour would take a copy of that parent's
     // correction. On a grid of even size the MIS leaves the last row and column out, and each
@@ -153,10 +153,7 @@ Hierarchy build_hierarchy(const ClothModel& m, const std::vector<double>& ks) {
       if (coarse_of[v] >= 0) continue;
       size_t coarse_neighbours = 0;
       for (uint32_t u : graph[v]) coarse_neighbours += coarse_of[u] >= 0 ? 1 : 0;
-      if (coarse_neighbours == 1) {
-        coarse_of[v] = int64_t(coarse.size());
-        coarse.push_back(v);
-      }
+      if (coarse_neighbours == 1) make_coarse(v);
     }
     // Not worth a level: the graph hardly coarsens (a cloud of loose particles).
     if (coarse.size() * 5 > n * 4) break;
