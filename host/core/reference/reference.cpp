@@ -235,7 +235,8 @@ Constants<R> make_constants(const Scene& scene, const ClothModel& model, std::sh
   c.tether_limit = R(1.0 + sp.tether_stretch);
   c.iterations = sp.constraint_iterations;
   c.stretch_passes = c.xpbd ? stretch_passes_for(scene, model) : 0;  // xpbd's sweep and multigrid's alike
-  c.stretch_passes_max = c.xpbd ? std::max(sp.stretch_passes_max, c.stretch_passes) : 0;
+  const bool auto_settling = sp.stretch_passes < 0 && sp.stretch_passes_max < 0 && c.stretch_passes == kAutoStretchPasses;
+  c.stretch_passes_max = c.xpbd ? std::max(auto_settling ? kAutoStretchPassesMax : sp.stretch_passes_max, c.stretch_passes) : 0;
   c.self_collision = sp.self_collision;
   c.bounded_contact = c.xpbd && c.self_collision;
   c.coulomb_friction = c.xpbd;

@@ -256,9 +256,9 @@ const Param<SimulationParams> kSimulation[] = {
          .widget = drag(0.001f, 0.0, 10.0, "%.3f")}),
     row<&SimulationParams::stretch_passes>(
         {.key = "stretch_passes", .lo = -1, .hi = 100, .expected = "-1 (auto) or a pass count in [0, 100]",
-         .meaning = "xpbd and multigrid: passes of the max_stretch limit over every colour after the sweep, so that "
+         .meaning = "xpbd, multigrid and fabric: passes of the max_stretch limit over every colour after the sweep, so that "
                     "the limit holds at the end of the substep (in the sweep a later colour can pull a spring out "
-                    "again); -1: none under xpbd, under multigrid 2 where a cloth's own weight would stretch its "
+                    "again); -1: none under xpbd, under multigrid and fabric 2 where a cloth's own weight would stretch its "
                     "springs past half the limit (density · |gravity| · size / ks > max_stretch / 2), else 1 with "
                     "seams (their weld), else none",
          .widget = drag(0.1f, -1, 20, "%d")}),
@@ -270,10 +270,11 @@ const Param<SimulationParams> kSimulation[] = {
                                           .widget = drag(0.01f, 1e-6, 1e3, "%.2f")}),
     row<&SimulationParams::stretch_passes_max>(
         {.key = "stretch_passes_max", .lo = -1, .hi = 100, .expected = "-1 (no settling passes) or a pass count in [0, 100]",
-         .meaning = "xpbd and multigrid: settling passes of the limit after the stretch_passes ones, up to this many "
+         .meaning = "xpbd, multigrid and fabric: settling passes of the limit after the stretch_passes ones, up to this many "
                     "passes in all, each only while the pass before it found a spring longer than (1 + 2^-16) times "
                     "its limit: the limit holds where one event needs many passes, and a quiet substep pays "
-                    "for none (docs/model.md); -1 or a count not above stretch_passes: none",
+                    "for none (docs/model.md); -1: 16 in all where stretch_passes is auto and gives 2 (a cloth "
+                    "resting on its limit), else none; a count not above stretch_passes: none",
          .widget = drag(0.1f, -1, 40, "%d")}),
 };
 
