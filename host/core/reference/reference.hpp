@@ -250,27 +250,21 @@ template <class R> void predict(const ClothModel& m, const Constants<R>& c, Stat
 template <class R> void solve_distance_constraint_colour(const ClothModel& m, const Constants<R>& c, int colour, State<R>& s);
 template <class R> void solve_distance_constraints(const ClothModel& m, const Constants<R>& c, State<R>& s);
 // simulation.stretch_passes as the solvers run it: the scene's count, or for -1 (auto, the
-// default) none under xpbd and, under multigrid and fabric, kAutoStretchPasses where a cloth is so heavy
-// for its ks that its own weight would stretch its springs past half its limit (density · |g| ·
-// its largest rest extent / ks > max_stretch / 2: the classic app's cloths, whose limit carries
-// them; the sweep's own limit does not hold those, docs/model.md step 7), else none.
+// default) none under xpbd and, under multigrid and fabric, kAutoStretchPasses where a cloth's own
+// weight would stretch its springs past half its limit (density · |g| · its largest rest extent
+// / ks > max_stretch / 2: the classic app's cloths, which rest on their limit; docs/model.md
+// step 7), else none; with stretch_passes_max left at -1 those come with settling passes up to
+// kAutoStretchPassesMax in all (selfCollision under fabric: 1.1017 with the two alone).
 inline constexpr int kAutoStretchPasses = 2;
-// With stretch_passes auto and stretch_passes_max left at -1, a cloth given kAutoStretchPasses
-// also gets settling passes up to this many passes in all: it rests on its limit, and the two
-// fixed passes alone left selfCollision under fabric at 1.1017 against its 1.10 (docs/solvers.md).
-// A settling pass runs only while a spring is over its limit, so a quiet substep pays nothing.
 inline constexpr int kAutoStretchPassesMax = 16;
 int stretch_passes_for(const Scene& scene, const ClothModel& model);
 
-// xpbd and multigrid, after the sweep: stretch_passes passes of Provot's limit alone over every
-// colour (the classic length constraint, solve_length_constraint_colour). In either sweep each
-// spring is limited when its colour (or its end's) is solved, and the colours after it can pull
-// it out again; a pass of the limit alone moves only the springs still over it (docs/model.md).
-// With stretch_passes_max above stretch_passes, settling passes follow, up to that many passes
-// in all: the last fixed pass (or one, with none fixed) is watched, and each settling pass runs
-// only while the pass before it found a spring longer than kStretchSettled times its limit
-// (arm_stretch_pass), so the limit holds where one event needs many passes and a quiet
-// substep runs none.
+// After the sweep (xpbd, multigrid, fabric): stretch_passes passes of Provot's limit alone over
+// every colour (solve_length_constraint_colour): in a sweep a later colour can pull a spring
+// limited earlier out again (docs/model.md). With stretch_passes_max above stretch_passes,
+// settling passes follow, up to that many in all: the last fixed pass (or one, with none fixed)
+// is watched, and each settling pass runs only while the pass before it found a spring longer
+// than kStretchSettled times its limit (arm_stretch_pass), so a quiet substep runs none.
 template <class R> void enforce_stretch_limit(const ClothModel& m, const Constants<R>& c, State<R>& s);
 // A settling pass runs while the pass before it found a spring longer than its limit times
 // kStretchSettled = 1 + 2^-kStretchSettledBits: exact in float and double, and handed to the
@@ -299,9 +293,8 @@ inline constexpr double kContactReach = 1e-3;
 inline constexpr double kFoldedChordMultigrid = 0.99;
 inline constexpr double kFoldedChordFabric = 0.95;
 // fabric's adaptive start takes its whole share up to a mass's rho = ks dt^2 / m of this, less
-// above (adaptive_share, folded_chord_at: the 513² hang at rho 1,200 tore; flag512, at rho 300
-// inside, exploded on landing at 300 and lands whole at 200; at 250 a small mesh disc dropped
-// on a sphere is thrown off; docs/solvers.md).
+// above (adaptive_share, folded_chord_at). The 513² hang (rho 1,200) tore with the whole share,
+// flag512 (rho 300) on landing with the bound at 300; at 250 a small disc slid off (docs/solvers.md).
 inline constexpr double kAdaptiveStartRho = 200.0;
 inline constexpr int kCoarsestSweeps = 4;  // on the coarsest level (solve_coarsest)
 // A level of at most this many vertices, and every level below it, is small: the GPU runs
