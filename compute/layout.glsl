@@ -92,10 +92,9 @@ using uint = uint32_t;
 // The contact list (compute/contact_list.glsl): a ContactListHeader, then a uint per listed
 // mass; on the scan's data point, which the scan binds again before its next use.
 #define BINDING_CONTACT_LIST BINDING_SCAN_DATA
-// Skinned mesh colliders (docs/model.md, "Skinned and animated colliders"): skin_colliders
-// writes the skinned vertices, and fit_collider_boxes the boxes (TEXTURE_SKINNED says where),
-// through the scan's sums point, binding its buffer there before each use as the scan and the settling
-// passes do.
+// Skinned mesh colliders (docs/model.md, "Skinned and animated colliders"): skin_colliders writes the
+// skinned vertices, and fit_collider_boxes the boxes (TEXTURE_SKINNED says where), through the scan's
+// sums point, binding its buffer there before each use as the scan and the settling passes do.
 #define BINDING_SKINNED BINDING_SCAN_SUMS
 // Per particle and skinned collider (particle * skin_meshes + MeshCollider::skin.z), uint: the
 // nearest triangle of its last search, which the substep's later collisions reuse; then the far
@@ -289,7 +288,8 @@ struct ShadowFrame {
   F(UINT, skin_palette)        /* and palette entries (bones) */                            \
   F(UINT, skin_meshes)         /* skinned mesh colliders (BINDING_NEAREST's slots per particle) */ \
   F(UINT, welds)               /* 1 = seams: TEXTURE_REST_POSITIONS' w is each particle's weld (ClothModel::weld) */ \
-  F(REAL, folded_chord)        /* multigrid, fabric: a coarse spring shorter than this share of its rest length is in a fold */
+  F(REAL, folded_chord)        /* multigrid, fabric: a coarse spring shorter than this share of its rest length is in a fold */ \
+  F(REAL, folded_chord_stiff)  /* fabric: the threshold folded_chord moves to as a mass's adaptive share drops (multigrid's) */
 #define STEP_PARAMS_DECLARE(type, name) type name;
 // std140 rounds the block's size up to 16 bytes; alignas makes sizeof agree (for REAL = float:
 // StepParamsT<double> is the double reference's, never uploaded).

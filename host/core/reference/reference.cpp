@@ -225,6 +225,7 @@ Constants<R> make_constants(const Scene& scene, const ClothModel& model, std::sh
   c.adaptive_rho = R(sp.solver == Solver::Fabric ? kAdaptiveStartRho : 0.0);
   c.sweep_friction = sp.solver == Solver::Fabric ? 1u : 0u;  // relax_vertices' push-out
   c.folded_chord = R(sp.solver == Solver::Fabric ? kFoldedChordFabric : kFoldedChordMultigrid);
+  c.folded_chord_stiff = R(kFoldedChordMultigrid);
   c.inv_dt2 = R(1.0 / (dt * dt));
   c.max_move = R(sp.max_speed * dt);  // 0: no speed clamp
   if (c.multigrid) {
