@@ -191,8 +191,11 @@ TEST_CASE("multigrid: stretch_passes hold max_stretch on a cloth that leans on i
 // sweep on a cloth whose own weight would stretch it past half its limit.
 TEST_CASE("stretch_passes auto: 2 under multigrid for the classic app's heavy cloths, none for fabric or xpbd",
           "[multigrid]") {
-  auto passes = [](const std::string& scene, std::vector<std::string> sets) {
-    const Scene s = load_scene(std::filesystem::path(CLOTHSIM_SOURCE_DIR) / "scenes" / (scene + ".json"), sets);
+  auto shipped = [](const std::string& scene, const std::vector<std::string>& sets) {
+    return load_scene(std::filesystem::path(CLOTHSIM_SOURCE_DIR) / "scenes" / (scene + ".json"), sets);
+  };
+  auto passes = [&](const std::string& scene, const std::vector<std::string>& sets) {
+    const Scene s = shipped(scene, sets);
     return stretch_passes_for(s, build_cloth(s));
   };
   const std::string multigrid = "simulation.solver=\"multigrid\"";
@@ -207,8 +210,8 @@ TEST_CASE("stretch_passes auto: 2 under multigrid for the classic app's heavy cl
   CHECK(passes("heap256", {}) == 4);
   CHECK(hanging_cloth(17).simulation.stretch_passes == -1);
   // Settling passes come with the auto ones (kAutoStretchPassesMax), never against the scene's word.
-  auto most = [](const std::string& scene, std::vector<std::string> sets) {
-    const Scene s = load_scene(std::filesystem::path(CLOTHSIM_SOURCE_DIR) / "scenes" / (scene + ".json"), sets);
+  auto most = [&](const std::string& scene, const std::vector<std::string>& sets) {
+    const Scene s = shipped(scene, sets);
     return make_constants<double>(s, build_cloth(s)).stretch_passes_max;
   };
   const std::string fabric = "simulation.solver=\"fabric\"";

@@ -79,11 +79,11 @@ SHARED_FN VEC3 solve_start_offset(VEC3 acc, VEC3 last, REAL stiffness_per_mass, 
 
 // The fold threshold at a coarse vertex whose particle has `stiffness_per_mass` (ks w):
 // params.folded_chord where fabric's start keeps its whole share, moving towards multigrid's
-// 99 % (folded_chord_stiff) as the share drops (adaptive_share). A slack chord's vertex left free in the coarse
-// problem steers its correction by a chord that says nothing of the buckled cloth; where the
-// coarse problem carries most of the stiffness (high rho) that correction tears the cloth (the
-// 513² hang at 95 %), where it carries little the free vertex lets a swing swing (docs/solvers.md).
-// Multigrid (folded_chord 0.99, adaptive_rho 0): 0.99.
+// 99 % (params.folded_chord_stiff) as the share drops (adaptive_share). A slack chord's vertex
+// left free in the coarse problem steers its correction by a chord that says nothing of the
+// buckled cloth; where the coarse problem carries most of the stiffness (high rho) that
+// correction tears the cloth (the 513² hang at 95 %), where it carries little the free vertex
+// lets a swing swing (docs/solvers.md). Multigrid (folded_chord 0.99, adaptive_rho 0): 0.99.
 SHARED_FN REAL folded_chord_at(REAL stiffness_per_mass, PARAMS params) {
   REAL share = params.adaptive_rho > REAL(0) ? adaptive_share(stiffness_per_mass, params) : REAL(1);
   PRECISE REAL chord = params.folded_chord + (params.folded_chord_stiff - params.folded_chord) * (REAL(1) - share * share);
