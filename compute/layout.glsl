@@ -139,7 +139,7 @@ using uint = uint32_t;
 // The multigrid hierarchy (Hierarchy in host/core/cloth/hierarchy.hpp), static over a run, and the views of its scratch.
 #define TEXTURE_MG_VERTICES 27       // RGBA32UI, per coarse vertex + 1: x its particle, y its first child, z its first parent, w its first spring (entries of TEXTURE_MG_LISTS)
 #define TEXTURE_MG_LISTS 28          // RGBA32UI, MultigridEntry: the children, then the parents, the springs, the particles' parents
-#define TEXTURE_MG_FINE 29           // R32UI, per particle + 1: its first parent (an entry of TEXTURE_MG_LISTS)
+#define TEXTURE_MG_FINE 29           // R32UI, per particle + 1: its first parent (an entry of TEXTURE_MG_LISTS); then per particle its fine colour
 #define TEXTURE_MG_ORDER 30          // R32UI: the particles by colour, then every level's coarse vertices by colour
 #define TEXTURE_MG_CORR 31           // RGBA32F, per coarse vertex: BINDING_MG_CORR, read by its neighbours
 #define TEXTURE_MG_OFFSET 32         // RGBA32F, per particle: BINDING_MG_OFFSET, read by the passes after predict

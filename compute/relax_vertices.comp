@@ -1,19 +1,24 @@
 // Reads positions and displacements (through the views) and the offsets; writes positions,
 // displacements and offsets of one colour of particles. One invocation per particle of the
 // colour (entries [u_first, u_first + u_count) of the order): a Newton step of the implicit
-// step's energy on the mass's 3x3 block, f = -m/dt^2 (x - y) + its springs' forces, H = m/dt^2 I
-// + their Hessians; then max_stretch as a hard limit and the colliders' push-out. No spring
+// step's energy on the mass's 3x3 block, f = -m/dt^2 (x - y) + its springs' forces (and, with
+// self-collision, its contacts'), H = m/dt^2 I + their Hessians; then max_stretch as a hard limit
+// and the colliders' push-out. No spring
 // joins two particles of a colour, so the writes never race with a read. The CPU twin is
 // relax_vertices in host/core/reference/reference_multigrid.cpp.
 #include "layout.glsl"
 #include "common.glsl"
 #include "collide_objects.glsl"
 #include "multigrid.glsl"
+#include "spatial_hash.glsl"
+#include "shared/self_contact.glsl"
 
 layout(local_size_x = WORKGROUP_SIZE) in;
 layout(std430, binding = BINDING_POSITIONS) writeonly buffer Positions { vec4 pos[]; };
 layout(std430, binding = BINDING_DISPLACEMENT) writeonly buffer Displacements { vec4 disp[]; };
 layout(std430, binding = BINDING_MG_OFFSET) writeonly buffer Offsets { vec4 offset[]; };
+// The hash collide_self built this substep (its ids; the positions are read as they are now).
+layout(std430, binding = BINDING_CELL_ENTRIES) readonly buffer Entries { uint entries[]; };
 
 // A correction must not push a mass into a collider or through a plane (as in xpbd's sweep);
 // with Coulomb friction under fabric (params.sweep_friction), as the prediction's contacts are.
@@ -29,6 +34,50 @@ void push_out(int i, inout vec3 x, inout vec3 d, float clearance) {
     g_self = i;
     g_friction_still_only = true;
     collide_with_objects_friction(x, d, params.sweep_friction != 0u);
+  }
+}
+
+// Particle i's colour in this sweep (after the per-particle starts of TEXTURE_MG_FINE).
+uint fine_colour_of(int i) { return texelFetch(mg_fine_view, int(particle_count()) + 1 + i).x; }
+
+// The self-contacts of mass i at x with the masses of entries [first, last) (add_self_contact_pull).
+// A mass of i's own colour is being moved by this dispatch: left to resolve_self_contacts.
+void add_contacts(int i, vec3 x, vec4 rest_i, float k, uint first, uint last, inout vec3 f, inout Sym3 hess) {
+  uint colour = fine_colour_of(i);
+  for (uint e = first; e < last; ++e) {
+    int j = int(entries[e]);
+    precise vec3 e3 = x - position_of(j).xyz;
+    float d = length3(e3);
+    if (d >= params.contact_distance || d == 0.0 || fine_colour_of(j) == colour) continue;
+    vec4 rest_j = texelFetch(rest_positions_view, j);
+    if (params.welds != 0u && rest_j.w == rest_i.w) continue;  // a sewn pair
+    precise vec3 rest_e = rest_i.xyz - rest_j.xyz;
+    float keep = min(params.contact_distance, length3(rest_e));
+    if (!(d < keep)) continue;
+    vec3 n;
+    f = add_self_contact_pull(f, e3, d, keep, k, n);
+    add_spring_hessian(hess, n, k, 0.0);
+  }
+}
+
+// Every mass in the buckets of the 27 cells around x, in resolve_self_contacts' order (dz, dy,
+// then the row's three buckets), each bucket once: where two rows' runs of buckets overlap (rows
+// hashed onto each other; in a small table, always) the later skips what an earlier one took.
+// Unlike the push-out, a bucket's masses of other cells are not filtered out by cell: they are
+// far, and the distance test drops them.
+void add_self_contacts(int i, vec3 x, float k, inout vec3 f, inout Sym3 hess) {
+  ivec3 c = cell_of(x);
+  vec4 rest_i = texelFetch(rest_positions_view, i);
+  uint mask = params.table_size - 1u;
+  uint runs[9];
+  for (int r = 0; r < 9; ++r) {
+    runs[r] = (hash_row(c.y + r % 3 - 1, c.z + r / 3 - 1) + uint(c.x - 1)) & mask;
+    for (uint dx = 0u; dx < 3u; ++dx) {
+      uint b = (runs[r] + dx) & mask;
+      bool taken = false;
+      for (int q = 0; q < r; ++q) taken = taken || ((b - runs[q]) & mask) < 3u;
+      if (!taken) add_contacts(i, x, rest_i, k, texelFetch(cell_start_view, int(b)).x, texelFetch(cell_start_view, int(b) + 1).x, f, hess);
+    }
   }
 }
 
@@ -69,6 +118,8 @@ void main() {
     f = add_anchor_pull(f, x, rel.xyz, origin, rel.w);
     add_spring_hessian(hess, vec3(0.0), 0.0, rel.w);
   }
+  // fabric's sweep only (sweep_friction marks it): multigrid keeps the behaviour measured for it.
+  if (params.bounded_contact != 0u && params.sweep_friction != 0u) add_self_contacts(i, x, float(SELF_CONTACT_STIFFNESS) * mat.stiffness.x, f, hess);
   vec3 step;
   uint limit_last = first;
   if (solve3(hess, f, step)) {

@@ -153,6 +153,9 @@ template <class R> void exercise(const char* type) {
   expect(cell_axis(R(-0.5)) == -1, "cell_axis floors", type);
 
   expect(add_self_contact(zero, e, R(5), R(6), R(1)) == e * R(0.2), "add_self_contact", type);
+  V pull_n;
+  expect(add_self_contact_pull(zero, e, R(5), R(6), R(2), pull_n) == e * R(0.4) && pull_n == e * R(0.2),
+         "add_self_contact_pull", type);
   expect(self_contact_scale(2u, true, R(4)) == R(0.5) && self_contact_scale(2u, false, R(4)) == R(0.125),
          "self_contact_scale", type);
   expect(unit_or_up(zero) == up && unit_or_up(e) == e * R(0.2), "unit_or_up", type);

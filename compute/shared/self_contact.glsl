@@ -26,6 +26,20 @@ SHARED_FN REAL self_contact_scale(uint hits, bool bounded, REAL steps) {
   return bounded ? bounded_scale : classic_scale;
 }
 
+// The sweep's self-contact (relax_vertices, fabric and multigrid with self-collision): a penalty
+// spring of stiffness SELF_CONTACT_STIFFNESS times the mass's own ks pushing it out to `keep`
+// from a mass of another colour (docs/model.md, "Self-contact in the sweep"). Its force joins
+// f and its Hessian k n n^T the 3x3 block, so the Newton step weighs the contact against the
+// springs instead of undoing a push-out made before the solve.
+#define SELF_CONTACT_STIFFNESS 10.0
+SHARED_FN VEC3 add_self_contact_pull(VEC3 f, VEC3 e, REAL d, REAL keep, REAL k, OUT(VEC3) n) {
+  PRECISE REAL inv = REAL(1) / d;
+  n = e * inv;
+  PRECISE REAL push = k * (keep - d);
+  PRECISE VEC3 next = f + n * push;
+  return next;
+}
+
 SHARED_END
 
 #endif

@@ -41,6 +41,7 @@ void GpuPasses::ensure_multigrid() {
                         springs_at + h.spring_start[v]});
   std::vector<uint32_t> fine;
   for (uint32_t i = 0; i <= n; ++i) fine.push_back(fine_at + h.fine_parent_start[i]);
+  fine.insert(fine.end(), h.fine_colour.begin(), h.fine_colour.end());  // relax_vertices' self-contacts
   std::vector<uint32_t> order = h.fine_order;
   order.insert(order.end(), h.order.begin(), h.order.end());
   // cycle_small_levels' table after the order (compute/cycle_small_levels.comp): the small

@@ -99,6 +99,9 @@ Hierarchy build_hierarchy(const ClothModel& m, const std::vector<double>& ks) {
   for (uint32_t i = 0; i < particles.size(); ++i) particles[i] = i;
   const double quantum = ordering_quantum(m);
   colour_vertices(spring_graph(m, true), canonical_order(m, quantum, particles), 0, h.fine_order, h.fine_colour_start);
+  h.fine_colour.assign(particles.size(), 0u);
+  for (uint32_t k = 0; k + 1 < h.fine_colour_start.size(); ++k)
+    for (uint32_t e = h.fine_colour_start[k]; e < h.fine_colour_start[k + 1]; ++e) h.fine_colour[h.fine_order[e]] = k;
   uint32_t finer_base = 0;  // global index of the current level's vertex 0 (unused for the cloth)
   bool cloth_level = true;
   h.fine_parent_start.push_back(0);

@@ -24,6 +24,7 @@ struct Hierarchy {
   // The fine sweep (relax_vertices): the cloth's particles coloured so that no spring of any type
   // joins two of one colour; colour k is fine_order[fine_colour_start[k] .. [k + 1]).
   std::vector<uint32_t> fine_colour_start, fine_order;
+  std::vector<uint32_t> fine_colour;  // per particle: its colour in that sweep
   // Per particle, its parents on level 1 (global coarse indices) and their weights (1 / count:
   // a coarse particle's only parent is itself; on a grid, bilinear interpolation).
   std::vector<uint32_t> fine_parent_start, fine_parent;

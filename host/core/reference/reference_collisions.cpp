@@ -4,6 +4,7 @@
 #include "reference/reference_detail.hpp"
 #include "reference/reference_skinning.hpp"
 #include "../../../compute/shared/self_contact.glsl"
+#include "../../../compute/shared/springs.glsl"
 
 namespace clothsim {
 
@@ -47,6 +48,39 @@ template <class R> void resolve_self_contacts(const Constants<R>& c, State<R>& s
     }
   }
   s.pos.swap(s.pos_out);
+}
+
+// relax_vertices.comp's add_self_contacts: mass i's contacts with the masses of other colours in
+// the buckets of the 27 cells around x, each bucket once (a later row skips the buckets of an
+// earlier row's run), with no filter by cell: the distance test drops the far ones.
+template <class R>
+void add_self_contacts(const Constants<R>& c, const State<R>& s, uint32_t i, const Vec3<R>& x, Vec3<R>& f, shared::Sym3<R>& hess) {
+  const R k = R(SELF_CONTACT_STIFFNESS) * c.particle_ks[i];  // as the shader's, from the material's ks
+  const std::vector<uint32_t>& colour = c.hierarchy->fine_colour;
+  const glm::ivec3 cell = cell_of(x, c.inv_cell);
+  const uint32_t mask = s.hash.table_size - 1u;
+  uint32_t runs[9];
+  for (int r = 0; r < 9; ++r) {
+    runs[r] = (hash_row(cell.y + r % 3 - 1, cell.z + r / 3 - 1) + uint32_t(cell.x - 1)) & mask;
+    for (uint32_t dx = 0; dx < 3; ++dx) {
+      const uint32_t b = (runs[r] + dx) & mask;
+      bool taken = false;
+      for (int q = 0; q < r; ++q) taken = taken || ((b - runs[q]) & mask) < 3u;
+      if (taken) continue;
+      for (uint32_t e = s.hash.start[b]; e < s.hash.start[b + 1]; ++e) {
+        const uint32_t j = s.hash.entries[e];
+        const Vec3<R> e3 = x - Vec3<R>(s.pos[j]);
+        const R d = length3(e3);
+        if (d >= c.contact_distance || d == R(0) || colour[j] == colour[i]) continue;
+        if (c.welds && c.weld[i] == c.weld[j]) continue;  // a sewn pair
+        const R keep = std::min(c.contact_distance, length3(c.rest[i] - c.rest[j]));
+        if (!(d < keep)) continue;
+        Vec3<R> n;
+        f = shared::add_self_contact_pull(f, e3, d, keep, k, n);
+        shared::add_spring_hessian(hess, n, k, R(0));
+      }
+    }
+  }
 }
 
 // One particle against every sphere, then every plane, then every mesh. With `friction` false every contact
@@ -117,6 +151,8 @@ template <class R> void collide_objects(const Constants<R>& c, State<R>& s) {
 #define CLOTHSIM_INSTANTIATE(R) \
   template void collide_self<R>(const Constants<R>&, State<R>&); \
   template void resolve_self_contacts<R>(const Constants<R>&, State<R>&); \
+  template void add_self_contacts<R>(const Constants<R>&, const State<R>&, uint32_t, const Vec3<R>&, Vec3<R>&, \
+                                     shared::Sym3<R>&); \
   template void collide_objects<R>(const Constants<R>&, State<R>&); \
   template void collide_particle<R>(const Constants<R>&, Vec3<R>&, Vec3<R>&, bool, uint32_t*, bool, bool); \
   template void keep_out_of_colliders<R>(const Constants<R>&, Vec3<R>&, Vec3<R>&, uint32_t*);

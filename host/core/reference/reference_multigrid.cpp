@@ -217,6 +217,8 @@ template <class R> void relax_vertices(const ClothModel& m, const Constants<R>& 
       f = shared::add_anchor_pull(f, x, Vec3<R>(c.attach[i]), c.attached_origin(i), c.attach[i].w);
       add_spring_hessian(hess, Vec3<R>(0), R(0), c.attach[i].w);
     }
+    if (c.bounded_contact && c.sweep_friction)  // fabric's sweep (docs/model.md, "Self-contact in the sweep")
+      add_self_contacts(c, s, i, x, f, hess);
     Vec3<R> step;
     if (solve3(hess, f, step)) {
       x = x + step;
