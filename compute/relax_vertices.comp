@@ -40,10 +40,10 @@ void push_out(int i, inout vec3 x, inout vec3 d, float clearance) {
 // Particle i's colour in this sweep (after the per-particle starts of TEXTURE_MG_FINE).
 uint fine_colour_of(int i) { return texelFetch(mg_fine_view, int(particle_count()) + 1 + i).x; }
 
-// The self-contacts of mass i at x with the masses of entries [first, last) (add_self_contact_pull).
-// A mass of i's own colour is being moved by this dispatch: left to resolve_self_contacts.
-void add_contacts(int i, vec3 x, vec4 rest_i, float k, uint first, uint last, inout vec3 f, inout Sym3 hess) {
-  uint colour = fine_colour_of(i);
+// The self-contacts of mass i (of `colour`) at x with the masses of entries [first, last)
+// (add_self_contact_pull). A mass of i's own colour is being moved by this dispatch: left to
+// resolve_self_contacts.
+void add_contacts(vec3 x, vec4 rest_i, uint colour, float k, uint first, uint last, inout vec3 f, inout Sym3 hess) {
   for (uint e = first; e < last; ++e) {
     int j = int(entries[e]);
     precise vec3 e3 = x - position_of(j).xyz;
@@ -51,8 +51,7 @@ void add_contacts(int i, vec3 x, vec4 rest_i, float k, uint first, uint last, in
     if (d >= params.contact_distance || d == 0.0 || fine_colour_of(j) == colour) continue;
     vec4 rest_j = texelFetch(rest_positions_view, j);
     if (params.welds != 0u && rest_j.w == rest_i.w) continue;  // a sewn pair
-    precise vec3 rest_e = rest_i.xyz - rest_j.xyz;
-    float keep = min(params.contact_distance, length3(rest_e));
+    float keep = bounded_keep(rest_i.xyz, rest_j.xyz, params.contact_distance);
     if (!(d < keep)) continue;
     vec3 n;
     f = add_self_contact_pull(f, e3, d, keep, k, n);
@@ -68,7 +67,7 @@ void add_contacts(int i, vec3 x, vec4 rest_i, float k, uint first, uint last, in
 void add_self_contacts(int i, vec3 x, float k, inout vec3 f, inout Sym3 hess) {
   ivec3 c = cell_of(x);
   vec4 rest_i = texelFetch(rest_positions_view, i);
-  uint mask = params.table_size - 1u;
+  uint colour = fine_colour_of(i), mask = params.table_size - 1u;
   uint runs[9];
   for (int r = 0; r < 9; ++r) {
     runs[r] = (hash_row(c.y + r % 3 - 1, c.z + r / 3 - 1) + uint(c.x - 1)) & mask;
@@ -76,7 +75,7 @@ void add_self_contacts(int i, vec3 x, float k, inout vec3 f, inout Sym3 hess) {
       uint b = (runs[r] + dx) & mask;
       bool taken = false;
       for (int q = 0; q < r; ++q) taken = taken || ((b - runs[q]) & mask) < 3u;
-      if (!taken) add_contacts(i, x, rest_i, k, texelFetch(cell_start_view, int(b)).x, texelFetch(cell_start_view, int(b) + 1).x, f, hess);
+      if (!taken) add_contacts(x, rest_i, colour, k, texelFetch(cell_start_view, int(b)).x, texelFetch(cell_start_view, int(b) + 1).x, f, hess);
     }
   }
 }

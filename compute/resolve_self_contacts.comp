@@ -52,8 +52,7 @@ Contacts visit_entries(Contacts acc, vec3 xi, vec4 rest_i, ivec3 row, uint first
     // Bounded contact: masses closer at rest than the contact distance (the cloth's own
     // neighbours) are kept only at their rest distance; each of the pair moves half the gap.
     // Read only for a touching pair, so the rest positions cost nothing in the common case.
-    precise vec3 rest_e = rest_i.xyz - rest_j.xyz;
-    float keep = min(contact, length3(rest_e));
+    float keep = bounded_keep(rest_i.xyz, rest_j.xyz, contact);
     if (!(d < keep)) continue;
     acc.sum = add_self_contact(acc.sum, e3, d, keep, 0.5);
     ++acc.hits;

@@ -153,6 +153,7 @@ template <class R> void exercise(const char* type) {
   expect(cell_axis(R(-0.5)) == -1, "cell_axis floors", type);
 
   expect(add_self_contact(zero, e, R(5), R(6), R(1)) == e * R(0.2), "add_self_contact", type);
+  expect(bounded_keep(e, zero, R(6)) == R(5) && bounded_keep(e, zero, R(4)) == R(4), "bounded_keep", type);
   V pull_n;
   expect(add_self_contact_pull(zero, e, R(5), R(6), R(2), pull_n) == e * R(0.4) && pull_n == e * R(0.2),
          "add_self_contact_pull", type);

@@ -26,7 +26,14 @@ SHARED_FN REAL self_contact_scale(uint hits, bool bounded, REAL steps) {
   return bounded ? bounded_scale : classic_scale;
 }
 
-// The sweep's self-contact (relax_vertices, fabric and multigrid with self-collision): a penalty
+// The bounded contact's distance for a pair at rest positions ri, rj: the contact distance, or
+// their rest distance where that is less (the cloth's own neighbours; docs/model.md).
+SHARED_FN REAL bounded_keep(VEC3 ri, VEC3 rj, REAL contact) {
+  PRECISE VEC3 rest_e = ri - rj;
+  return min(contact, length3(rest_e));
+}
+
+// The sweep's self-contact (relax_vertices, fabric's only, with self-collision): a penalty
 // spring of stiffness SELF_CONTACT_STIFFNESS times the mass's own ks pushing it out to `keep`
 // from a mass of another colour (docs/model.md, "Self-contact in the sweep"). Its force joins
 // f and its Hessian k n n^T the 3x3 block, so the Newton step weighs the contact against the

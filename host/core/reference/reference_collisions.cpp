@@ -33,8 +33,7 @@ template <class R> void resolve_self_contacts(const Constants<R>& c, State<R>& s
       }
       // Bounded contact: masses closer at rest than the contact distance (the cloth's own
       // neighbours) are kept only at their rest distance; each of the pair moves half the gap.
-      const R rest = length3(c.rest[i] - c.rest[j]);
-      const R keep = std::min(c.contact_distance, rest);
+      const R keep = shared::bounded_keep(c.rest[i], c.rest[j], c.contact_distance);
       if (!(d < keep)) return;
       sum = shared::add_self_contact(sum, e3, d, keep, R(0.5));
       ++hits;
@@ -57,6 +56,7 @@ template <class R>
 void add_self_contacts(const Constants<R>& c, const State<R>& s, uint32_t i, const Vec3<R>& x, Vec3<R>& f, shared::Sym3<R>& hess) {
   const R k = R(SELF_CONTACT_STIFFNESS) * c.particle_ks[i];  // as the shader's, from the material's ks
   const std::vector<uint32_t>& colour = c.hierarchy->fine_colour;
+  const uint32_t own = colour[i];
   const glm::ivec3 cell = cell_of(x, c.inv_cell);
   const uint32_t mask = s.hash.table_size - 1u;
   uint32_t runs[9];
@@ -71,9 +71,9 @@ void add_self_contacts(const Constants<R>& c, const State<R>& s, uint32_t i, con
         const uint32_t j = s.hash.entries[e];
         const Vec3<R> e3 = x - Vec3<R>(s.pos[j]);
         const R d = length3(e3);
-        if (d >= c.contact_distance || d == R(0) || colour[j] == colour[i]) continue;
+        if (d >= c.contact_distance || d == R(0) || colour[j] == own) continue;
         if (c.welds && c.weld[i] == c.weld[j]) continue;  // a sewn pair
-        const R keep = std::min(c.contact_distance, length3(c.rest[i] - c.rest[j]));
+        const R keep = shared::bounded_keep(c.rest[i], c.rest[j], c.contact_distance);
         if (!(d < keep)) continue;
         Vec3<R> n;
         f = shared::add_self_contact_pull(f, e3, d, keep, k, n);
