@@ -64,11 +64,14 @@ void list_block(bool listed, int i) {
   if (listed) contacts.entries[g_listed_base + slot] = uint(i);
 }
 
-// The same after a sweep's correction (no friction: the push-out) for a spring's two ends, each
-// with the clearance predict left it, a pinned end (`free` false) never listed (xpbd's sweep).
+// The same after a sweep's correction for a spring's two ends, each with the clearance predict
+// left it, a pinned end (`free` false) never listed (xpbd's sweep). The push-out it lists for is
+// frictionless but under fabric (params.sweep_friction: the pass checks run xpbd's sweep from a
+// fabric state), so the test takes that friction too: a mass that friction alone would change
+// must be listed, or the GPU leaves it where the CPU twin, which pushes out every end, moves it.
 // The same bits as the response inline.
 void list_ends_if_collider_may_move(int i, vec3 xi, vec3 di, float ci, int j, vec3 xj, vec3 dj, float cj, bvec2 free) {
-  bvec2 may = may_collide_pair_after(i, xi, di, ci, j, xj, dj, cj, false);
+  bvec2 may = may_collide_pair_after(i, xi, di, ci, j, xj, dj, cj, params.sweep_friction != 0u);
   if (may.x && free.x) list_contact(i);
   if (may.y && free.y) list_contact(j);
 }

@@ -36,7 +36,8 @@ TEST_CASE("a 65 x 65 heap on the GPU has no intersecting triangles at any tenth 
   // heap256 on a 65 x 65 grid, thickness half the spacing (the contact distance one step). With
   // the CS184 contact it ends with 164 intersecting pairs at frame 70 (docs/model.md).
   const Scene scene = load_scene(test::source_path("scenes/heap256.json"),
-                                 {"cloth.num_width_points=65", "cloth.num_height_points=65", "cloth.thickness=0.0078125"});
+                                 {"cloth.num_width_points=65", "cloth.num_height_points=65", "cloth.thickness=0.0078125",
+                                  "simulation.solver=\"xpbd\""});
   const ClothModel model = build_cloth(scene);
   GpuSimulator gpu(scene, model, compute_dir());
   CpuBackend<float> cpu(scene, model);

@@ -24,7 +24,7 @@ Scene small_heap(int n) {
   const double thickness = 0.5 / double(n - 1);
   return load_scene(shipped("heap256.json"),
                     {fmt::format("cloth.num_width_points={}", n), fmt::format("cloth.num_height_points={}", n),
-                     fmt::format("cloth.thickness={:.17g}", thickness)});
+                     fmt::format("cloth.thickness={:.17g}", thickness), "simulation.solver=\"xpbd\""});
 }
 
 // Two free masses of a 2 x 2 cloth placed by hand, at rest, then one resolve_self_contacts (the

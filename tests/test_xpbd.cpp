@@ -135,7 +135,7 @@ TEST_CASE("xpbd: stretch_passes hold max_stretch at every frame of a 65² heap, 
   auto worst_stretch = [](int passes) {
     return test::worst_stretch_over_frames(
         load_scene(std::filesystem::path(CLOTHSIM_SOURCE_DIR) / "scenes" / "heap256.json",
-                   {"cloth.num_width_points=65", "cloth.num_height_points=65",
+                   {"cloth.num_width_points=65", "cloth.num_height_points=65", "simulation.solver=\"xpbd\"",
                     "simulation.stretch_passes=" + std::to_string(passes), "simulation.stretch_passes_max=-1"}),
         60);
   };
@@ -155,7 +155,8 @@ TEST_CASE("xpbd: settling passes hold a tight max_stretch at every frame where f
   auto worst_stretch = [](int most, int frames, uint64_t* settling) {
     return test::worst_stretch_over_frames(
         load_scene(std::filesystem::path(CLOTHSIM_SOURCE_DIR) / "scenes" / "heap256.json",
-                   {"cloth.num_width_points=65", "cloth.num_height_points=65", "simulation.max_stretch=0.02",
+                   {"cloth.num_width_points=65", "cloth.num_height_points=65", "simulation.solver=\"xpbd\"",
+                    "simulation.max_stretch=0.02",
                     "simulation.stretch_passes=2", "simulation.stretch_passes_max=" + std::to_string(most)}),
         frames, settling);
   };
