@@ -34,14 +34,16 @@ SHARED_FN REAL bounded_keep(VEC3 ri, VEC3 rj, REAL contact) {
 }
 
 // The sweep's contact distance for a pair at rest positions ri, rj: `contact`, or 0 (none) for a
-// pair closer at rest than that. bounded_keep keeps such a pair, the cloth's own neighbours, at
-// their rest distance: in the push-out that only undoes a crossing, but as the sweep's penalty
-// it would make every such spring SELF_CONTACT_STIFFNESS times stiffer the moment it shortens,
-// and a crumpling cloth, unable to compress, stretched past its limit (heap256: 1.105 at frame
-// 9, 1.091 without; docs/solvers.md). Their springs and the push-out keep them apart.
+// pair no farther apart at rest than that (in contact at rest: the test heap's neighbours at
+// 65², thickness half the spacing, are at exactly the contact distance). bounded_keep keeps
+// such a pair, the cloth's own neighbours, at their rest distance: in the push-out that only
+// undoes a crossing, but as the sweep's penalty it would make every such spring
+// SELF_CONTACT_STIFFNESS times stiffer the moment it shortens, and a crumpling cloth, unable to
+// compress, stretched past its limit (heap256: 1.105 at frame 9, 1.091 without; docs/model.md).
+// Their springs and the push-out keep them apart.
 SHARED_FN REAL sweep_keep(VEC3 ri, VEC3 rj, REAL contact) {
   PRECISE VEC3 rest_e = ri - rj;
-  return length3(rest_e) < contact ? REAL(0) : contact;
+  return length3(rest_e) <= contact ? REAL(0) : contact;
 }
 
 // The sweep's self-contact (relax_vertices, fabric's only, with self-collision): a penalty
