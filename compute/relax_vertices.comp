@@ -51,10 +51,9 @@ void add_contacts(vec3 x, vec4 rest_i, uint colour, float k, uint first, uint la
     if (d >= params.contact_distance || d == 0.0 || fine_colour_of(j) == colour) continue;
     vec4 rest_j = texelFetch(rest_positions_view, j);
     if (params.welds != 0u && rest_j.w == rest_i.w) continue;  // a sewn pair
-    float keep = sweep_keep(rest_i.xyz, rest_j.xyz, params.contact_distance);
-    if (!(d < keep)) continue;
+    if (!apart_at_rest(rest_i.xyz, rest_j.xyz, params.contact_distance)) continue;  // neighbours
     vec3 n;
-    f = add_self_contact_pull(f, e3, d, keep, k, n);
+    f = add_self_contact_pull(f, e3, d, params.contact_distance, k, n);
     add_spring_hessian(hess, n, k, 0.0);
   }
 }

@@ -42,7 +42,7 @@ add_gpu_command_test("validate passes on pinned2 under multigrid with stretch_pa
 # The fabric solver with self-collision, the CS184 cloth landed in folds on its floor by frame 20:
 # the pass checks and the lock-step run, bitwise. Its thickness raised so that the contact
 # distance (24 mm) exceeds the spacing (20.4 mm): the sweep's contacts then leave the cloth's
-# own neighbours out (sweep_keep) and take the others, and xpbd's sweep, checked from this
+# own neighbours out (apart_at_rest) and take the others, and xpbd's sweep, checked from this
 # fabric state, lists the ends its frictional push-out may move (contact_list.glsl).
 add_gpu_command_test("validate passes on selfCollision under the fabric solver for 21 frames"
   COMMAND $<TARGET_FILE:clothsim> validate ${PROJECT_SOURCE_DIR}/scenes/selfCollision.json --frames 21

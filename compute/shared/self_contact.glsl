@@ -33,24 +33,25 @@ SHARED_FN REAL bounded_keep(VEC3 ri, VEC3 rj, REAL contact) {
   return min(contact, length3(rest_e));
 }
 
-// The sweep's contact distance for a pair at rest positions ri, rj: `contact`, or 0 (none) for a
-// pair no farther apart at rest than that (in contact at rest: the test heap's neighbours at
-// 65², thickness half the spacing, are at exactly the contact distance). bounded_keep keeps
-// such a pair, the cloth's own neighbours, at their rest distance: in the push-out that only
-// undoes a crossing, but as the sweep's penalty it would make every such spring
+// Whether a pair at rest positions ri, rj may take the sweep's contact: only if farther apart at
+// rest than the contact distance. A pair no farther apart is in contact at rest (the test heap's
+// neighbours at 65², thickness half the spacing, are at exactly the contact distance): the
+// cloth's own neighbours, which bounded_keep keeps at their rest distance. In the push-out that
+// only undoes a crossing, but as the sweep's penalty it would make every such spring
 // SELF_CONTACT_STIFFNESS times stiffer the moment it shortens, and a crumpling cloth, unable to
 // compress, stretched past its limit (heap256: 1.105 at frame 9, 1.091 without; docs/model.md).
 // Their springs and the push-out keep them apart.
-SHARED_FN REAL sweep_keep(VEC3 ri, VEC3 rj, REAL contact) {
+SHARED_FN bool apart_at_rest(VEC3 ri, VEC3 rj, REAL contact) {
   PRECISE VEC3 rest_e = ri - rj;
-  return length3(rest_e) <= contact ? REAL(0) : contact;
+  return length3(rest_e) > contact;
 }
 
 // The sweep's self-contact (relax_vertices, fabric's only, with self-collision): a penalty
-// spring of stiffness SELF_CONTACT_STIFFNESS times the mass's own ks pushing it out to `keep`
-// from a mass of another colour (docs/model.md, "Self-contact in the sweep"). Its force joins
-// f and its Hessian k n n^T the 3x3 block, so the Newton step weighs the contact against the
-// springs instead of undoing a push-out made before the solve.
+// spring of stiffness SELF_CONTACT_STIFFNESS times the mass's own ks pushing it out to `keep` (the
+// contact distance) from a mass of another colour that is apart_at_rest (docs/model.md,
+// "Self-contact in the sweep"). Its force joins f and its Hessian k n n^T the 3x3 block, so the
+// Newton step weighs the contact against the springs instead of undoing a push-out made before
+// the solve.
 #define SELF_CONTACT_STIFFNESS 10.0
 SHARED_FN VEC3 add_self_contact_pull(VEC3 f, VEC3 e, REAL d, REAL keep, REAL k, OUT(VEC3) n) {
   PRECISE REAL inv = REAL(1) / d;

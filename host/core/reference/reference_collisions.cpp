@@ -73,10 +73,9 @@ void add_self_contacts(const Constants<R>& c, const State<R>& s, uint32_t i, con
         const R d = length3(e3);
         if (d >= c.contact_distance || d == R(0) || colour[j] == own) continue;
         if (c.welds && c.weld[i] == c.weld[j]) continue;  // a sewn pair
-        const R keep = shared::sweep_keep(c.rest[i], c.rest[j], c.contact_distance);
-        if (!(d < keep)) continue;
+        if (!shared::apart_at_rest(c.rest[i], c.rest[j], c.contact_distance)) continue;  // neighbours
         Vec3<R> n;
-        f = shared::add_self_contact_pull(f, e3, d, keep, k, n);
+        f = shared::add_self_contact_pull(f, e3, d, c.contact_distance, k, n);
         shared::add_spring_hessian(hess, n, k, R(0));
       }
     }
