@@ -1,8 +1,7 @@
 // Reads positions, displacements and the colliders; writes positions and displacements in
 // place. One invocation per particle; compiled with LISTED, one per mass of the contact list
-// (compute/contact_list.glsl): the step's own use, after advance or predict listed them (with
-// FRICTIONLESS too, the push-out after a colour of xpbd's sweep; multigrid's relax_vertices
-// pushes out inline). Compiled
+// (compute/contact_list.glsl): the step's own use, after advance or predict listed them
+// (fabric's relax_vertices pushes out inline). Compiled
 // without, one per particle: the pass checks' own. With self-collision the step fuses it into
 // resolve_self_contacts instead (the particle's state makes one trip).
 #include "layout.glsl"
@@ -28,14 +27,8 @@ void main() {
   vec4 moved = displacement_of(i);
   vec3 x = p.xyz, d = moved.xyz;
   g_self = i;  // a skinned collider's nearest triangle: searched for by the substep's first
-#ifdef FRICTIONLESS
-  // The push-out after a sweep's correction: frictionless but under fabric (params.sweep_friction).
-  g_friction_still_only = true;
-  collide_with_objects_friction(x, d, params.sweep_friction != 0u);
-#else
   g_search = true;  // collision (the listed one after advance or predict), reused by the later ones
   collide_with_objects(x, d);
-#endif
   // Only xyz: w (the inverse mass; predict's clearance bound, which stays with x - d) is
   // unchanged, and llvmpipe stores a storage buffer's vector component by component.
   pos[i].xyz = x;

@@ -1,6 +1,5 @@
-// The contact list (docs/performance.md, "The contact list"): advance and predict, and each
-// colour of xpbd's sweep, append the masses that may_collide says a collider
-// could move, and collide_objects then runs on those alone, one indirect dispatch for as many
+// The contact list (docs/performance.md, "The contact list"): advance and predict append the
+// masses that may_collide says a collider could move, and collide_objects then runs on those alone, one indirect dispatch for as many
 // as there are. llvmpipe runs every branch of a shader for
 // every invocation, so the sphere's and the plane's full response cost every mass of the cloth
 // when called inline, touching or not; a mass that is not listed is not dispatched at all. The
@@ -62,18 +61,6 @@ void list_block(bool listed, int i) {
   }
   barrier();  // (the block's base is set before the invocations write their entries)
   if (listed) contacts.entries[g_listed_base + slot] = uint(i);
-}
-
-// The same after a sweep's correction for a spring's two ends, each with the clearance predict
-// left it, a pinned end (`free` false) never listed (xpbd's sweep). The push-out it lists for is
-// frictionless but under fabric (params.sweep_friction: the pass checks run xpbd's sweep from a
-// fabric state), so the test takes that friction too: a mass that friction alone would change
-// must be listed, or the GPU leaves it where the CPU twin, which pushes out every end, moves it.
-// The same bits as the response inline.
-void list_ends_if_collider_may_move(int i, vec3 xi, vec3 di, float ci, int j, vec3 xj, vec3 dj, float cj, bvec2 free) {
-  bvec2 may = may_collide_pair_after(i, xi, di, ci, j, xj, dj, cj, params.sweep_friction != 0u);
-  if (may.x && free.x) list_contact(i);
-  if (may.y && free.y) list_contact(j);
 }
 
 #endif

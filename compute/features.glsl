@@ -1,7 +1,7 @@
 // What a pass is compiled with (host/gpu/shader_features.hpp; the host compiles the passes
 // again when a live edit changes any of it): the collider kinds the scene has, whether a
-// collider or a pin moves, the contact response, the wind, and whether the multigrid solver
-// runs. Each is a compile-time constant there, so the code of what the scene cannot reach is
+// collider or a pin moves, the contact response, the wind, attachments and skinned colliders.
+// Each is a compile-time constant there, so the code of what the scene cannot reach is
 // not in the program at all: llvmpipe runs every branch of a shader whatever the data, so code that no
 // mass takes still costs its full time there (docs/performance.md, "Passes compiled for the
 // scene"), and a GPU saves the registers. Without the defines (a pass compiled on its own)
@@ -35,9 +35,6 @@
 #endif
 #ifndef SKINNED_MESHES
 #define SKINNED_MESHES (params.skin_vertices != 0u)
-#endif
-#ifndef MULTIGRID_SOLVER
-#define MULTIGRID_SOLVER (params.multigrid != 0u)
 #endif
 
 int sphere_count() { return COLLIDE_SPHERES ? int(params.sphere_count) : 0; }

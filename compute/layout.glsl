@@ -74,9 +74,6 @@ using uint = uint32_t;
 // when the scene has no wind / no pinned_motion. 21 is the layout test's probe.
 #define BINDING_WIND_FORCES 22  // vec4: xyz aerodynamic force of this substep (compute_wind_forces)
 #define BINDING_ANCHORS 23      // vec4: xyz start position, w 1 for a pinned mass (pinned_motion)
-// xpbd's warm-started multipliers (docs/model.md): per spring, sorted by colour, xyz the unit
-// direction i -> j of its last visit, w its Lagrange multiplier carried into the next substep.
-#define BINDING_MULTIPLIERS 25
 #define BINDING_MESHES 26  // MeshCollider[] (the passes read them through TEXTURE_MESHES)
 #define BINDING_SDF 27     // vec4 per field node (host/gpu/sdf_texels.hpp), every mesh collider's field in turn
 // The multigrid solver's scratch (docs/model.md, host/core/cloth/hierarchy.hpp), vec4 each.
@@ -111,7 +108,6 @@ using uint = uint32_t;
 #define TEXTURE_PLANES 12            // RGBA32F, PLANE_TEXELS per PlaneCollider
 #define TEXTURE_CELL_START 13        // R32UI, one texel per hash bucket (+1 sentinel)
 #define TEXTURE_SORTED_POSITIONS 14  // RGBA32F, one texel per hash entry
-#define TEXTURE_TETHERS 15           // RGBA32F, one texel per particle: x its nearest pin (-1: none), y the rest distance
 // The rest of the cloth model (ClothModel in host/core/cloth/cloth.hpp), static over a run.
 #define TEXTURE_GATHER_START 16      // R32UI, per particle + 1: its first entry in the gather list
 #define TEXTURE_GATHER 17            // RGBA32UI, per gather entry: x the other end | type << 30, y the rest length's bits, z the spring, w 1 if the particle is its i end
@@ -121,7 +117,6 @@ using uint = uint32_t;
 #define TEXTURE_CORNER_TRIANGLES 21  // R32UI, per corner entry: a triangle around the particle (ascending)
 #define TEXTURE_TRIANGLES 22         // RGBA32UI, per triangle: xyz its corners
 #define TEXTURE_REST_POSITIONS 23    // RGBA32F, per particle: xyz its rest position (bounded contact), w its weld (seams); 1 texel without either
-#define TEXTURE_MULTIPLIERS 24       // RGBA32F, per spring: BINDING_MULTIPLIERS, read by predict and the sweep
 #define TEXTURE_MESHES 25            // RGBA32F, MESH_TEXELS per MeshCollider
 #define TEXTURE_SDF 26               // RGBA32F, per field node its value and its +x, +y, +x+y neighbours' (BINDING_SDF)
 // The same buffer as TEXTURE_MESHES as RGBA32I, for MeshCollider's integers (dims): read through
@@ -177,7 +172,7 @@ struct MultigridEntry {
 
 // One cloth's material (MaterialC in host/core/reference/reference.hpp).
 struct MaterialTexels {
-  vec4 stiffness;  // ks, ks_bending (N/m), alpha, alpha_bending (xpbd compliance / dt^2)
+  vec4 stiffness;  // ks, ks_bending (N/m), zw unused
   vec4 keep;       // x 1 - damping / 100; y, z, w 1 where structural, shearing, bending springs are enabled
 };
 

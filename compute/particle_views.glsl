@@ -17,7 +17,6 @@ layout(binding = TEXTURE_SPHERES) uniform samplerBuffer spheres_view;
 layout(binding = TEXTURE_PLANES) uniform samplerBuffer planes_view;
 layout(binding = TEXTURE_CELL_START) uniform usamplerBuffer cell_start_view;
 layout(binding = TEXTURE_SORTED_POSITIONS) uniform samplerBuffer sorted_positions_view;
-layout(binding = TEXTURE_TETHERS) uniform samplerBuffer tethers_view;
 layout(binding = TEXTURE_GATHER_START) uniform usamplerBuffer gather_start_view;
 layout(binding = TEXTURE_GATHER) uniform usamplerBuffer gather_view;
 layout(binding = TEXTURE_PARTICLES) uniform samplerBuffer particles_view;
@@ -26,7 +25,6 @@ layout(binding = TEXTURE_CORNER_START) uniform usamplerBuffer corner_start_view;
 layout(binding = TEXTURE_CORNER_TRIANGLES) uniform usamplerBuffer corner_triangles_view;
 layout(binding = TEXTURE_TRIANGLES) uniform usamplerBuffer triangles_view;
 layout(binding = TEXTURE_REST_POSITIONS) uniform samplerBuffer rest_positions_view;
-layout(binding = TEXTURE_MULTIPLIERS) uniform samplerBuffer multipliers_view;
 layout(binding = TEXTURE_MESHES) uniform samplerBuffer meshes_view;
 layout(binding = TEXTURE_MESHES_INT) uniform isamplerBuffer meshes_int_view;
 layout(binding = TEXTURE_SDF) uniform samplerBuffer sdf_view;
@@ -59,7 +57,7 @@ bool attachment_of(int i, out vec4 rel, out vec3 origin) {
 
 // One cloth's material (MaterialTexels in layout.glsl, MaterialC in host/core/reference/reference.hpp).
 struct Material {
-  vec4 stiffness;  // ks, ks_bending, alpha, alpha_bending
+  vec4 stiffness;  // ks, ks_bending, zw unused
   vec4 keep;       // keep_velocity, then 1 per enabled spring type
 };
 Material material(int m) {
@@ -76,7 +74,6 @@ Material material_and_mass_of(int i, out float mass) {
 const uint SEAM_SPRING = 3u;
 bool type_enabled(Material m, uint type) { return type == SEAM_SPRING || m.keep[1 + int(type)] != 0.0; }
 float stiffness(Material m, uint type) { return type == 2u ? m.stiffness.y : m.stiffness.x; }
-float compliance(Material m, uint type) { return type == 2u ? m.stiffness.w : m.stiffness.z; }
 
 // Gather entry g of a particle of material `mat` (TEXTURE_GATHER): its other end and type, and
 // its rest length and stiffness now, as Constants::rest_of and stiffness_of give them: a seam's

@@ -44,13 +44,10 @@ SHARED_FN VEC3 verlet_move(VEC3 d, REAL keep, VEC3 f, REAL w, PARAMS params) {
   return speed_clamped(next_d, params);
 }
 
-// xpbd's prediction: the kept motion, the external acceleration acc, and the springs'
-// multipliers of the last substep as forces (warm, times the inverse mass w).
-// (predict.comp and the reference's predict.)
 // Where the multigrid solve starts, as its offset x - y from the prediction y (predict.comp and
-// the reference's predict; docs/solvers.md, "The fabric solver"). multigrid: back by the whole
-// external move u = acc dt^2, which its solve then applies with the springs, so a cloth at rest
-// starts where it rests. fabric (adaptive_rho > 0): back by the share of u that the mass did not
+// the reference's predict; docs/solvers.md, "The fabric solver"). Without adaptive_rho (a
+// test's, or no external move): back by the whole external move u = acc dt^2, which the solve
+// then applies with the springs, so a cloth at rest starts where it rests. fabric: back by the share of u that the mass did not
 // take in the substep before, read from that substep's offset `last` (x - y at its end, so
 // last + u is its move beyond inertia): a falling or buckling mass starts at y, with all of it,
 // a resting one where it rests, with none (the adaptive start of Chen et al. 2024, VBD).
@@ -83,28 +80,17 @@ SHARED_FN VEC3 solve_start_offset(VEC3 acc, VEC3 last, REAL stiffness_per_mass, 
 // left free in the coarse problem steers its correction by a chord that says nothing of the
 // buckled cloth; where the coarse problem carries most of the stiffness (high rho) that
 // correction tears the cloth (the 513² hang at 95 %), where it carries little the free vertex
-// lets a swing swing (docs/solvers.md). Multigrid (folded_chord 0.99, adaptive_rho 0): 0.99.
+// lets a swing swing (docs/solvers.md).
 SHARED_FN REAL folded_chord_at(REAL stiffness_per_mass, PARAMS params) {
   REAL share = params.adaptive_rho > REAL(0) ? adaptive_share(stiffness_per_mass, params) : REAL(1);
   PRECISE REAL chord = params.folded_chord + (params.folded_chord_stiff - params.folded_chord) * (REAL(1) - share * share);
   return chord;
 }
 
-SHARED_FN VEC3 predicted_move(VEC3 d, REAL keep, VEC3 acc, VEC3 warm, REAL w, PARAMS params) {
-  PRECISE VEC3 next_d = d * keep + acc * params.dt2 + warm * w;
+// predict's move: damped Verlet under the external forces alone (the springs act in the solve).
+SHARED_FN VEC3 predicted_move(VEC3 d, REAL keep, VEC3 acc, PARAMS params) {
+  PRECISE VEC3 next_d = d * keep + acc * params.dt2;
   return speed_clamped(next_d, params);
-}
-
-// A tether (e = x - the pin's position) longer than `limit` pulls x, and d with it, back to it.
-SHARED_FN void tether_to(VEC3 e, REAL limit, INOUT(VEC3) x, INOUT(VEC3) d) {
-  REAL len = length3(e);
-  if (!(len > limit)) return;
-  PRECISE REAL scale = (limit - len) * (REAL(1) / len);
-  PRECISE VEC3 corr = e * scale;
-  PRECISE VEC3 nx = x + corr;
-  PRECISE VEC3 nd = d + corr;
-  x = nx;
-  d = nd;
 }
 
 // Where a pin that follows pinned_motion is at the end of the substep: its anchor plus the

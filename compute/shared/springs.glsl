@@ -94,37 +94,6 @@ SHARED_FN VEC3 one_end_stretch_pull(VEC3 e, REAL len, REAL limit, REAL wi, REAL 
   return corr;
 }
 
-// One XPBD step of the distance constraint from xi to xj (e = xj - xi, len = |e| > 0, the
-// multiplier `lambda` the spring ended the last substep with, which predict applied, compliance
-// alpha~): dlambda = (-C - alpha~ lambda) / (wi + wj + alpha~), C = len - rest, moving i by
-// -wi n dlambda and j by +wj n dlambda along n = e / len. Returns the multiplier carried into
-// the next substep, scaled by beta = 1 / (1 + (wi + wj) / (4 alpha~)): whole for a spring soft
-// against its masses' substep inertia, where the carried force makes the rest state exact,
-// fading for a stiff one, where applying it ahead would be explicit and unstable (docs/model.md,
-// "Warm-started multipliers"). A spring of ks 0, alpha~ = +inf, never pulls: its lambda stays
-// 0, and inf * 0 is not taken.
-SHARED_FN REAL xpbd_distance_step(VEC3 e, REAL len, REAL rest, REAL alpha, REAL lambda, REAL wi, REAL wj, REAL wsum,
-                                  INOUT(VEC3) xi, INOUT(VEC3) xj, INOUT(VEC3) di, INOUT(VEC3) dj, OUT(VEC3) n) {
-  PRECISE VEC3 unit = e * (REAL(1) / len);
-  n = unit;
-  PRECISE REAL held = lambda != REAL(0) ? alpha * lambda : REAL(0);
-  PRECISE REAL dlambda = (-(len - rest) - held) * (REAL(1) / (wsum + alpha));
-  PRECISE VEC3 corr = unit * dlambda;
-  PRECISE VEC3 ci = corr * wi;
-  PRECISE VEC3 cj = corr * wj;
-  PRECISE VEC3 nxi = xi - ci;
-  PRECISE VEC3 nxj = xj + cj;
-  PRECISE VEC3 ndi = di - ci;
-  PRECISE VEC3 ndj = dj + cj;
-  xi = nxi;
-  xj = nxj;
-  di = ndi;
-  dj = ndj;
-  PRECISE REAL beta = REAL(1) / (REAL(1) + wsum * (REAL(0.25) / alpha));
-  PRECISE REAL carried = (lambda + dlambda) * beta;
-  return carried;
-}
-
 // v I, the inertia's block.
 SHARED_FN SYM3 sym3_diagonal(REAL v) {
   SYM3 h;

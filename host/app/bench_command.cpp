@@ -147,7 +147,7 @@ void add_bench_command(CLI::App& app, std::function<int()>& run) {
   CLI::App* cmd = app.add_subcommand("bench", "measure throughput of the GPU and CPU backends on square cloths");
   cmd->add_option("--sizes", o->sizes, "cloth sizes (points per side), comma separated")->delimiter(',')->capture_default_str();
   cmd->add_option("--backend", o->backends, "gpu, cpu or gpu,cpu")->delimiter(',')->capture_default_str();
-  cmd->add_option("--solver", o->solvers, "classic, xpbd, multigrid, fabric, or a list: classic,fabric (simulation.solver)")
+  cmd->add_option("--solver", o->solvers, "classic, fabric, or a list: classic,fabric (simulation.solver)")
       ->delimiter(',')
       ->check(CLI::IsMember(solver_names()))
       ->capture_default_str();

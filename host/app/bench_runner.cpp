@@ -71,10 +71,7 @@ std::map<std::string, double> time_passes_with_queries(int substeps, const PassL
 }  // namespace
 
 const char* solver_name(Solver solver) {
-  return solver == Solver::Fabric      ? "fabric"
-         : solver == Solver::Multigrid ? "multigrid"
-         : solver == Solver::Xpbd      ? "xpbd"
-                                       : "classic";
+  return solver == Solver::Fabric ? "fabric" : "classic";
 }
 
 Solver solver_of(const std::string& name) {
@@ -92,17 +89,17 @@ std::vector<std::string> solver_names() {
 Scene bench_scene(int n, bool self_collision, Solver solver) {
   const double spacing = 1.0 / (n - 1), classic_spacing = 1.0 / 49;
   // Both position-based solvers take fabric values; the classic one needs softer, heavier cloth.
-  const bool xpbd = solver != Solver::Classic;
-  const double ks = xpbd ? 5000.0 : 5000.0 * (spacing / classic_spacing) * (spacing / classic_spacing);
+  const bool fabric = solver != Solver::Classic;
+  const double ks = fabric ? 5000.0 : 5000.0 * (spacing / classic_spacing) * (spacing / classic_spacing);
   const std::string json = fmt::format(
       R"({{"cloth": {{"width": 1, "height": 1, "num_width_points": {0}, "num_height_points": {0},
            "thickness": {1}, "orientation": 0, "ks": {2}, "density": {5}, "pinned": [[0,0],[{3},0],[0,{3}],[{3},{3}]]}},
          "sphere": {{"origin": [0.5, 0.55, 0.5], "radius": 0.25, "friction": 0.3}},
          "plane": {{"point": [0, 0, 0], "normal": [0, 1, 0], "friction": 0.5}},
          "simulation": {{"self_collision": {4}, "solver": "{6}"}}}})",
-      n, 0.0095 / classic_spacing * spacing, ks, n - 1, self_collision ? "true" : "false", xpbd ? 0.15 : 150.0,
+      n, 0.0095 / classic_spacing * spacing, ks, n - 1, self_collision ? "true" : "false", fabric ? 0.15 : 150.0,
       solver_name(solver));
-  return parse_scene(json, fmt::format("<bench {}x{}{}>", n, n, xpbd ? std::string(" ") + solver_name(solver) : ""));
+  return parse_scene(json, fmt::format("<bench {}x{}{}>", n, n, fabric ? std::string(" ") + solver_name(solver) : ""));
 }
 
 BenchRunner::BenchRunner(const std::string& root, int frames)
@@ -176,10 +173,9 @@ BenchResult BenchRunner::run_cpu(const Scene& scene) {
              {"relax_vertices", [&] {
                 for (int k = 0; k < c.hierarchy->fine_colours(); ++k) relax_vertices(model, c, k, s);
               }}};
-  else if (c.xpbd) solve = {{"solve_distance_constraints", [&] { solve_distance_constraints(model, c, s); }}};
   else solve = {{"solve_length_constraints", [&] { solve_length_constraints(model, c, s); }}};
   if (c.stretch_passes_max > 0) solve.push_back({"enforce_stretch_limit", [&] { enforce_stretch_limit(model, c, s); }});
-  PassList passes{{{c.xpbd ? "predict" : "advance", [&] { c.xpbd ? predict(model, c, s) : advance(model, c, s); }},
+  PassList passes{{{c.multigrid ? "predict" : "advance", [&] { c.multigrid ? predict(model, c, s) : advance(model, c, s); }},
                    {"collide_self", [&] { if (c.self_collision) collide_self(c, s); }},
                    {"collide_objects", [&] { collide_objects(c, s); }}},
                   {{"compute_normals", [&] { compute_normals(model, s); }},

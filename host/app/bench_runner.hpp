@@ -24,13 +24,13 @@ struct BenchResult {
 
 // A square n x n cloth of 1 m, corners pinned, over a sphere and a plane. Thickness follows
 // the spacing (the classic 0.0095 m at 0.0204 m spacing). classic: ks keeps the classic
-// sqrt(ks / mass) so every size is as stable as the classic scene at 30 substeps; xpbd:
+// sqrt(ks / mass) so every size is as stable as the classic scene at 30 substeps; fabric:
 // physical values at every size (fabric density 0.15 kg/m^2, ks 5000 N/m).
 Scene bench_scene(int n, bool self_collision, Solver solver = Solver::Classic);
 const char* solver_name(Solver solver);  // as the scene key spells it
 Solver solver_of(const std::string& name);  // the inverse of solver_name
 // Every solver bench runs, classic first (the others are timed against it).
-inline constexpr Solver kBenchSolvers[] = {Solver::Classic, Solver::Xpbd, Solver::Multigrid, Solver::Fabric};
+inline constexpr Solver kBenchSolvers[] = {Solver::Classic, Solver::Fabric};
 std::vector<std::string> solver_names();  // of kBenchSolvers, in order
 
 class BenchRunner {

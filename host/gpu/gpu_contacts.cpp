@@ -1,6 +1,5 @@
 // The contact list on the GPU (compute/contact_list.glsl, docs/performance.md "The contact list"):
-// advance and predict list the masses a collider may move, and xpbd's and multigrid's sweeps
-// those a colour's correction may have pushed into one; collide_objects runs on those alone, one
+// advance and predict list the masses a collider may move; collide_objects runs on those alone, one
 // indirect dispatch sized by the list on the GPU, with no read-back.
 #include "gpu_passes.hpp"
 

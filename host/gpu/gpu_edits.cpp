@@ -22,14 +22,6 @@ void GpuSimulator::set_parameters(const Scene& scene) {
   const std::vector<float> old_mass = constants_.mass;
   const bool had_anchors = constants_.moving_pins(), had_wind = constants_.wind_enabled;
   const bool had_bounded = constants_.bounded_contact;
-  // xpbd's carried multipliers hold the springs' forces: a switch of solver or of a spring type
-  // makes them meaningless, so they start over from zero (as at the start of a run).
-  auto springs_in_play = [](const Constants<float>& c) {
-    std::vector<int> v{int(c.xpbd), int(c.multigrid)};  // multigrid leaves the multipliers stale
-    for (const auto& m : c.materials) v.insert(v.end(), {m.enabled[0], m.enabled[1], m.enabled[2]});
-    return v;
-  };
-  const std::vector<int> had_springs = springs_in_play(constants_);
   constants_ = make_constants<float>(scene, state_.model_, constants_.hierarchy);  // the hierarchy kept while ks is
   masses_ = particle_masses(scene, state_.model_);
   if (constants_.timeline.moves()) set_substep_time(constants_, time_);
@@ -51,19 +43,15 @@ void GpuSimulator::set_parameters(const Scene& scene) {
     for (size_t i = 0; i < pos.size(); ++i) if (pos[i].w != 0.f) pos[i].w = inverse[i];
     state_.positions_.upload(0, pos.size() * sizeof(glm::vec4), pos.data());
   }
-  if (springs_in_play(constants_) != had_springs) state_.upload_multipliers({});
   if (scene.dt() != dt_) {
     // A new substep length: the displacement per substep scales with it, so the cloth keeps
-    // its velocity, and the multipliers (forces times dt^2) with its square, so the springs
-    // keep their forces (the same function the reference uses, so both sides round alike).
+    // its velocity (the same function the reference uses, so both sides round alike).
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     State<float> s;
     s.disp = state_.download_displacement();
-    s.lambda = gl::download_vector<Vec4<float>>(state_.multipliers_);
     rescale_displacement(s, scene.dt() / dt_);
     gl::upload_vector(state_.displacement_, s.disp);
     state_.displacement_view_.attach(state_.displacement_, GL_RGBA32F);
-    state_.upload_multipliers(std::move(s.lambda));
     dt_ = scene.dt();
   }
 }

@@ -15,7 +15,6 @@ namespace {
 gl::Defines defines_for(Build build) {
   switch (build) {
     case Build::listed: return {{"LISTED", "1"}};
-    case Build::frictionless: return {{"LISTED", "1"}, {"FRICTIONLESS", "1"}};
     case Build::multigrid:
       return {{"CONTACT_REACH", fmt::format("{:.9e}", float(kContactReach))},
               {"COARSEST_SWEEPS", std::to_string(kCoarsestSweeps)},
@@ -43,7 +42,7 @@ GpuPasses::~GpuPasses() = default;
 
 void GpuPasses::load_passes(const ShaderFeatures& features) {
   features_ = features;
-  for (Build build : {Build::always, Build::listed, Build::frictionless}) load_rows(build);
+  for (Build build : {Build::always, Build::listed}) load_rows(build);
   state_.multigrid_.reset();         // its rows too, on first use (ensure_multigrid)
   settling_loaded_ = false;   // and enforce_stretch_limit's watched pass (settling_passes)
 }
@@ -123,14 +122,12 @@ GpuCounters GpuPasses::counters() const {
 SubstepShape GpuPasses::shape() const {
   const Constants<float>& c = constants_;
   SubstepShape s;
-  const bool listed = uses_contact_list();
   s.features = features();
   for (int colour = 0; colour < state_.model_.colours(); ++colour) s.enabled_colours += enabled_colour(colour);
   s.iterations = c.iterations;
   s.scan_dispatches = c.self_collision ? scan_.dispatches(state_.table_size_) : 0;
   s.stretch_passes = c.stretch_passes;
   s.stretch_passes_max = c.stretch_passes_max;
-  s.listed_sweep_colours = listed && !c.multigrid ? s.enabled_colours : 0;
   if (!c.multigrid) return s;
   const Hierarchy& h = *c.hierarchy;
   s.fine_colours = h.fine_colours();  // (relax_vertices pushes out inline: no listed colours)
@@ -148,7 +145,7 @@ int GpuPasses::multigrid_dispatches() const {
   const SubstepShape s = shape();
   int count = 0;
   for (const PassRow& r : kPasses)
-    if (r.need & kMultigrid) count += dispatches_of(r, s);
+    if (r.build == Build::multigrid) count += dispatches_of(r, s);
   return count;
 }
 

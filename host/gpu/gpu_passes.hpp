@@ -48,7 +48,7 @@ class GpuPasses {
   void run(PassId pass, PassArgs args = {});
   // The passes made of several rows.
   void collide_self(bool then_collide_objects = false);  // count, scan, fill and sort the cells, then the response
-  void enforce_stretch_limit();  // xpbd's stretch_passes, then the settling ones
+  void enforce_stretch_limit();  // fabric's stretch_passes, then the settling ones
   void cycle_levels();  // the V-cycle: every multigrid pass between compute_residuals and prolong_to_cloth
   void solve_multigrid();
   int dispatches_per_substep() const;  // from the table's counts (pass_table.cpp)

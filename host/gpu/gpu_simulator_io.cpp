@@ -10,7 +10,6 @@ void GpuSimulator::upload(const State<float>& s) {
   gl::upload_vector(state_.displacement_, s.disp);
   if (s.force.size() == s.pos.size()) gl::upload_vector(state_.forces_, s.force);
   if (constants_.wind_enabled && s.wind.size() == s.pos.size()) gl::upload_vector(state_.wind_forces_, s.wind);
-  state_.upload_multipliers(s.lambda);  // zero for a state without them
   // The multigrid solve's offsets, which fabric's predict reads from the substep before
   // (solve_start_offset): the state's, or zero for a state without them (as the reference starts).
   if (state_.multigrid_) {
@@ -43,8 +42,6 @@ void GpuSimulator::download(State<float>& s) {
   s.force = gl::download_vector<Vec4<float>>(state_.forces_);
   s.normal = gl::download_vector<Vec4<float>>(state_.normals_);
   if (constants_.wind_enabled) s.wind = gl::download_vector<Vec4<float>>(state_.wind_forces_);
-  s.lambda = gl::download_vector<Vec4<float>>(state_.multipliers_);
-  s.lambda.resize(state_.model_.springs.size());  // less the dummy of a cloth without springs
   if (state_.multigrid_) s.offset = gl::download_vector<Vec4<float>>(state_.multigrid_->offset);
   if (constants_.skin_meshes > 0) s.nearest = gl::download_vector<uint32_t>(state_.nearest_, 0, state_.nearest_slots_);
 }

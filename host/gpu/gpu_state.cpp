@@ -53,9 +53,9 @@ size_t GpuState::buffer_bytes() const {
   size_t total = 0;
   for (const gl::Buffer* b : {&positions_, &displacement_, &forces_, &normals_, &springs_, &spheres_, &planes_,
                               &step_params_, &substep_control_, &positions_out_, &cell_count_, &cell_start_, &cell_entries_,
-                              &sorted_positions_, &tethers_, &wind_forces_, &anchors_, &gather_start_, &gather_,
+                              &sorted_positions_, &wind_forces_, &anchors_, &gather_start_, &gather_,
                               &particles_, &materials_, &corner_start_, &corner_triangles_, &triangles_, &rest_positions_, &attachments_,
-                              &multipliers_, &meshes_, &sdf_, &stretch_control_, &contacts_, &skinned_, &skin_indices_,
+                              &meshes_, &sdf_, &stretch_control_, &contacts_, &skinned_, &skin_indices_,
                               &skin_weights_, &skin_palette_, &nearest_})
     total += b->size();
   if (!multigrid_) return total;
@@ -85,9 +85,6 @@ void GpuState::upload_model() {
     }
   std::vector<glm::uvec4> triangles;
   for (auto& t : m.triangles) triangles.push_back({t[0], t[1], t[2], 0u});
-  std::vector<glm::vec4> tethers(m.count());
-  for (size_t i = 0; i < tethers.size(); ++i)  // a pin index is exact in a float: at most 2^24 particles
-    tethers[i] = glm::vec4(float(m.tether_pin[i]), float(m.tether_rest[i]), 0.f, 0.f);
   // A storage buffer or view may not be empty: one dummy element for a cloth without springs.
   auto nonempty = [](auto v) { if (v.empty()) v.resize(1); return v; };
   gl::upload_vector(springs_, nonempty(springs), GL_STATIC_DRAW);
@@ -96,20 +93,6 @@ void GpuState::upload_model() {
   gl::upload_vector(triangles_, nonempty(triangles), GL_STATIC_DRAW);
   gl::upload_vector(corner_start_, m.corner_start, GL_STATIC_DRAW);
   gl::upload_vector(corner_triangles_, nonempty(m.corner_triangles), GL_STATIC_DRAW);
-  gl::upload_vector(tethers_, tethers, GL_STATIC_DRAW);
-}
-
-void GpuState::upload_multipliers(std::vector<Vec4<float>> multipliers) {
-  multipliers.resize(std::max<size_t>(1, model_.springs.size()), Vec4<float>(0));
-  gl::upload_vector(multipliers_, multipliers);
-  multipliers_view_.attach(multipliers_, GL_RGBA32F);
-  meshes_view_.attach(meshes_, GL_RGBA32F);
-  meshes_int_view_.attach(meshes_, GL_RGBA32I);
-  sdf_view_.attach(sdf_, GL_RGBA32F);
-  skinned_view_.attach(skinned_, GL_RGBA32F);
-  skin_indices_view_.attach(skin_indices_, GL_RGBA32UI);
-  skin_weights_view_.attach(skin_weights_, GL_RGBA32F);
-  skin_palette_view_.attach(skin_palette_, GL_RGBA32F);
 }
 
 void GpuState::bind_all() const {
@@ -142,11 +125,8 @@ void GpuState::bind_all() const {
   planes_view_.bind(TEXTURE_PLANES);
   cell_start_view_.bind(TEXTURE_CELL_START);
   sorted_positions_view_.bind(TEXTURE_SORTED_POSITIONS);
-  tethers_view_.bind(TEXTURE_TETHERS);
   rest_positions_view_.bind(TEXTURE_REST_POSITIONS);
   attachments_view_.bind(TEXTURE_ATTACHMENTS);
-  multipliers_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_MULTIPLIERS);
-  multipliers_view_.bind(TEXTURE_MULTIPLIERS);
   meshes_.bind_base(GL_SHADER_STORAGE_BUFFER, BINDING_MESHES);
   meshes_view_.bind(TEXTURE_MESHES);
   meshes_int_view_.bind(TEXTURE_MESHES_INT);
@@ -176,9 +156,7 @@ void GpuState::attach_views() {
   planes_view_.attach(planes_, GL_RGBA32F);
   cell_start_view_.attach(cell_start_, GL_R32UI);
   sorted_positions_view_.attach(sorted_positions_, GL_RGBA32F);
-  tethers_view_.attach(tethers_, GL_RGBA32F);
   rest_positions_view_.attach(rest_positions_, GL_RGBA32F);
-  multipliers_view_.attach(multipliers_, GL_RGBA32F);
   meshes_view_.attach(meshes_, GL_RGBA32F);
   meshes_int_view_.attach(meshes_, GL_RGBA32I);
   sdf_view_.attach(sdf_, GL_RGBA32F);

@@ -61,9 +61,7 @@ class GpuState {
   void attach_views();  // after any buffer is (re)allocated
   void swap_positions();  // the Jacobi/ping-pong output becomes the positions (rebinds the two)
   size_t buffer_bytes() const;  // every buffer here, the multigrid's included
-  void upload_model();  // the cloth model's lists (springs, gather, triangles, corners, tethers)
-  // xpbd's carried multipliers, one per spring (missing ones zero, one dummy without springs).
-  void upload_multipliers(std::vector<Vec4<float>> multipliers);
+  void upload_model();  // the cloth model's lists (springs, gather, triangles, corners)
 
   const ClothModel& model_;
   uint32_t table_size_ = 0;
@@ -71,13 +69,12 @@ class GpuState {
   gl::Buffer springs_{"springs"}, spheres_{"spheres"}, planes_{"planes"}, step_params_{"step params"};
   gl::Buffer substep_control_{"substep control"};  // Control<float>'s block (layout::SubstepControl)
   gl::Buffer positions_out_{"positions out"}, cell_count_{"cell count"}, cell_start_{"cell start"};
-  gl::Buffer cell_entries_{"cell entries"}, sorted_positions_{"sorted positions"}, tethers_{"tethers"};
+  gl::Buffer cell_entries_{"cell entries"}, sorted_positions_{"sorted positions"};
   gl::Buffer wind_forces_{"wind forces"}, anchors_{"anchors"};
   gl::Buffer gather_start_{"gather start"}, gather_{"gather"}, particles_{"particles"}, materials_{"materials"};
   gl::Buffer corner_start_{"corner start"}, corner_triangles_{"corner triangles"}, triangles_{"triangles"};
   gl::Buffer rest_positions_{"rest positions"};
   gl::Buffer attachments_{"attachments"};  // Constants::attach (one texel of zeros without)
-  gl::Buffer multipliers_{"multipliers"};  // xpbd: per spring, its direction and carried lambda
   // Mesh colliders: MeshCollider per mesh (rewritten per substep when one moves), and every
   // mesh's field, uploaded once (sdf_source_: the Constants::sdf it holds).
   gl::Buffer meshes_{"mesh colliders"}, sdf_{"mesh fields"};
@@ -91,10 +88,9 @@ class GpuState {
   gl::BufferTexture corner_start_view_{"corner start view"}, corner_triangles_view_{"corner triangles view"};
   gl::BufferTexture triangles_view_{"triangles view"};
   gl::BufferTexture planes_view_{"planes view"}, cell_start_view_{"cell start view"};
-  gl::BufferTexture sorted_positions_view_{"sorted positions view"}, tethers_view_{"tethers view"};
+  gl::BufferTexture sorted_positions_view_{"sorted positions view"};
   gl::BufferTexture rest_positions_view_{"rest positions view"};
   gl::BufferTexture attachments_view_{"attachments view"};
-  gl::BufferTexture multipliers_view_{"multipliers view"};
   gl::BufferTexture meshes_view_{"mesh colliders view"}, sdf_view_{"mesh fields view"};
   // The same buffer as integers (TEXTURE_MESHES_INT): MeshCollider::dims, which the float view could flush.
   gl::BufferTexture meshes_int_view_{"mesh colliders integer view"};

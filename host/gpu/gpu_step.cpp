@@ -10,8 +10,7 @@ void GpuPasses::run(PassId pass, PassArgs a) {
   switch (pass) {
     case PassId::advance:
     case PassId::predict: return first_pass(pass, a.collide_objects);
-    case PassId::collide_listed:
-    case PassId::collide_listed_frictionless: return dispatch_row(pass);
+    case PassId::collide_listed: return dispatch_row(pass);
     case PassId::count_cells:
     case PassId::fill_cells: state_.cell_count_.clear_to_zero(); break;  // fill_cells: reused as the per-bucket cursors
     case PassId::scan_cells:
@@ -33,11 +32,6 @@ void GpuPasses::run(PassId pass, PassArgs a) {
     case PassId::solve_length_constraints:
       if (a.colour >= 0) return colour_pass(pass, a.colour);
       return length_constraint_passes(constants_.iterations);
-    case PassId::solve_distance_constraints:
-      if (a.colour >= 0) return colour_pass(pass, a.colour);
-      for (int colour = 0; colour < state_.model_.colours(); ++colour)
-        if (constants_.colour_enabled(state_.model_, colour)) colour_pass(pass, colour);
-      return;
     case PassId::stretch_fixed_passes:
     case PassId::arm_stretch_pass:
     case PassId::stretch_watched_passes: return enforce_stretch_limit();
@@ -65,18 +59,12 @@ void GpuPasses::first_pass(PassId pass, bool then_collide_objects) {
 }
 
 void GpuPasses::timed_dispatch(PassId pass) {
-  // Its own row in simulate --profile, taken off the stage's that runs it.
-  const char* name = pass == PassId::collide_listed ? "collide_objects (first)" : "collide_objects (after a colour)";
-  timed(name, [&] { dispatch_row(pass); });
+  timed("collide_objects (first)", [&] { dispatch_row(pass); });  // its own row in simulate --profile
 }
 
 void GpuPasses::colour_pass(PassId pass, int colour) {
   const uint32_t first = state_.model_.colour_start[colour], count = state_.model_.colour_start[colour + 1] - first;
-  // xpbd's sweep pushes the masses this colour listed out after it.
-  const bool listed = pass == PassId::solve_distance_constraints && uses_contact_list() && count > 0;
-  if (listed) start_contact_list();
-  dispatch_row(pass, {first, count}, listed);
-  if (listed) timed_dispatch(PassId::collide_listed_frictionless);
+  dispatch_row(pass, {first, count});
 }
 
 void GpuPasses::length_constraint_passes(int passes, PassId row) {

@@ -1,4 +1,4 @@
-// xpbd's and multigrid's enforce_stretch_limit on the GPU (docs/model.md, xpbd step 6): the
+// fabric's enforce_stretch_limit on the GPU (docs/model.md): the
 // fixed passes of the length constraint, then the settling ones, each armed on the GPU from
 // what the pass before it found, so that a settled substep skips them with no read-back.
 #include "gpu_passes.hpp"

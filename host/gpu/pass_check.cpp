@@ -86,7 +86,7 @@ void check_self_collision_stages(const Constants<float>& c, State<float>& s, Gpu
   out.push_back({"resolve_self_contacts", d.max, d.bitwise});
 }
 
-// The multigrid solver's passes (a multigrid scene only: the others have no hierarchy), each
+// The multigrid solve's passes (a fabric scene only: the others have no hierarchy), each
 // from the CPU's state and scratch before it, in solve_multigrid's order; judged on positions,
 // displacements and the scratch, forces as the displacement they cause over a substep.
 void check_multigrid_passes(const ClothModel& model, const Constants<float>& c, State<float>& s, GpuSimulator& gpu,
@@ -250,12 +250,6 @@ struct PassCheck {
     switch (what) {
       case Compare::wind: return displacement_of(&State<float>::wind);
       case Compare::forces: return displacement_of(&State<float>::force);
-      case Compare::multipliers:
-        return [](const State<float>& st) {
-          auto v = positions_and_displacements(st);
-          v.insert(v.end(), st.lambda.begin(), st.lambda.end());
-          return v;
-        };
       case Compare::normals: return [](const State<float>& st) { return st.normal; };
       case Compare::positions:
       case Compare::none: break;
@@ -303,8 +297,10 @@ void check_classic_passes(PassCheck& k) {
   k.check(PassId::solve_length_constraints);
 }
 
-// The xpbd solver's passes, whichever solver the scene uses (validate checks every pass).
-void check_xpbd_passes(PassCheck& k) {
+// The fabric solver's passes (a fabric scene only: predict writes the multigrid solve's
+// offsets, which a classic scene has no buffer for): predict alone and with the colliders,
+// the multigrid solve's passes from its state, then the settling passes from the solve's.
+void check_fabric_passes(PassCheck& k) {
   const ClothModel& model = k.model;
   const Constants<float>& c = k.c;
   State<float>& s = k.s;
@@ -314,13 +310,8 @@ void check_xpbd_passes(PassCheck& k) {
     s = classic_done;
     k.check_fused(PassId::predict);
   }
-  // The sweep also writes the springs' carried multipliers (direction, lambda).
-  k.check(PassId::solve_distance_constraints);
+  check_multigrid_passes(model, c, s, k.gpu, k.out);
   if (c.stretch_passes_max > c.stretch_passes) check_settling_passes(model, c, s, k.gpu, k.out);
-  // Predict again, now from the multipliers that sweep carried (a classic scene has none
-  // before it): their forces in the gather order.
-  k.check("predict (the sweep's multipliers carried)", [&] { predict(model, c, s); },
-          [&] { k.gpu.run(PassId::predict); }, kBoth);
 }
 
 }  // namespace
@@ -337,8 +328,7 @@ std::vector<PassError> check_passes(const Scene& scene, const ClothModel& model,
   PassCheck k{model, c, s, gpu, out};
   if (c.skin_vertices > 0) check_skinning_passes(c, gpu, out);
   check_classic_passes(k);
-  check_xpbd_passes(k);
-  if (c.multigrid) check_multigrid_passes(model, c, s, gpu, out);
+  if (c.multigrid) check_fabric_passes(k);
   k.check(PassId::compute_normals);
   k.check_the_other_rows(gpu.passes().features());
   return out;

@@ -18,8 +18,6 @@ int dispatches_of(const PassRow& r, const SubstepShape& s) {
     case Count::once: return 1;
     case Count::scan: return s.scan_dispatches;
     case Count::iterations_x_colours: return s.iterations * s.enabled_colours;
-    case Count::enabled_colours: return s.enabled_colours;
-    case Count::listed_sweep_colours: return s.listed_sweep_colours;
     case Count::large_levels: return s.large_levels;
     case Count::small_cycle: return s.levels > 0 ? 1 : 0;
     case Count::large_level_sweeps: return s.large_level_colours;

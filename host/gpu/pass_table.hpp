@@ -22,9 +22,9 @@ namespace clothsim {
 // Every pass, in the table's (the substep's) order; the enumerator is the row's index.
 enum class PassId : uint8_t {
   skin_colliders, fit_collider_boxes, compute_wind_forces, advance, predict, collide_listed, count_cells, scan_cells, fill_cells, sort_cells,
-  resolve_self_contacts, solve_length_constraints, solve_distance_constraints, compute_residuals,
+  resolve_self_contacts, solve_length_constraints, compute_residuals,
   restrict_residuals, cycle_small_levels, prolong_corrections, smooth_corrections, prolong_to_cloth, relax_vertices,
-  collide_listed_frictionless, stretch_fixed_passes, arm_stretch_pass, stretch_watched_passes, limit_speed, compute_normals,
+  stretch_fixed_passes, arm_stretch_pass, stretch_watched_passes, limit_speed, compute_normals,
   accumulate_forces, integrate, collide_objects, count_
 };
 inline constexpr size_t kPassCount = size_t(PassId::count_);
@@ -47,7 +47,6 @@ enum class Domain : uint8_t {
 enum class Build : uint8_t {
   always,          // at construction and again when the shader features change (load_passes)
   listed,          // always, with LISTED (collide_objects over the contact list)
-  frictionless,    // always, with LISTED and FRICTIONLESS (the sweeps' push-out)
   multigrid,       // with the multigrid solver's first pass (ensure_multigrid), its constants defined
   settling,        // with the first settling pass (stretch_passes_max above stretch_passes)
   shared,          // not compiled: runs `program_of`'s program
@@ -56,7 +55,7 @@ enum class Build : uint8_t {
 
 // What a scene runs, for `need` and `unless` (a row runs when it has all of need and none of unless).
 enum Feature : uint16_t {
-  kWind = 1, kClassic = 2, kXpbd = 4, kMultigrid = 8, kSelf = 16, kListed = 32, kStretch = 64, kSettling = 128,
+  kWind = 1, kClassic = 2, kFabric = 4, kSelf = 16, kListed = 32, kStretch = 64, kSettling = 128,
   kCheckOnly = 256,  // run only by the pass checks (a row no substep runs)
   kPerFrame = 512,   // once per frame, after the substeps
   kSpeedLimit = 1024,  // simulation.max_speed above 0
@@ -65,7 +64,7 @@ enum Feature : uint16_t {
 
 // A scene's features (`listed`: collide_objects runs over the contact list).
 inline uint16_t features_of(const Constants<float>& c, bool listed) {
-  return uint16_t((c.wind_enabled ? kWind : 0) | (c.xpbd ? kXpbd : kClassic) | (c.multigrid ? kMultigrid : 0) |
+  return uint16_t((c.wind_enabled ? kWind : 0) | (c.multigrid ? kFabric : kClassic) |
                   (c.self_collision ? kSelf : 0) | (listed ? kListed : 0) | (c.stretch_passes_max > 0 ? kStretch : 0) |
                   (c.stretch_passes_max > c.stretch_passes ? kSettling : 0) | (c.max_move > 0.f ? kSpeedLimit : 0) |
                   (c.skin_vertices > 0 ? kSkinned : 0));
@@ -73,7 +72,7 @@ inline uint16_t features_of(const Constants<float>& c, bool listed) {
 
 // How many dispatches of the row one substep issues (dispatches_per_substep, pass_check).
 enum class Count : uint8_t {
-  once, scan, iterations_x_colours, enabled_colours, listed_sweep_colours, large_levels, small_cycle,
+  once, scan, iterations_x_colours, large_levels, small_cycle,
   large_level_sweeps, fine_colours, fixed_stretch_sweeps, arms, watched_sweeps, none,
 };
 
@@ -86,7 +85,6 @@ enum class Compare : uint8_t {
   positions,   // every position, then every displacement
   wind,        // the wind forces, as the displacement they cause in one substep
   forces,      // the forces, the same
-  multipliers, // positions, displacements and the springs' carried multipliers
   normals,     // the vertex normals
 };
 
@@ -145,7 +143,7 @@ inline constexpr PassRow kPasses[] = {
      C::once, "u_collide_objects", nullptr, true,
      "the hash passes or the constraints read the new positions (or collide_objects the listed ones, its "
      "workgroups from the list's header: COMMAND); the next advance writes the old ones after this pass read them", &advance<float>, K::positions},
-    {P::predict, "predict", "predict", B::always, P::predict, D::particles, kComputeReads, kCommand, kXpbd, 0,
+    {P::predict, "predict", "predict", B::always, P::predict, D::particles, kComputeReads, kCommand, kFabric, 0,
      C::once, "u_collide_objects", nullptr, true,
      "the hash passes or the constraints read the predicted positions and displacements (multigrid's "
      "compute_residuals the offsets too), or first collide_objects the listed ones (COMMAND)", &predict<float>, K::positions},
@@ -169,36 +167,27 @@ inline constexpr PassRow kPasses[] = {
      P::solve_length_constraints, D::colour, kComputeReads, 0, kClassic, 0, C::iterations_x_colours, nullptr,
      nullptr, true, "the next colour (or the next substep's first pass) reads these positions and displacements",
      &solve_length_constraints<float>, K::positions},
-    {P::solve_distance_constraints, "solve_distance_constraints", "solve_distance_constraints", B::always,
-     P::solve_distance_constraints, D::colour, kComputeReads, kCommand, kXpbd, kMultigrid, C::enabled_colours,
-     nullptr, nullptr, true,
-     "the next colour reads these positions, xpbd's next predict the multipliers; or first collide_objects the "
-     "listed masses (COMMAND)", &solve_distance_constraints<float>, K::multipliers},
     {P::compute_residuals, "compute_residuals", "compute_residuals", B::multigrid, P::compute_residuals,
-     D::particles, kComputeReads, 0, kMultigrid, 0, C::once, nullptr, "solve_multigrid", true,
+     D::particles, kComputeReads, 0, kFabric, 0, C::once, nullptr, "solve_multigrid", true,
      "restrict_residuals reads them through their view"},
     {P::restrict_residuals, "restrict_residuals", "restrict_residuals", B::multigrid, P::restrict_residuals,
-     D::range, kComputeReads, 0, kMultigrid, 0, C::large_levels, nullptr, "solve_multigrid", true,
+     D::range, kComputeReads, 0, kFabric, 0, C::large_levels, nullptr, "solve_multigrid", true,
      "smooth_corrections reads the right-hand sides and the zeroed corrections"},
     {P::cycle_small_levels, "cycle_small_levels", "cycle_small_levels", B::multigrid, P::cycle_small_levels,
-     D::one_workgroup, kComputeReads, 0, kMultigrid, 0, C::small_cycle, nullptr, "solve_multigrid", false,
+     D::one_workgroup, kComputeReads, 0, kFabric, 0, C::small_cycle, nullptr, "solve_multigrid", false,
      "prolong_corrections (or prolong_to_cloth) reads the corrections through their view"},
     {P::prolong_corrections, "prolong_corrections", "prolong_corrections", B::multigrid, P::prolong_corrections,
-     D::range, kComputeReads, 0, kMultigrid, 0, C::large_levels, nullptr, "solve_multigrid", false,
+     D::range, kComputeReads, 0, kFabric, 0, C::large_levels, nullptr, "solve_multigrid", false,
      "smooth_corrections reads the corrections through their view"},
     {P::smooth_corrections, "smooth_corrections", "smooth_corrections", B::multigrid, P::smooth_corrections,
-     D::range, kComputeReads, 0, kMultigrid, 0, C::large_level_sweeps, nullptr, "solve_multigrid", false,
+     D::range, kComputeReads, 0, kFabric, 0, C::large_level_sweeps, nullptr, "solve_multigrid", false,
      "the next colour reads these corrections through their view"},
     {P::prolong_to_cloth, "prolong_to_cloth", "prolong_to_cloth", B::multigrid, P::prolong_to_cloth, D::particles,
-     kComputeReads, 0, kMultigrid, 0, C::once, nullptr, "solve_multigrid", true,
+     kComputeReads, 0, kFabric, 0, C::once, nullptr, "solve_multigrid", true,
      "relax_vertices reads the positions (views), displacements and offsets"},
     {P::relax_vertices, "relax_vertices", "relax_vertices", B::multigrid, P::relax_vertices, D::range,
-     kComputeReads, 0, kMultigrid, 0, C::fine_colours, nullptr, "solve_multigrid", true,
+     kComputeReads, 0, kFabric, 0, C::fine_colours, nullptr, "solve_multigrid", true,
      "the next colour (or the next substep's first pass) reads these positions"},
-    {P::collide_listed_frictionless, "collide_objects", "collide_objects", B::frictionless,
-     P::collide_listed_frictionless, D::contact_list, kComputeReads | kUpdate, 0, kXpbd | kListed, 0,
-     C::listed_sweep_colours, nullptr, nullptr, false,
-     "the next colour reads the positions; the next start_contact_list rewrites the header (a buffer update)"},
     {P::stretch_fixed_passes, "solve_length_constraints", "solve_length_constraints", B::shared,
      P::solve_length_constraints, D::colour, kComputeReads, 0, kStretch, 0, C::fixed_stretch_sweeps, nullptr,
      "enforce_stretch_limit", true, "the next colour (or the next substep's first pass) reads these positions"},
@@ -244,7 +233,6 @@ struct SubstepShape {
   uint16_t features = 0;
   int enabled_colours = 0, iterations = 0, scan_dispatches = 0;
   int stretch_passes = 0, stretch_passes_max = 0;
-  int listed_sweep_colours = 0;  // the sweep's colours with a push-out after them
   int large_levels = 0, levels = 0, fine_colours = 0;
   int large_level_colours = 0;  // the large levels' colours times kLevelSweeps
 };

@@ -1,6 +1,6 @@
 // What the compute passes are compiled with (compute/features.glsl): which collider kinds the
-// scene has, whether a collider or a pin moves, which contact response it takes, the wind, and
-// whether the multigrid solver runs. llvmpipe executes every branch of a shader for every invocation whatever the data,
+// scene has, whether a collider or a pin moves, which contact response it takes (fabric's
+// Coulomb friction or classic's CS184 blend), the wind, attachments and skinned colliders. llvmpipe executes every branch of a shader for every invocation whatever the data,
 // so a zero-trip mesh loop or an untaken Coulomb branch costs its full time there (a third of
 // the classic step at 256², docs/performance.md); compiling only what the scene can reach
 // removes it, and on a GPU it saves registers. The results are the same bits either way: the
@@ -19,9 +19,8 @@ namespace clothsim {
 struct ShaderFeatures {
   bool spheres = true, planes = true, meshes = true;
   bool moving = true;   // some collider has keyframed motion (else every collider's motion is 0)
-  bool coulomb = true;  // xpbd's Coulomb friction, else the CS184 blend
+  bool coulomb = true;  // fabric's Coulomb friction, else the CS184 blend
   bool pins_moving = true;  // cloth.pinned_motion
-  bool multigrid = true;    // the multigrid solver (predict's offsets, no multipliers, no tethers)
   bool wind = true;         // the wind (advance and predict read compute_wind_forces' output)
   bool attachments = true;  // cloth.attachments (the forces and the multigrid solve read them)
   bool skinned = true;      // a skinned mesh collider (mesh.animation)
@@ -35,9 +34,8 @@ struct ShaderFeatures {
     f.moving = false;
     for (const auto* keys : {&c.timeline.spheres, &c.timeline.planes, &c.timeline.meshes})
       for (const auto& k : *keys) f.moving = f.moving || k.has_value();
-    f.coulomb = c.xpbd;
+    f.coulomb = c.multigrid != 0u;
     f.pins_moving = c.moving_pins();
-    f.multigrid = c.multigrid;
     f.wind = c.wind_enabled;
     f.attachments = c.has_attachments();
     f.skinned = c.skin_vertices > 0;
@@ -50,9 +48,8 @@ struct ShaderFeatures {
     auto b = [](bool v) { return std::string(v ? "true" : "false"); };
     return {{"COLLIDE_SPHERES", b(spheres)}, {"COLLIDE_PLANES", b(planes)}, {"COLLIDE_MESHES", b(meshes)},
             {"COLLIDERS_MOVE", b(moving)},   {"COULOMB_FRICTION", b(coulomb)},
-            {"PINS_MOVE", b(pins_moving)},   {"MULTIGRID_SOLVER", b(multigrid)},
-            {"WIND_ENABLED", b(wind)},       {"ATTACHMENTS", b(attachments)},
-            {"SKINNED_MESHES", b(skinned)}};
+            {"PINS_MOVE", b(pins_moving)},   {"WIND_ENABLED", b(wind)},
+            {"ATTACHMENTS", b(attachments)}, {"SKINNED_MESHES", b(skinned)}};
   }
 
   bool operator==(const ShaderFeatures&) const = default;

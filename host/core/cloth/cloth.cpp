@@ -1,5 +1,5 @@
 // What every cloth builder shares: the model's derived lists (springs sorted by colour, the
-// force gather, the triangles around each particle, the tethers) and the masses.
+// force gather, the triangles around each particle) and the masses.
 #include "cloth/cloth.hpp"
 
 #include "io/host_memory.hpp"
@@ -133,7 +133,6 @@ void finish_model(ClothModel& m, const std::vector<PartSprings>& parts) {
   std::vector<uint32_t> cursor(m.corner_start.begin(), m.corner_start.end() - 1);
   for (uint32_t t = 0; t < m.triangles.size(); ++t)
     for (uint32_t v : m.triangles[t]) m.corner_triangles[cursor[v]++] = t;
-  build_tethers(m);
 }
 
 std::string describe_cloth(const ClothModel& m) {

@@ -62,10 +62,6 @@ struct ClothModel {
   std::vector<uint32_t> gather_start, gather;
   // The triangles around each particle, ascending (normals and the wind gather over them).
   std::vector<uint32_t> corner_start, corner_triangles;
-  // xpbd's long-range attachments (tethers.cpp): each particle's nearest pin along the rest
-  // cloth (-1: none, for pins and for a cloth without pins) and the distance to it.
-  std::vector<int32_t> tether_pin;
-  std::vector<double> tether_rest;
   std::vector<ClothPart> parts;
   // With seams: per particle the least particle it is sewn to, through any chain of seams (itself
   // if none). Self-collision never pushes two particles of one weld apart. Empty without seams.
@@ -101,7 +97,7 @@ void check_self_collision_cost(const Scene& scene, const ClothModel& model);
 
 // The pieces the builders share (cloth.cpp). A builder appends one part's particles,
 // triangles and springs (each with its colour within its type), then finish_model sorts the
-// springs by colour and derives the gather lists, the corner lists and the tethers.
+// springs by colour and derives the gather lists and the corner lists.
 struct PartSprings {
   std::vector<Spring> springs;
   std::vector<uint32_t> colour;  // per spring, within its type (0, 1, ...)
@@ -119,7 +115,6 @@ void finish_model(ClothModel& model, const std::vector<PartSprings>& parts);
 // SceneError for a side with an index out of range, sides of unequal lengths, or a vertex sewn
 // to itself.
 PartSprings sew_seams(const Scene& scene, ClothModel& model);
-void build_tethers(ClothModel& model);  // called by finish_model
 // The CS184 grid of `params` appended to `model` as cloth `material` (cloth_grid.cpp), its
 // jitter drawn with `seed` (simulation.seed).
 PartSprings append_grid(ClothModel& model, const ClothParams& params, uint32_t material, uint32_t seed = 0);

@@ -22,13 +22,14 @@ namespace {
 //   i64 frame, f64 time, u32 scene name length, u32 backend name length, u32 pinned particles,
 //   u32 multipliers (version 3; zero before), [version >= 2: f64 dt, the substep length the
 //   displacements are per], the two names,
-//   positions (nw*nh*4 scalars), displacements (nw*nh*4 scalars), [version 3: the xpbd
-//   springs' carried multipliers (multipliers*4 scalars: direction, lambda)], [version 4: the
+//   positions (nw*nh*4 scalars), displacements (nw*nh*4 scalars), [version 3: the removed xpbd
+//   solver's carried multipliers (multipliers*4 scalars; written as none since)], [version 4: the
 //   header is 88 bytes, u32 offsets and u32 reserved after dt; after the multipliers the
 //   multigrid solve's offsets (offsets*4 scalars; 0 or one per particle)], u64 FNV-1a of all before.
 // Version 1 (72-byte header, no dt) is still read: its dt is unknown (SavedState::dt = 0) and
 // taken as the loading scene's, i.e. its displacements load unscaled, as they always did.
-// Versions 1 and 2 have no multipliers: an xpbd run resumed from one starts them at zero.
+// A file's multipliers (a state of the removed xpbd solver) are read past and ignored: its
+// positions and displacements resume under fabric or classic, which carry none.
 static_assert(std::endian::native == std::endian::little, "state files are written in host byte order");
 constexpr char kMagic[16] = "clothsim state\n";
 constexpr uint32_t kVersion = 4;
@@ -78,7 +79,6 @@ template <class R> SavedState save_streams(const State<R>& s, int64_t frame, dou
   out.dt = dt;
   out.positions = bytes_of(s.pos);
   out.displacement = bytes_of(s.disp);
-  out.multipliers = bytes_of(s.lambda);
   if (s.offset.size() == s.pos.size()) out.offsets = bytes_of(s.offset);  // the multigrid solve's
   return out;
 }
@@ -103,15 +103,7 @@ template <class R> void load_streams(const SavedState& saved, State<R>& s, doubl
     s.offset.resize(s.pos.size());
     std::memcpy(s.offset.data(), saved.offsets.data(), saved.offsets.size());
   }
-  // Multipliers of this cloth's springs load bit for bit; none saved (an older file): zero.
-  s.lambda.assign(s.lambda.size(), Vec4<R>(0));
-  if (!saved.multipliers.empty()) {
-    if (saved.multipliers.size() != s.lambda.size() * sizeof(Vec4<R>))
-      throw CheckpointError(fmt::format("a state of {} spring multipliers does not fit a cloth of {} springs",
-                                        saved.multipliers.size() / sizeof(Vec4<R>), s.lambda.size()));
-    std::memcpy(s.lambda.data(), saved.multipliers.data(), saved.multipliers.size());
-  }
-  // Saved per substep of another length: the same velocity (and spring forces) in this one (as
+  // Saved per substep of another length: the same velocity in this one (as
   // a live edit of the substeps does, with the same function on both backends, so they round
   // alike). Equal lengths, or an unknown one (a version-1 file), leave the bits as they are.
   if (saved.dt > 0 && dt > 0 && saved.dt != dt) rescale_displacement(s, dt / saved.dt);

@@ -26,7 +26,7 @@ struct SavedState {
   std::vector<uint8_t> positions;       // 4 scalars per particle: x, y, z, inverse mass
   std::vector<uint8_t> displacement;  // 4 scalars per particle: what the integrator carries
                                         // besides the positions (see velocity_stream)
-  std::vector<uint8_t> multipliers;   // 4 scalars per spring: xpbd's carried multipliers
+  std::vector<uint8_t> multipliers;   // 4 scalars per spring: the removed xpbd solver's (read, ignored)
                                       // (State::lambda); empty from a version 1 or 2 file
   std::vector<uint8_t> offsets;       // 4 scalars per particle: the multigrid solve's offsets,
                                       // which fabric's predict reads (State::offset); empty for

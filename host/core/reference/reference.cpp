@@ -161,7 +161,7 @@ template <class R> void set_substep_time(Constants<R>& c, double t) {
 int stretch_passes_for(const Scene& scene, const ClothModel& model) {
   const SimulationParams& sp = scene.simulation;
   if (sp.stretch_passes >= 0) return sp.stretch_passes;
-  if (sp.solver != Solver::Multigrid && sp.solver != Solver::Fabric) return 0;
+  if (sp.solver != Solver::Fabric) return 0;
   const std::vector<const ClothParams*> cloths = scene.cloths();
   for (size_t k = 0; k < cloths.size() && k < model.parts.size(); ++k) {
     const ClothPart& part = model.parts[k];
@@ -205,9 +205,6 @@ Constants<R> make_constants(const Scene& scene, const ClothModel& model, std::sh
     mat.ks = R(k->ks);
     mat.ks_bending = R(0.2 * k->ks);
     mat.keep_velocity = R(1.0 - k->damping / 100.0);
-    // 1 / (ks dt^2): ks = 0 gives +inf, a constraint that never pulls.
-    mat.alpha = R(1.0 / (k->ks * dt * dt));
-    mat.alpha_bending = R(1.0 / (0.2 * k->ks * dt * dt));
     mat.enabled[0] = k->enable_structural;
     mat.enabled[1] = k->enable_shearing;
     mat.enabled[2] = k->enable_bending;
@@ -217,14 +214,14 @@ Constants<R> make_constants(const Scene& scene, const ClothModel& model, std::sh
   // From the scene, so a live density edit takes effect.
   for (double m : particle_masses(scene, model)) c.mass.push_back(R(m));
   for (uint32_t i = 0; i < uint32_t(model.count()); ++i) c.particle_ks.push_back(c.materials[model.material[i]].ks);
-  c.xpbd = sp.solver != Solver::Classic;
-  c.multigrid = sp.solver == Solver::Multigrid || sp.solver == Solver::Fabric;
+  const bool fabric = sp.solver == Solver::Fabric;
+  c.multigrid = fabric;
   // Where the multigrid solve starts (shared/integration.glsl, solve_start_offset): multigrid less
   // the external forces' move, fabric where the last substep's move says (scaled down where a
   // mass is stiffer for its inertia than kAdaptiveStartRho).
-  c.adaptive_rho = R(sp.solver == Solver::Fabric ? kAdaptiveStartRho : 0.0);
-  c.sweep_friction = sp.solver == Solver::Fabric ? 1u : 0u;  // relax_vertices' push-out
-  c.folded_chord = R(sp.solver == Solver::Fabric ? kFoldedChordFabric : kFoldedChordMultigrid);
+  c.adaptive_rho = R(fabric ? kAdaptiveStartRho : 0.0);
+  c.sweep_friction = fabric ? 1u : 0u;  // relax_vertices' push-out
+  c.folded_chord = R(kFoldedChordFabric);
   c.folded_chord_stiff = R(kFoldedChordMultigrid);
   c.inv_dt2 = R(1.0 / (dt * dt));
   c.max_move = R(sp.max_speed * dt);  // 0: no speed clamp
@@ -233,14 +230,13 @@ Constants<R> make_constants(const Scene& scene, const ClothModel& model, std::sh
     for (const ClothParams* k : scene.cloths()) ks.push_back(k->ks);
     c.hierarchy = reuse && reuse->ks == ks ? std::move(reuse) : std::make_shared<const Hierarchy>(build_hierarchy(model, ks));
   }
-  c.tether_limit = R(1.0 + sp.tether_stretch);
   c.iterations = sp.constraint_iterations;
-  c.stretch_passes = c.xpbd ? stretch_passes_for(scene, model) : 0;  // xpbd's sweep and multigrid's alike
+  c.stretch_passes = fabric ? stretch_passes_for(scene, model) : 0;
   const bool auto_settling = sp.stretch_passes < 0 && sp.stretch_passes_max < 0 && c.stretch_passes == kAutoStretchPasses;
-  c.stretch_passes_max = c.xpbd ? std::max(auto_settling ? kAutoStretchPassesMax : sp.stretch_passes_max, c.stretch_passes) : 0;
+  c.stretch_passes_max = fabric ? std::max(auto_settling ? kAutoStretchPassesMax : sp.stretch_passes_max, c.stretch_passes) : 0;
   c.self_collision = sp.self_collision;
-  c.bounded_contact = c.xpbd && c.self_collision;
-  c.coulomb_friction = c.xpbd;
+  c.bounded_contact = fabric && c.self_collision;
+  c.coulomb_friction = fabric;
   if (c.bounded_contact) {
     // A mass moves at most a quarter of the contact distance per substep: two masses closing
     // on each other cover at most half of it, so a mass of one layer is seen by the other's
@@ -292,7 +288,6 @@ template <class R> State<R> initial_state(const ClothModel& m) {
   s.force.assign(n, Vec4<R>(0));
   s.normal.assign(n, Vec4<R>(0));
   s.pos_out = s.pos;
-  s.lambda.assign(m.springs.size(), Vec4<R>(0));
   s.hash = make_spatial_hash(uint32_t(n));
   return s;
 }

@@ -37,8 +37,8 @@ using shared::length3;
 // The colliders as the passes read them, on both sides: the structs of compute/layout.glsl, on
 // the scalar R (layout::SphereCollider is SphereColliderT<float>). keep = 1 - friction; motion =
 // the collider's displacement over this substep (0: static, and then exactly the classic
-// formulas run); mu: the friction coefficient itself, for xpbd's Coulomb friction (docs/model.md,
-// "Coulomb friction (xpbd)"). A mesh collider's nodes are Constants::sdf[dims.w ...].
+// formulas run); mu: the friction coefficient itself, for fabric's Coulomb friction (docs/model.md,
+// "Coulomb friction (fabric)"). A mesh collider's nodes are Constants::sdf[dims.w ...].
 using layout::SphereColliderT;
 using layout::PlaneColliderT;
 using layout::MeshColliderT;
@@ -83,14 +83,14 @@ inline constexpr uint32_t kNoParticle = ~0u;
 
 // Scene parameters converted once to R. The scalars the shaders read are the parameter block
 // of compute/layout.glsl itself (StepParamsT<R>: gravity, dt2, stretch_limit, contact_distance,
-// inv_cell, steps, tether_limit, max_step, inv_dt2, the wind's, bounded_contact, multigrid,
+// inv_cell, steps, max_step, inv_dt2, the wind's, bounded_contact, multigrid,
 // ...); `control` the per-substep part (Control): the GPU uploads Constants<float>'s bytes.
-// bounded_contact: xpbd with self-collision, the bounded contact (docs/model.md, "Self-contact
+// bounded_contact: fabric with self-collision, the bounded contact (docs/model.md, "Self-contact
 // that holds"): predict clamps each substep's displacement to max_step (0: no clamp), and
 // resolve_self_contacts keeps two masses min(contact_distance, their rest distance) apart, the
 // rest distance from `rest` (the model's rest positions, rounded to R once).
-// multigrid: the multigrid solver, whose solve replaces xpbd's sweep (docs/model.md) and whose
-// hierarchy (hierarchy.hpp) is built once here.
+// multigrid: the fabric solver, whose multigrid solve (docs/model.md) follows predict and whose
+// hierarchy (hierarchy.hpp) is built once here; 0 for classic.
 
 template <class R> struct Constants : layout::StepParamsT<R> {
   Control<R> control;  // what set_substep_time writes
@@ -100,15 +100,11 @@ template <class R> struct Constants : layout::StepParamsT<R> {
   std::vector<R> mass;  // kg, per particle (particle_masses: follows a live density edit)
   std::vector<R> particle_ks;  // N/m, per particle: its cloth's ks (fabric's fold threshold)
   int iterations;
-  int stretch_passes = 0;  // xpbd, multigrid: enforce_stretch_limit's passes after the sweep
-  // xpbd, multigrid: enforce_stretch_limit's passes in all, the settling ones included (not above
+  int stretch_passes = 0;  // fabric: enforce_stretch_limit's passes after the sweep
+  // fabric: enforce_stretch_limit's passes in all, the settling ones included (not above
   // stretch_passes: none settle)
   int stretch_passes_max = 0;
   bool self_collision;
-  // simulation.solver: xpbd for both position-based solvers (they share predict, the bounded
-  // self-contact and Coulomb friction: coulomb_friction in the block); multigrid (the block's)
-  // for the multigrid one.
-  bool xpbd;
   std::shared_ptr<const Hierarchy> hierarchy;
   std::shared_ptr<const std::vector<float>> sdf;  // every mesh's field, concatenated (shared, never edited)
   // Moving pins: every pinned mass is at anchor + pin_offset at the end of each substep.
@@ -182,11 +178,6 @@ template <class R> struct State {
   std::vector<Vec4<R>> wind;        // aerodynamic force per particle (compute_wind_forces); empty without wind
   SpatialHash hash;                 // self-collision scratch, sized once
   std::vector<Vec4<R>> pos_out;     // self-collision Jacobi output
-  // xpbd: per spring (the model's sorted order), the unit direction i -> j of its last visit
-  // (xyz) and its Lagrange multiplier (w), carried from substep to substep: predict applies
-  // them as the springs' forces of the last substep, the sweep starts from them (docs/model.md,
-  // "Warm-started multipliers"). Zero at the start and for the classic solver.
-  std::vector<Vec4<R>> lambda;
   // Per particle and skinned collider (particle * skin_meshes + MeshCollider::skin.z): the
   // nearest triangle the substep's first collision found (kNoParticle: none within reach),
   // which the later ones reuse (reference_skinning.hpp; BINDING_NEAREST on the GPU). Rebuilt
@@ -206,12 +197,9 @@ template <class R> struct State {
 template <class R> State<R> initial_state(const ClothModel& model);
 
 // After a change of the substep length (frames_per_sec or simulation_steps), the displacement
-// per substep scales with it, so the cloth keeps its velocity: d *= dt_new / dt_old; and xpbd's
-// carried multipliers, forces times dt^2, with its square, so the springs keep their forces.
+// per substep scales with it, so the cloth keeps its velocity: d *= dt_new / dt_old.
 template <class R> void rescale_displacement(State<R>& s, double dt_ratio) {
   for (auto& d : s.disp) d = Vec4<R>(Vec3<R>(d) * R(dt_ratio), R(0));
-  const R squared = R(dt_ratio * dt_ratio);
-  for (auto& l : s.lambda) l = Vec4<R>(Vec3<R>(l), l.w * squared);
 }
 
 // The passes, in step order.
@@ -240,17 +228,12 @@ template <class R> void advance(const ClothModel& m, const Constants<R>& c, Stat
 // springs model.colour_start[colour] .. model.colour_start[colour + 1].
 template <class R> void solve_length_constraint_colour(const ClothModel& m, const Constants<R>& c, int colour, State<R>& s);
 
-// The xpbd solver (docs/model.md): predict moves every free particle by its damped
-// displacement and gravity alone (the springs are constraints now), then pulls it back onto
-// its tether to the nearest pin if it got further than (1 + tether_stretch) times the rest
-// distance (long-range attachments, tethers.cpp); solve_distance_constraints
-// then solves each spring's XPBD distance constraint once, colour by colour, each followed by
-// the max_stretch limit in the same spring's visit.
+// The fabric solver (docs/model.md): predict moves every free particle by its damped
+// displacement, gravity and the wind alone (the springs act in the multigrid solve after it)
+// and records where that solve starts (solve_start_offset).
 template <class R> void predict(const ClothModel& m, const Constants<R>& c, State<R>& s);
-template <class R> void solve_distance_constraint_colour(const ClothModel& m, const Constants<R>& c, int colour, State<R>& s);
-template <class R> void solve_distance_constraints(const ClothModel& m, const Constants<R>& c, State<R>& s);
 // simulation.stretch_passes as the solvers run it: the scene's count, or for -1 (auto, the
-// default) none under xpbd and, under multigrid and fabric, kAutoStretchPasses where a cloth's own
+// default), under fabric, kAutoStretchPasses where a cloth's own
 // weight would stretch its springs past half its limit (density · |g| · its largest rest extent
 // / ks > max_stretch / 2: the classic app's cloths, which rest on their limit; docs/model.md
 // step 7), else none; with stretch_passes_max left at -1 those come with settling passes up to
@@ -259,7 +242,7 @@ inline constexpr int kAutoStretchPasses = 2;
 inline constexpr int kAutoStretchPassesMax = 16;
 int stretch_passes_for(const Scene& scene, const ClothModel& model);
 
-// After the sweep (xpbd, multigrid, fabric): stretch_passes passes of Provot's limit alone over
+// After fabric's sweep: stretch_passes passes of Provot's limit alone over
 // every colour (solve_length_constraint_colour): in a sweep a later colour can pull a spring
 // limited earlier out again (docs/model.md). With stretch_passes_max above stretch_passes,
 // settling passes follow, up to that many in all: the last fixed pass (or one, with none fixed)
@@ -285,11 +268,10 @@ inline constexpr int kLevelSweeps = 1;     // Gauss-Seidel sweeps per level on t
 // A mass this close to a collider's surface (m) is held by it: left out of the coarse problem.
 inline constexpr double kContactReach = 1e-3;
 // A coarse spring shorter than this times its rest length marks a fold (StepParams::folded_chord):
-// the cloth between its ends may have buckled, so the coarse vertex is fixed. Multigrid: 0.95
-// let the 513² hang's buckling top edge fold the cloth up; 1 (any slack chord) also fixes the
-// slightly compressed lower cloth and slows its hanging. fabric: 0.99 held back a swinging
-// cloth (its free edge's chords shorten by 1-3 % as it swings) and let the 257² hang tear at
-// its pins (docs/solvers.md).
+// the cloth between its ends may have buckled, so the coarse vertex is fixed. 0.99 (the removed
+// multigrid solver's, still folded_chord_stiff: change 5) held back a swinging cloth (its free
+// edge's chords shorten by 1-3 % as it swings) and let the 257² hang tear at its pins; 1 (any
+// slack chord) also fixes the slightly compressed lower cloth and slows its hanging (docs/solvers.md).
 inline constexpr double kFoldedChordMultigrid = 0.99;
 inline constexpr double kFoldedChordFabric = 0.95;
 // fabric's adaptive start takes its whole share up to a mass's rho = ks dt^2 / m of this, less
@@ -324,20 +306,17 @@ template <class R> void solve_multigrid(const ClothModel& m, const Constants<R>&
 // max_move from where it started (a fast collider cannot fling it faster either).
 template <class R> void limit_speed(const ClothModel& m, const Constants<R>& c, State<R>& s);
 
-// One substep: the pass list of docs/design.md §1, or of docs/model.md for xpbd; with a profile,
+// One substep: the pass list of docs/design.md §1, or of docs/model.md for fabric; with a profile,
 // each pass timed (simulate --profile).
 template <class R> void step(const ClothModel& m, const Constants<R>& c, State<R>& s, PassProfile* profile = nullptr) {
   auto pass = [profile](std::string_view name, auto&& f) { profiled(profile, name, f); };
   if (c.wind_enabled) pass("compute_wind_forces", [&] { compute_wind_forces(m, c, s); });  // advance or predict add them
-  if (c.xpbd) {
+  if (c.multigrid) {
     pass("predict", [&] { predict(m, c, s); });
     if (c.self_collision) pass("collide_self", [&] { collide_self(c, s); });
     pass("collide_objects", [&] { collide_objects(c, s); });
-    if (c.multigrid)
-      pass("solve_multigrid", [&] { solve_multigrid(m, c, s); });
-    else
-      pass("solve_distance_constraints", [&] { solve_distance_constraints(m, c, s); });
-    pass("enforce_stretch_limit", [&] { enforce_stretch_limit(m, c, s); });  // the limit holds after either sweep
+    pass("solve_multigrid", [&] { solve_multigrid(m, c, s); });
+    pass("enforce_stretch_limit", [&] { enforce_stretch_limit(m, c, s); });  // a later colour can pull a limited spring out
   } else {
     pass("advance", [&] { advance(m, c, s); });
     if (c.self_collision) pass("collide_self", [&] { collide_self(c, s); });

@@ -83,11 +83,11 @@ void add_self_contacts(const Constants<R>& c, const State<R>& s, uint32_t i, con
 }
 
 // One particle against every sphere, then every plane, then every mesh. With `friction` false every contact
-// keeps all of its tangential motion (keep = 1): the pure push-out of xpbd's constraint pass.
+// keeps all of its tangential motion (keep = 1): the pure push-out after a sweep that moved a mass into a collider that moves.
 // The formulas are compute/shared/collisions.glsl's.
 template <class R> void collide_particle(const Constants<R>& c, Vec3<R>& x, Vec3<R>& d, bool friction, uint32_t* slots,
                                          bool search, bool still_only) {
-  const bool coulomb = friction && c.xpbd;  // the plane's contact test (resting contact)
+  const bool coulomb = friction && c.multigrid;  // the plane's contact test (resting contact)
   for (const SphereColliderT<R>& sp : c.control.spheres) {
     const Vec3<R> origin(sp.origin_radius), motion(sp.motion);
     const R radius = sp.origin_radius.w, keep = sp.keep.x, mu = sp.keep.y;
@@ -103,7 +103,7 @@ template <class R> void collide_particle(const Constants<R>& c, Vec3<R>& x, Vec3
       t_minus_x = static_sphere_push(e, dist, radius, d);
     }
     const bool held = shared::takes_friction(friction, still_only, motion);
-    respond_to_sphere(held && c.xpbd, origin, held ? keep : R(1), mu, motion, t_minus_x, x, d);
+    respond_to_sphere(held && c.multigrid, origin, held ? keep : R(1), mu, motion, t_minus_x, x, d);
     keep_out_of_sphere(origin, radius, x, d);
   }
   for (const PlaneColliderT<R>& pl : c.control.planes) {
@@ -120,7 +120,7 @@ template <class R> void collide_particle(const Constants<R>& c, Vec3<R>& x, Vec3
     if (!crossed && stays_in_front(dist, front, coulomb)) continue;
     const R side = plane_side(crossed, dist_prev, front);
     const bool held = shared::takes_friction(friction, still_only, motion);
-    respond_to_plane(held && c.xpbd, normal, front, held ? keep : R(1), mu, motion, dist, side, x, d);
+    respond_to_plane(held && c.multigrid, normal, front, held ? keep : R(1), mu, motion, dist, side, x, d);
     if (side == front) keep_in_front_of_plane(point, normal, front, x, d);
   }
   MeshColliderT<R> frame;  // a skinned collider's, at this mass

@@ -1,5 +1,5 @@
-// The reference's constraint passes: Provot's length limit (classic, docs/design.md §1 step 5) and
-// xpbd's distance constraints (docs/model.md), colour by colour in the GPU's order.
+// The reference's constraint passes: Provot's length limit (classic, docs/design.md §1 step 5;
+// fabric's enforce_stretch_limit), colour by colour in the GPU's order.
 #include <algorithm>
 
 #include "reference/reference.hpp"
@@ -54,7 +54,7 @@ void solve_length_constraint_colour(const ClothModel& m, const Constants<R>& c, 
 }
 
 // `passes` sweeps of the length constraint over every colour: the classic solver's
-// (constraint_iterations) and xpbd's enforce_stretch_limit (stretch_passes), as
+// (constraint_iterations) and fabric's enforce_stretch_limit (stretch_passes), as
 // GpuSimulator::length_constraint_passes.
 namespace {
 template <class R>
@@ -84,52 +84,10 @@ template <class R> void enforce_stretch_limit(const ClothModel& m, const Constan
   }
 }
 
-template <class R>
-void solve_distance_constraint_colour(const ClothModel& m, const Constants<R>& c, int colour, State<R>& s) {
-  for_each_spring_of_colour(m, c, colour, [&](const Spring& sp) {
-    const uint32_t i = sp.i, j = sp.j;
-    const R alpha = c.materials[sp.material].compliance(sp.type);
-    const R wi = s.pos[i].w, wj = s.pos[j].w, wsum = wi + wj;
-    if (wsum == R(0)) return;
-    const R rest = c.rest_of(sp);
-    Vec3<R> xi(s.pos[i]), xj(s.pos[j]), di(s.disp[i]), dj(s.disp[j]);
-    const Vec3<R> e = xj - xi;
-    const R len = length3(e);
-    if (len > R(0)) {
-      // XPBD from the multiplier the spring ended the last substep with (predict applied it).
-      const size_t k = size_t(&sp - m.springs.data());
-      Vec3<R> n;
-      const R carried = shared::xpbd_distance_step(e, len, rest, alpha, s.lambda[k].w, wi, wj, wsum, xi, xj, di, dj, n);
-      s.lambda[k] = Vec4<R>(n, carried);
-    }
-    // max_stretch stays a hard limit, in the same visit.
-    limit_stretch(xi, xj, di, dj, wi, wj, wsum, c.stretch_limit * rest);
-    // A correction must not push a mass into a collider or through a plane, where the
-    // collision test of the next substep could no longer see it (docs/model.md). Frictionless
-    // but under fabric (sweep_friction), as the GPU's listed push-out (collide_objects.comp's
-    // FRICTIONLESS): xpbd's sweep runs under fabric only in the pass checks, from a fabric state.
-    if (c.has_colliders()) {
-      const bool friction = c.sweep_friction != 0u;
-      if (wi != R(0)) collide_particle(c, xi, di, friction, skin_slots(c, s, i), /*search=*/false, /*still_only=*/true);
-      if (wj != R(0)) collide_particle(c, xj, dj, friction, skin_slots(c, s, j), /*search=*/false, /*still_only=*/true);
-    }
-    s.pos[i] = Vec4<R>(xi, wi);
-    s.pos[j] = Vec4<R>(xj, wj);
-    s.disp[i] = Vec4<R>(di, R(0));
-    s.disp[j] = Vec4<R>(dj, R(0));
-  });
-}
-
-template <class R> void solve_distance_constraints(const ClothModel& m, const Constants<R>& c, State<R>& s) {
-  for (int colour = 0; colour < m.colours(); ++colour) solve_distance_constraint_colour(m, c, colour, s);
-}
-
 #define CLOTHSIM_INSTANTIATE(R) \
   template void solve_length_constraint_colour<R>(const ClothModel&, const Constants<R>&, int, State<R>&); \
   template void solve_length_constraints<R>(const ClothModel&, const Constants<R>&, State<R>&); \
-  template void enforce_stretch_limit<R>(const ClothModel&, const Constants<R>&, State<R>&); \
-  template void solve_distance_constraint_colour<R>(const ClothModel&, const Constants<R>&, int, State<R>&); \
-  template void solve_distance_constraints<R>(const ClothModel&, const Constants<R>&, State<R>&);
+  template void enforce_stretch_limit<R>(const ClothModel&, const Constants<R>&, State<R>&);
 CLOTHSIM_INSTANTIATE(float)
 CLOTHSIM_INSTANTIATE(double)
 

@@ -10,7 +10,7 @@ namespace clothsim {
 
 // One particle against every sphere, then every plane (reference_collisions.cpp). With
 // `friction` false every contact keeps all of its tangential motion (keep = 1): the pure
-// push-out of xpbd's constraint pass.
+// push-out against a collider that moved.
 // `slots`, `search`: the mass's nearest skinned triangles, found anew (the substep's first
 // collision) or reused (reference_skinning.hpp, mesh_at). `still_only`: fabric's sweep, whose
 // friction holds only against colliders that did not move this substep (shared::takes_friction;

@@ -1,4 +1,4 @@
-// The reference's force, integration and normal passes (docs/design.md §1 steps 1-2, the wind, xpbd's
+// The reference's force, integration and normal passes (docs/design.md §1 steps 1-2, the wind, fabric's
 // predict): one function per pass, each the twin of the compute shader of the same name.
 #include "reference/reference.hpp"
 #include "../../../compute/shared/integration.glsl"
@@ -91,46 +91,24 @@ template <class R> void integrate(const ClothModel& m, const Constants<R>& c, St
 }
 
 template <class R> void predict(const ClothModel& m, const Constants<R>& c, State<R>& s) {
-  if (c.multigrid && s.offset.size() != s.pos.size()) s.offset.assign(s.pos.size(), Vec4<R>(0));
-  // Where pin k is at the end of this substep; a moving one from its anchor (as on the GPU,
-  // where predict writes the pins while it reads them for the tethers).
-  auto pin_position = [&](int k) {
-    Vec3<R> x;
-    return moving_pin_position(c, size_t(k), x) ? x : Vec3<R>(s.pos[k]);
-  };
+  if (s.offset.size() != s.pos.size()) s.offset.assign(s.pos.size(), Vec4<R>(0));
   for (size_t i = 0; i < s.pos.size(); ++i) {
     const R w = s.pos[i].w;
     if (w == R(0)) {
       move_pinned(c, i, s);
-      if (c.multigrid) s.offset[i] = Vec4<R>(0);
+      s.offset[i] = Vec4<R>(0);
       continue;
     }
     Vec3<R> acc = c.gravity;
     if (c.wind_enabled) acc = acc + Vec3<R>(s.wind[i]) * w;  // compute_wind_forces ran before
-    // The springs' multipliers of the last substep, as their forces over this one (times dt^2):
-    // -n lambda on the spring's i end, +n lambda on its j end, in the gather order.
-    // (The multigrid solver carries none: its springs act in its own solve.)
-    Vec3<R> warm(0);
-    const uint32_t last = c.multigrid ? m.gather_start[i] : m.gather_start[i + 1];
-    for (uint32_t k = m.gather_start[i]; k < last; ++k) {
-      const uint32_t sk = m.gather[k];
-      const Vec4<R>& l = s.lambda[sk];
-      const Vec3<R> f = Vec3<R>(l) * l.w;
-      warm = m.springs[sk].i == uint32_t(i) ? warm - f : warm + f;
-    }
-    Vec3<R> d = shared::predicted_move(Vec3<R>(s.disp[i]), c.materials[m.material[i]].keep_velocity, acc, warm, w, c);
+    Vec3<R> d = shared::predicted_move(Vec3<R>(s.disp[i]), c.materials[m.material[i]].keep_velocity, acc, c);
     if (c.max_step > R(0)) d = shared::limit_step(d, c.max_step);  // the bounded contact's speed limit
-    Vec3<R> x = Vec3<R>(s.pos[i]) + d;
+    const Vec3<R> x = Vec3<R>(s.pos[i]) + d;
     // The multigrid solve starts from the inertial position without the external forces' share
     // and applies it with the springs, so a cloth at rest starts where it rests and stays
     // exactly there (docs/model.md). The contacts still see the full prediction (Coulomb
     // friction takes its depth from it); prolong_to_cloth moves the masses by the offset.
-    if (c.multigrid) s.offset[i] = Vec4<R>(shared::solve_start_offset(acc, Vec3<R>(s.offset[i]), c.particle_ks[i] * w, c), R(0));
-    // The tether to the nearest pin: xpbd's, whose sweep alone cannot carry the pins' pull
-    // across a fine cloth; the multigrid solve does (docs/solvers.md), and takes none.
-    if (const int pin = c.multigrid ? -1 : m.tether_pin[i]; pin >= 0) {
-      shared::tether_to(x - pin_position(pin), c.tether_limit * R(m.tether_rest[i]), x, d);
-    }
+    s.offset[i] = Vec4<R>(shared::solve_start_offset(acc, Vec3<R>(s.offset[i]), c.particle_ks[i] * w, c), R(0));
     s.disp[i] = Vec4<R>(d, R(0));
     s.pos[i] = Vec4<R>(x, w);
   }

@@ -137,7 +137,7 @@ template <class R> void collide_with_mesh(const Constants<R>& c, const MeshColli
     if (!sample_mesh_field(m, sdf, p + to_local(m, t_minus_x), phi_back, grad_back) || !world_normal(m, grad_back, n))
       n = t_minus_x * (R(1) / length3(t_minus_x));
   }
-  respond_to_contact(friction && c.xpbd, t_minus_x, n, friction ? m.motion.w : R(1), m.material.x, Vec3<R>(m.motion), x, d);
+  respond_to_contact(friction && c.multigrid, t_minus_x, n, friction ? m.motion.w : R(1), m.material.x, Vec3<R>(m.motion), x, d);
   keep_out_of_mesh(c, m, x, d);
 }
 

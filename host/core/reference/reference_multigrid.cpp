@@ -244,7 +244,7 @@ template <class R> void relax_vertices(const ClothModel& m, const Constants<R>& 
       x = x + corr;
       d = d + corr;
     }
-    // A correction must not push a mass into a collider or through a plane (as in xpbd's sweep).
+    // A correction must not push a mass into a collider or through a plane (the sweep's push-out).
     // fabric: with Coulomb friction against colliders that did not move this substep, so the
     // sweep's own moves along a surface are held as the prediction's are (without it a drape
     // creeps off a sphere: 22 mm over frames 90-300); none against a moving one (takes_friction).

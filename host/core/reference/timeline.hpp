@@ -29,11 +29,8 @@ struct Timeline {
 template <class R> struct MaterialC {
   R ks, ks_bending;        // N/m: structural and shearing, bending (0.2 ks)
   R keep_velocity;         // 1 - damping / 100
-  // xpbd: the time-scaled compliance alpha~ = 1 / (ks' dt^2) of a spring's distance constraint.
-  R alpha, alpha_bending;
   bool enabled[kSpringTypes];  // by SpringType (seams always)
   R stiffness(SpringType t) const { return t == SpringType::Bending ? ks_bending : ks; }
-  R compliance(SpringType t) const { return t == SpringType::Bending ? alpha_bending : alpha; }
 };
 
 }  // namespace clothsim

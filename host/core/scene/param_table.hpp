@@ -45,6 +45,12 @@ struct Widget {
 enum class Shape : unsigned char { Any, Grid, Mesh };
 inline constexpr const char* kMeshKey = "mesh";
 
+// A name a choice row took once and now refuses with `message` (what to use instead).
+struct RemovedChoice {
+  const char* name;
+  const char* message;
+};
+
 // Everything about a row but the member it lives in.
 struct ParamInfo {
   const char* key;              // JSON key, also the C++ member name and the viewer's label
@@ -57,6 +63,7 @@ struct ParamInfo {
   const char* meaning = "";     // one line for docs/parameters.md
   Widget widget = {};
   std::span<const char* const> choices = {};  // an enum stored as a JSON string: its names, by value
+  std::span<const RemovedChoice> removed_choices = {};  // names no longer taken, each with its message
   bool one_or_many = false;     // a list that may also be written as a single object (sphere, plane)
   bool single_as_object = false;  // one_or_many, and a list of one is written as that object (cloth)
   Shape shape = Shape::Any;

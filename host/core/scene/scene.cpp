@@ -67,7 +67,7 @@ void check_box(const std::optional<BoxParams>& box, const std::string& source, c
 }
 
 // Each attachment of cloth `c` (its key path `key`) names a collider of the scene, picks some
-// vertices, and is not for xpbd (whose constraints the attachment's spring would fight).
+// vertices.
 void check_attachments(const Scene& s, const ClothParams& c, const std::string& source, const std::string& key) {
   for (size_t k = 0; k < c.attachments.size(); ++k) {
     const AttachmentParams& a = c.attachments[k];
@@ -81,10 +81,6 @@ void check_attachments(const Scene& s, const ClothParams& c, const std::string& 
     if (a.vertices.empty() && !a.box)
       throw SceneError(fmt::format("{}: {}: expected `vertices` or `box` (which vertices follow {})", source, at,
                                    printable(a.collider)));
-    if (s.simulation.solver == Solver::Xpbd)
-      throw SceneError(fmt::format("{}: {}: attachments need simulation.solver \"classic\", \"multigrid\" or "
-                                   "\"fabric\", got \"xpbd\"",
-                                   source, at));
   }
 }
 
@@ -119,10 +115,6 @@ void check_seams(const Scene& s, const ClothParams& c, size_t cloths, const std:
     };
     side(seam.vertices, seam.edge, seam.box, c, "");
     side(seam.to_vertices, seam.to_edge, seam.to_box, other, "to_");
-    if (s.simulation.solver == Solver::Xpbd)
-      throw SceneError(fmt::format("{}: {}: seams need simulation.solver \"classic\", \"multigrid\" or \"fabric\", "
-                                   "got \"xpbd\"",
-                                   source, at));
   }
 }
 
@@ -199,12 +191,6 @@ Scene parse_scene(const std::string& text, const std::string& source, const std:
                                    source, s.meshes.size() == 1 ? std::string("mesh") : fmt::format("mesh[{}]", k),
                                    sources));
   }
-  // Special case, across two rows: XPBD's compliance is exact for one solve per substep (its
-  // Lagrange multipliers start at zero every substep); a stiffer xpbd cloth needs more substeps.
-  if (s.simulation.solver == Solver::Xpbd && s.simulation.constraint_iterations != 1)
-    throw SceneError(fmt::format("{}: simulation.constraint_iterations: expected 1 with solver \"xpbd\" (one solve "
-                                 "per substep; raise simulation_steps for a stiffer cloth), got {}",
-                                 source, s.simulation.constraint_iterations));
   return s;
 }
 

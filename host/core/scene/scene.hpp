@@ -14,9 +14,9 @@
 namespace clothsim {
 
 enum class Orientation { Horizontal = 0, Vertical = 1 };
-// classic: the CS184 mass-spring model (explicit springs, Verlet, Provot); xpbd: the springs
-// as XPBD distance constraints with small steps (docs/model.md).
-enum class Solver { Classic = 0, Xpbd = 1, Multigrid = 2, Fabric = 3 };
+// classic: the CS184 mass-spring model (explicit springs, Verlet, Provot); fabric: implicit
+// Euler solved by a multigrid V-cycle and a vertex sweep (docs/solvers.md).
+enum class Solver { Classic = 0, Fabric = 1 };
 
 // One key of a keyframed motion: at `time` (simulated seconds) the value is `value`.
 struct Keyframe {
@@ -179,8 +179,7 @@ struct SimulationParams {
   int constraint_iterations = 1;
   bool self_collision = true;
   Solver solver = Solver::Classic;
-  double tether_stretch = 0.01;  // xpbd only: long-range attachments to the nearest pin
-  int stretch_passes = -1;       // xpbd and multigrid: Provot passes over every colour after the sweep; -1 auto (stretch_passes_for)
+  int stretch_passes = -1;       // fabric: Provot passes over every colour after the sweep; -1 auto (stretch_passes_for)
   double sewing_speed = 0.5;     // m/s: how fast a seam's springs shrink from the pair's distance to zero
   int stretch_passes_max = -1;   // up to this many in all, the ones past stretch_passes only while a spring is over; -1: stretch_passes
 

@@ -137,6 +137,9 @@ class Reader final : public ParamVisitor {
     if (!v) return;
     for (size_t i = 0; i < info.choices.size() && v->is_string(); ++i)
       if (v->get_ref<const std::string&>() == info.choices[i]) { m = int(i); return; }
+    for (const RemovedChoice& r : info.removed_choices)
+      if (v->is_string() && v->get_ref<const std::string&>() == r.name)
+        r_.fail(r_.key(info.key), fmt::format("\"{}\": {}; expected one of {}", r.name, r.message, names));
     r_.fail(r_.key(info.key), fmt::format("expected one of {}, got {}", names, ObjectReader::describe(*v)));
   }
   void text(const ParamInfo& info, std::string& m) override {

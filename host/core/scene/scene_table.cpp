@@ -36,7 +36,15 @@ void visit_cloths(Scene& s, const ParamInfo& info, ParamVisitor& v) {
   v.list(info, l);
 }
 
-const char* const kSolvers[] = {"classic", "xpbd", "multigrid", "fabric"};
+const char* const kSolvers[] = {"classic", "fabric"};
+// Solvers a scene may still name, each refused with what to use instead (docs/solvers.md,
+// "Removed solvers"): both became fabric (issue 43).
+const RemovedChoice kRemovedSolvers[] = {
+    {"xpbd", "the xpbd solver was removed (it softened with resolution and let cloth slide off curved colliders): "
+             "use \"fabric\", or \"classic\" for the CS184 model (docs/solvers.md, \"Removed solvers\")"},
+    {"multigrid", "the multigrid solver became \"fabric\" (the same multigrid solve with an adaptive start and "
+                  "friction in its sweep): use \"fabric\" (docs/solvers.md, \"Removed solvers\")"},
+};
 const char* const kMassLumpings[] = {"area", "uniform"};
 
 const Param<Scene> kScene[] = {
@@ -232,33 +240,27 @@ const Param<SimulationParams> kSimulation[] = {
                                          .widget = drag(0.005f, 0.0, 10.0, "%.3f")}),
     row<&SimulationParams::max_speed>({.key = "max_speed", .lo = 0, .expected = "a speed >= 0", .unit = "m/s",
                                        .meaning = "speed clamp: a free mass's move in a substep's integration (Verlet's "
-                                                  "or xpbd's prediction) is at most max_speed · dt, against the explosions "
+                                                  "or fabric's prediction) is at most max_speed · dt, against the explosions "
                                                   "of fast colliders and large time steps; 0: no limit",
                                        .widget = drag(0.05f, 0.0, 1000.0, "%.2f")}),
     row<&SimulationParams::constraint_iterations>({.key = "constraint_iterations", .lo = 0, .hi = 10000,
-                                                   .meaning = "sweeps of the length constraint per substep",
+                                                   .meaning = "classic: sweeps of the length constraint per substep (fabric solves its springs in its own sweep)",
                                                    .widget = drag(0.1f, 0, 100, "%d")}),
     row<&SimulationParams::self_collision>({.key = "self_collision", .meaning = "hashed-grid self-collision on/off",
                                             .widget = kCheckbox}),
     row<&SimulationParams::solver>({.key = "solver",
-                                    .meaning = "classic: mass-spring + Verlet + Provot (CS184); xpbd: springs as XPBD "
-                                               "distance constraints, one iteration per substep; multigrid: implicit "
-                                               "Euler, a coarse-grid correction and a vertex sweep per substep, as stiff "
-                                               "at any resolution (docs/model.md); fabric: multigrid's solve started "
-                                               "from the whole inertial prediction, so a falling or buckling cloth "
-                                               "keeps its pace (docs/solvers.md)",
+                                    .meaning = "classic: mass-spring + Verlet + Provot (CS184); fabric: implicit "
+                                               "Euler per substep, a multigrid V-cycle and a vertex sweep with contacts "
+                                               "and friction, as stiff at any resolution, started from the inertial "
+                                               "prediction so a falling or buckling cloth keeps its pace "
+                                               "(docs/solvers.md); \"xpbd\" and \"multigrid\" were removed",
                                     .widget = {.style = Widget::Drag},  // a combo box
-                                    .choices = kSolvers}),
-    row<&SimulationParams::tether_stretch>(
-        {.key = "tether_stretch", .lo = 0, .expected = "a stretch ratio >= 0",
-         .meaning = "xpbd only (multigrid needs none): no mass gets further than (1 + tether_stretch) · its rest distance from its nearest "
-                    "pin (long-range attachments); a large value turns them off",
-         .widget = drag(0.001f, 0.0, 10.0, "%.3f")}),
+                                    .choices = kSolvers, .removed_choices = kRemovedSolvers}),
     row<&SimulationParams::stretch_passes>(
         {.key = "stretch_passes", .lo = -1, .hi = 100, .expected = "-1 (auto) or a pass count in [0, 100]",
-         .meaning = "xpbd, multigrid and fabric: passes of the max_stretch limit over every colour after the sweep, so that "
+         .meaning = "fabric: passes of the max_stretch limit over every colour after the sweep, so that "
                     "the limit holds at the end of the substep (in the sweep a later colour can pull a spring out "
-                    "again); -1: none under xpbd, under multigrid and fabric 2 where a cloth's own weight would stretch its "
+                    "again); -1: 2 where a cloth's own weight would stretch its "
                     "springs past half the limit (density · |gravity| · size / ks > max_stretch / 2), else 1 with "
                     "seams (their weld), else none",
          .widget = drag(0.1f, -1, 20, "%d")}),
@@ -270,7 +272,7 @@ const Param<SimulationParams> kSimulation[] = {
                                           .widget = drag(0.01f, 1e-6, 1e3, "%.2f")}),
     row<&SimulationParams::stretch_passes_max>(
         {.key = "stretch_passes_max", .lo = -1, .hi = 100, .expected = "-1 (no settling passes) or a pass count in [0, 100]",
-         .meaning = "xpbd, multigrid and fabric: settling passes of the limit after the stretch_passes ones, up to this many "
+         .meaning = "fabric: settling passes of the limit after the stretch_passes ones, up to this many "
                     "passes in all, each only while the pass before it found a spring longer than (1 + 2^-16) times "
                     "its limit: the limit holds where one event needs many passes, and a quiet substep pays "
                     "for none (docs/model.md); -1: 16 in all where stretch_passes is auto and gives 2 (a cloth "

@@ -41,6 +41,6 @@ inline const char* normalise_axis(glm::dvec3& n) {
 inline const ParamInfo kFriction{.key = "friction", .required = true, .lo = 0, .hi = 1,
                           .expected = "a friction coefficient in [0, 1]",
                           .meaning = "classic: the CS184 blend, 0 a touching mass keeps its motion, 1 it "
-                                     "sticks; xpbd: Coulomb's mu, a cloth holds on a slope while tan(angle) <= mu"};
+                                     "sticks; fabric: Coulomb's mu, a cloth holds on a slope while tan(angle) <= mu"};
 
 }  // namespace clothsim::table_detail
