@@ -40,20 +40,25 @@ void push_out(int i, inout vec3 x, inout vec3 d, float clearance) {
 // Particle i's colour in this sweep (after the per-particle starts of TEXTURE_MG_FINE).
 uint fine_colour_of(int i) { return texelFetch(mg_fine_view, int(particle_count()) + 1 + i).x; }
 
-// The self-contacts of mass i (of `colour`) at x with the masses of entries [first, last)
-// (add_self_contact_pull). A mass of i's own colour is being moved by this dispatch: left to
+// The self-contacts of mass i (of `colour`) at x, which began the substep at start_i, with the
+// masses of entries [first, last) (sweep_contact_keep, add_self_contact_pull). A mass of i's own colour is being moved by this dispatch: left to
 // resolve_self_contacts.
-void add_contacts(vec3 x, vec4 rest_i, uint colour, float k, uint first, uint last, inout vec3 f, inout Sym3 hess) {
+void add_contacts(vec3 x, vec3 start_i, vec4 rest_i, uint colour, float k, uint first, uint last, inout vec3 f,
+                  inout Sym3 hess) {
   for (uint e = first; e < last; ++e) {
     int j = int(entries[e]);
-    precise vec3 e3 = x - position_of(j).xyz;
+    vec3 xj = position_of(j).xyz;
+    precise vec3 e3 = x - xj;
     float d = length3(e3);
     if (d >= params.contact_distance || d == 0.0 || fine_colour_of(j) == colour) continue;
+    precise vec3 start_j = xj - displacement_of(j).xyz;
+    float keep = sweep_contact_keep(start_i - start_j, params.contact_distance);
+    if (d >= keep) continue;
     vec4 rest_j = texelFetch(rest_positions_view, j);
     if (params.welds != 0u && rest_j.w == rest_i.w) continue;  // a sewn pair
     if (!apart_at_rest(rest_i.xyz, rest_j.xyz, params.contact_distance)) continue;  // neighbours
     vec3 n;
-    f = add_self_contact_pull(f, e3, d, params.contact_distance, k, n);
+    f = add_self_contact_pull(f, e3, d, keep, k, n);
     add_spring_hessian(hess, n, k, 0.0);
   }
 }
@@ -63,7 +68,7 @@ void add_contacts(vec3 x, vec4 rest_i, uint colour, float k, uint first, uint la
 // hashed onto each other; in a small table, always) the later skips what an earlier one took.
 // Unlike the push-out, a bucket's masses of other cells are not filtered out by cell: they are
 // far, and the distance test drops them.
-void add_self_contacts(int i, vec3 x, float k, inout vec3 f, inout Sym3 hess) {
+void add_self_contacts(int i, vec3 x, vec3 start_i, float k, inout vec3 f, inout Sym3 hess) {
   ivec3 c = cell_of(x);
   vec4 rest_i = texelFetch(rest_positions_view, i);
   uint colour = fine_colour_of(i), mask = params.table_size - 1u;
@@ -74,7 +79,7 @@ void add_self_contacts(int i, vec3 x, float k, inout vec3 f, inout Sym3 hess) {
       uint b = (runs[r] + dx) & mask;
       bool taken = false;
       for (int q = 0; q < r; ++q) taken = taken || ((b - runs[q]) & mask) < 3u;
-      if (!taken) add_contacts(x, rest_i, colour, k, texelFetch(cell_start_view, int(b)).x, texelFetch(cell_start_view, int(b) + 1).x, f, hess);
+      if (!taken) add_contacts(x, start_i, rest_i, colour, k, texelFetch(cell_start_view, int(b)).x, texelFetch(cell_start_view, int(b) + 1).x, f, hess);
     }
   }
 }
@@ -117,7 +122,7 @@ void main() {
     add_spring_hessian(hess, vec3(0.0), 0.0, rel.w);
   }
   // fabric's sweep only (sweep_friction marks it): multigrid keeps the behaviour measured for it.
-  if (params.bounded_contact != 0u && params.sweep_friction != 0u) add_self_contacts(i, x, float(SELF_CONTACT_STIFFNESS) * mat.stiffness.x, f, hess);
+  if (params.bounded_contact != 0u && params.sweep_friction != 0u) add_self_contacts(i, x, x - d, float(SELF_CONTACT_STIFFNESS) * mat.stiffness.x, f, hess);
   vec3 step;
   uint limit_last = first;
   if (solve3(hess, f, step)) {

@@ -22,8 +22,7 @@ namespace clothsim::test {
 // The chains: a 2 x 11 grid, 0.1 m x 1 m, lying in the y = 1 plane along z, with only its
 // structural springs (two chains of 11 masses along z, joined by rungs that hang straight and
 // carry nothing), its top row (z = 1) pinned. ks 50 N/m, density 0.15 kg/m^2 (each mass
-// 0.1 x 1 x 0.15 / 22 kg), max_stretch 10 (no Provot limit helping) and xpbd's tethers off
-// (tether_stretch 100), 90 frames/s x 30 substeps.
+// 0.1 x 1 x 0.15 / 22 kg), max_stretch 10 (no Provot limit helping), 90 frames/s x 30 substeps.
 inline constexpr int kChainMasses = 11;  // per chain, the pinned one included
 inline constexpr double kChainKs = 50;
 inline constexpr double kChainMass = 0.1 * 1.0 * 0.15 / (2 * kChainMasses);
@@ -34,7 +33,7 @@ inline Scene chain_scene(const std::string& solver, std::vector<std::string> set
                              fmt::format("cloth.ks={}", kChainKs), "cloth.enable_shearing=false",
                              "cloth.enable_bending=false",
                              fmt::format("cloth.pinned=[[0,{0}],[1,{0}]]", kChainMasses - 1),
-                             "simulation.max_stretch=10", "simulation.tether_stretch=100",
+                             "simulation.max_stretch=10",
                              "simulation.self_collision=false", "simulation.solver=\"" + solver + "\""});
   return make_scene(2, kChainMasses, 0, sets);
 }
@@ -97,7 +96,6 @@ inline constexpr int kModeFrames = 150;         // about 10 periods at 90 frames
 
 // The loaded sheet: a horizontal 33 x 33 cloth, 1 m x 1 m at y = 1, every border mass pinned,
 // under gravity, ks 100 N/m and density 0.15 kg/m^2 with every spring type, max_stretch 10,
-// tethers off,
 // damping 1 (so it comes to rest), 90 frames/s x 30 substeps.
 inline Scene loaded_sheet(const std::string& solver) {
   const int n = 33;
@@ -107,7 +105,7 @@ inline Scene loaded_sheet(const std::string& solver) {
       if (x == 0 || y == 0 || x == n - 1 || y == n - 1) pins += fmt::format("{}[{},{}]", pins.empty() ? "" : ",", x, y);
   return make_scene(n, n, 0,
                     {"cloth.pinned=[" + pins + "]", "cloth.density=0.15", "cloth.ks=100", "cloth.damping=1",
-                     "simulation.max_stretch=10", "simulation.tether_stretch=100",
+                     "simulation.max_stretch=10",
                      "simulation.self_collision=false", "simulation.solver=\"" + solver + "\""});
 }
 

@@ -1,4 +1,4 @@
-// The Coulomb friction cases (docs/model.md, "Coulomb friction (xpbd)") shared by the CPU tests
+// The Coulomb friction cases (docs/model.md, "Coulomb friction (fabric)") shared by the CPU tests
 // and their GPU twin: a small cloth lying on a plane tilted by theta, at the surface offset.
 #pragma once
 
@@ -22,7 +22,7 @@ struct Slope {
   glm::dvec3 normal;  // the plane's unit normal
 };
 
-// A 7x5 cloth of 0.3 m x 0.2 m (fabric density, xpbd, damping 0: damping acts per substep,
+// A 7x5 cloth of 0.3 m x 0.2 m (fabric density, the fabric solver, damping 0: damping acts per substep,
 // so it would depend on the substep count), its rest centre on a plane through the origin whose
 // normal is (-sin theta, cos theta, 0), with friction `mu`, at `steps` substeps of 90 frames/s.
 // The grid is built flat and then turned about z into the plane, 1e-4 m (the surface offset)
@@ -31,7 +31,7 @@ inline Slope slope(double theta_degrees, double mu, int steps) {
   const double theta = theta_degrees * M_PI / 180.0;
   Slope s{make_scene(7, 5, 0,
                      {"cloth.width=0.3", "cloth.height=0.2", "cloth.density=0.15", "cloth.damping=0",
-                      "simulation.solver=\"xpbd\"", "simulation.self_collision=false",
+                      "simulation.solver=\"fabric\"", "simulation.self_collision=false",
                       fmt::format("simulation.simulation_steps={}", steps)},
                      fmt::format(R"(, "plane": {{"point": [0, 0, 0], "normal": [{:.17g}, {:.17g}, 0], "friction": {}}})",
                                  -std::sin(theta), std::cos(theta), mu)),

@@ -120,7 +120,7 @@ inline Scene drop_onto_mesh(const std::string& obj, const std::string& solver, c
   sets.insert(sets.end(), {fmt::format("cloth.width={}", size), fmt::format("cloth.height={}", size),
                            "simulation.self_collision=false",
                            fmt::format("simulation.solver=\"{}\"", solver)});
-  if (solver == "xpbd") sets.push_back("cloth.density=0.15");
+  if (solver == "fabric") sets.push_back("cloth.density=0.15");  // fabric at a fabric's density
   return make_scene(13, 13, 0, sets,
                     fmt::format(R"(, "mesh": {{"file": "{}", "origin": [{}, {}, {}], "friction": 0.3{}}})", obj,
                                 at.x, at.y, at.z, mesh_extra));

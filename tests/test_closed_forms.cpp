@@ -3,10 +3,7 @@
 // swings at that mode's frequency, and a loaded sheet comes to rest where Newton's static solve
 // puts it. The GPU twins are in test_gpu_closed_forms.cpp.
 //
-// Both solvers meet all three. xpbd did not before its multipliers were carried from substep to
-// substep (docs/model.md, "Warm-started multipliers"): with lambda from 0 every substep its rest
-// state was off by about 2 (ks/m) dt^2 per spring (2 % on the chain, 1.26 mm on the sheet's 5 cm
-// sag), the bias that grows four-fold per doubling of the resolution.
+// fabric meets all three (the classic solver's chain and sheet: test_fidelity.cpp and the GPU tier).
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -97,36 +94,11 @@ TEMPLATE_TEST_CASE("classic: a sheet pinned along its border rests under its wei
   CHECK(e <= 1e-3);
 }
 
-TEST_CASE("xpbd: a chain stretched into its lowest mode and released swings at its frequency, within 5 %",
-          "[closed-form]") {
-  int periods = 0;
-  const double omega = mode_omega<double>("xpbd", &periods);
-  INFO("omega " << omega << " rad/s over " << periods << " periods; the mode's " << test::chain_mode_omega());
-  CHECK(omega == Approx(test::chain_mode_omega()).epsilon(0.05));
-}
-
-TEMPLATE_TEST_CASE("xpbd: a hanging chain at rest stretches each link by the weight below it over ks, within 1 %",
-                   "[closed-form]", float, double) {
-  const double e = chain_error<TestType>("xpbd");
-  INFO("largest relative error of a link's stretch: " << e << " (0.02 with lambda from 0 every substep)");
-  CHECK(e <= 0.01);
-}
-
-TEMPLATE_TEST_CASE("xpbd: a sheet pinned along its border rests under its weight where the static solve puts it, "
-                   "within 1 mm",
-                   "[closed-form][long]", float, double) {
-  double sag = 0;
-  const double e = sheet_error<TestType>("xpbd", &sag);
-  INFO("static sag " << sag << " m; largest distance from it after 300 frames " << e
-                     << " m (1.26 mm with lambda from 0 every substep)");
-  CHECK(e <= 1e-3);
-}
-
-TEST_CASE("xpbd: a chain at rest saved and resumed with twice the substeps stays at rest (multipliers rescaled)",
+TEST_CASE("fabric: a chain at rest saved and resumed with twice the substeps stays at rest (displacements rescaled)",
           "[closed-form][checkpoint]") {
-  // The carried multipliers are forces times dt^2: loaded under half the substep length they
-  // must shrink four-fold, or the first substep would pull every link with four times its force.
-  const Scene s = test::hanging_chain("xpbd");
+  // The displacements are per substep: loaded under half the substep length they must halve,
+  // or the first substep would move every link at twice its speed.
+  const Scene s = test::hanging_chain("fabric");
   const ClothModel m = build_cloth(s);
   CpuBackend<double> first(s, m);
   for (int f = 0; f < test::kRestFrames; ++f) first.step_frame();
@@ -141,40 +113,40 @@ TEST_CASE("xpbd: a chain at rest saved and resumed with twice the substeps stays
   INFO("after one frame at 60 substeps: largest relative link error " << e << ", max speed " << st.max_speed << " m/s");
   CHECK(e <= 0.01);
   CHECK(st.max_speed <= 2e-5);  // 5e-6 m/s: what is left of the settling
-  // The control: the same resume with the multipliers put back to their saved size does kick.
+  // The control: the same resume with the displacements put back to their saved size does kick.
   CpuBackend<double> unscaled(finer, m);
   unscaled.load_state(saved);
-  for (auto& l : unscaled.state().lambda) l.w *= 4;
+  for (auto& d : unscaled.state().disp) d = d * 2.0;
   unscaled.step_frame();
   const double kicked = measure(finer, m, unscaled.snapshot()).max_speed;
-  INFO("the same with the multipliers unscaled: max speed " << kicked << " m/s");
-  CHECK(kicked > 2e-5);  // 1.3e-4 m/s
+  INFO("the same with the displacements unscaled: max speed " << kicked << " m/s");
+  CHECK(kicked > 2e-5);
 }
 
-// The multigrid solver solves implicit Euler itself, so its rest state is the static solve's
-// whatever the stiffness: the same three checks. fabric is the same solve started where the
-// last substep's acceleration says (solve_start_offset): at rest, where it rests, so the same.
-TEST_CASE("multigrid and fabric: a chain stretched into its lowest mode and released swings at its frequency, within 5 %",
+// fabric solves implicit Euler itself, so its rest state is the static solve's whatever the
+// stiffness, started where the last substep's acceleration says (solve_start_offset): at rest,
+// where it rests.
+TEST_CASE("fabric: a chain stretched into its lowest mode and released swings at its frequency, within 5 %",
           "[closed-form]") {
-  const std::string solver = GENERATE("multigrid", "fabric");
+  const std::string solver = "fabric";
   int periods = 0;
   const double omega = mode_omega<double>(solver, &periods);
   INFO(solver << ": omega " << omega << " rad/s over " << periods << " periods; the mode's " << test::chain_mode_omega());
   CHECK(omega == Approx(test::chain_mode_omega()).epsilon(0.05));
 }
 
-TEMPLATE_TEST_CASE("multigrid and fabric: a hanging chain at rest stretches each link by the weight below it over ks, within 1 %",
+TEMPLATE_TEST_CASE("fabric: a hanging chain at rest stretches each link by the weight below it over ks, within 1 %",
                    "[closed-form]", float, double) {
-  const std::string solver = GENERATE("multigrid", "fabric");
+  const std::string solver = "fabric";
   const double e = chain_error<TestType>(solver);
   INFO(solver << ": largest relative error of a link's stretch: " << e);
   CHECK(e <= 0.01);
 }
 
-TEMPLATE_TEST_CASE("multigrid and fabric: a sheet pinned along its border rests under its weight where the static solve "
+TEMPLATE_TEST_CASE("fabric: a sheet pinned along its border rests under its weight where the static solve "
                    "puts it, within 1 mm",
                    "[closed-form][long]", float, double) {
-  const std::string solver = GENERATE("multigrid", "fabric");
+  const std::string solver = "fabric";
   double sag = 0;
   const double e = sheet_error<TestType>(solver, &sag);
   INFO(solver << ": static sag " << sag << " m; largest distance from it after 300 frames " << e << " m");

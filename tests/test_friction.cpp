@@ -1,4 +1,4 @@
-// Coulomb friction of the xpbd solver (docs/model.md, "Coulomb friction (xpbd)"): a cloth on a
+// Coulomb friction of the fabric solver (docs/model.md, "Coulomb friction (fabric)"): a cloth on a
 // plane tilted by theta holds when tan theta < mu and slides with g (sin theta - mu cos theta)
 // when tan theta > mu, at 15, 30 and 60 substeps alike, on the CPU reference (float, the GPU's
 // twin). tests/test_gpu_contact.cpp checks that the GPU gives the same floats.
@@ -22,7 +22,7 @@ test::SlopeMotion run_slope(const test::Slope& s) {
 
 }  // namespace
 
-TEST_CASE("xpbd: a cloth on a slope with tan theta < mu stays put, at 15, 30 and 60 substeps", "[friction]") {
+TEST_CASE("fabric: a cloth on a slope with tan theta < mu stays put, at 15, 30 and 60 substeps", "[friction]") {
   for (auto [theta, mu] : {std::pair{20.0, 0.5}, std::pair{35.0, 0.75}}) {
     for (int steps : {15, 30, 60}) {
       const test::Slope s = test::slope(theta, mu, steps);
@@ -37,7 +37,7 @@ TEST_CASE("xpbd: a cloth on a slope with tan theta < mu stays put, at 15, 30 and
   }
 }
 
-TEST_CASE("xpbd: a cloth on a slope with tan theta > mu slides with g (sin theta - mu cos theta), within 5 %, "
+TEST_CASE("fabric: a cloth on a slope with tan theta > mu slides with g (sin theta - mu cos theta), within 5 %, "
           "at 15, 30 and 60 substeps",
           "[friction]") {
   for (auto [theta, mu] : {std::pair{35.0, 0.4}, std::pair{25.0, 0.4}, std::pair{30.0, 0.0}}) {

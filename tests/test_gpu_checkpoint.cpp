@@ -91,9 +91,6 @@ TEST_CASE("GPU: save and resume is bitwise on living (moving sphere and pins, gu
   SECTION("living") { check_gpu_resumes_bitwise(gpu_scene_file("living"), 10); }
   SECTION("flag_pole") { check_gpu_resumes_bitwise(gpu_scene_file("flag_pole"), 4); }
   SECTION("hang_xpbd") { check_gpu_resumes_bitwise(gpu_scene_file("hang_xpbd"), 8); }
-  SECTION("hang_xpbd under xpbd") {
-    check_gpu_resumes_bitwise(gpu_scene_file("hang_xpbd", {"simulation.solver=\"xpbd\""}), 8);
-  }
   CHECK_NO_GL_ERRORS();
 }
 

@@ -67,7 +67,7 @@ double gpu_sheet_error(const std::string& solver) {
 
 TEST_CASE("on the GPU a hanging chain's links stretch by the weight below over ks, within 1 %, every solver", "[gpu][long]") {
   REQUIRE_GL_CONTEXT();
-  const std::string solver = GENERATE("classic", "xpbd", "multigrid");
+  const std::string solver = GENERATE("classic", "fabric");
   const double e = gpu_chain_error(solver);
   INFO(solver << ": largest relative error of a link's stretch: " << e);
   CHECK(e <= 0.01);
@@ -77,7 +77,7 @@ TEST_CASE("on the GPU a hanging chain's links stretch by the weight below over k
 TEST_CASE("on the GPU a chain released from its lowest mode swings at its frequency, within 5 %, every solver",
           "[gpu][long]") {
   REQUIRE_GL_CONTEXT();
-  const std::string solver = GENERATE("classic", "xpbd", "multigrid");
+  const std::string solver = GENERATE("classic", "fabric");
   int periods = 0;
   const double omega = gpu_mode_omega(solver, &periods);
   INFO(solver << ": omega " << omega << " rad/s over " << periods << " periods; the mode's " << test::chain_mode_omega());
@@ -88,7 +88,7 @@ TEST_CASE("on the GPU a chain released from its lowest mode swings at its freque
 TEST_CASE("on the GPU a sheet pinned along its border rests where the static solve puts it, within 1 mm, every solver",
           "[gpu][long]") {
   REQUIRE_GL_CONTEXT();
-  const std::string solver = GENERATE("classic", "xpbd", "multigrid");
+  const std::string solver = GENERATE("classic", "fabric");
   const double e = gpu_sheet_error(solver);
   INFO(solver << ": largest distance from the static solve after 300 frames " << e << " m");
   CHECK(e <= 1e-3);

@@ -36,7 +36,7 @@ std::set<GLuint> live_programs(GLuint limit = 4096) {
 
 TEST_CASE("a run of frames with every pass raises no GL error and step_frame throws nothing", "[gpu][gl]") {
   REQUIRE_GL_CONTEXT();
-  for (const char* solver : {"classic", "xpbd"}) {
+  for (const char* solver : {"classic", "fabric"}) {
     INFO(solver);
     const Scene s = busy_scene(solver);
     const ClothModel m = build_cloth(s);

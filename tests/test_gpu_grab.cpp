@@ -111,7 +111,7 @@ TEST_CASE("a live edit that adds colliders compiles the passes for them and runs
   GpuSimulator sim(s, m, test::source_path("compute"));
   CpuBackend<float> cpu(s, m);
   // No collider: none of the collider code is in the passes (shader_features.hpp).
-  CHECK(sim.passes().shader_features() == ShaderFeatures{false, false, false, false, false, false, false, false, false, false});
+  CHECK(sim.passes().shader_features() == ShaderFeatures{false, false, false, false, false, false, false, false, false});
   for (int f = 0; f < 5; ++f) {
     sim.step_frame();
     cpu.step_frame();
@@ -122,7 +122,7 @@ TEST_CASE("a live edit that adds colliders compiles the passes for them and runs
       R"(, "sphere": {"origin": [0.5, 0.78, 0.4], "radius": 0.2, "friction": 0.3},)"
       R"( "plane": {"point": [0, 0.55, 0], "normal": [0, 1, 0], "friction": 0.5})");
   sim.set_parameters(edited_scene);
-  CHECK(sim.passes().shader_features() == ShaderFeatures{true, true, false, false, false, false, false, false, false, false});
+  CHECK(sim.passes().shader_features() == ShaderFeatures{true, true, false, false, false, false, false, false, false});
   CpuBackend<float> edited(edited_scene, m);
   edited.state() = cpu.state();
   for (int f = 0; f < 25; ++f) {
@@ -149,13 +149,10 @@ TEST_CASE("the passes compile in what each scene can reach, and no more", "[gpu]
     const Scene s = load_scene(test::source_path("scenes/" + name + ".json"), sets);
     return ShaderFeatures::of(make_constants<float>(s, build_cloth(s)));
   };
-  // spheres, planes, meshes, a collider moves, Coulomb friction, pins move, multigrid, wind, attachments, skinned
-  CHECK(features("living") == ShaderFeatures{true, true, false, true, false, true, false, true, false, false});
-  CHECK(features("pinned2") == ShaderFeatures{false, false, false, false, false, false, false, false, false, false});
-  CHECK(features("hang_xpbd", {"simulation.solver=xpbd"}) ==
-        ShaderFeatures{false, false, false, false, true, false, false, false, false, false});
-  CHECK(features("hang_xpbd") ==
-        ShaderFeatures{false, false, false, false, true, false, true, false, false, false});  // (fabric takes xpbd's friction)
-  CHECK(features("flag_pole") == ShaderFeatures{false, false, true, false, true, false, true, true, false, false});
-  CHECK(features("cape") == ShaderFeatures{true, false, false, true, true, false, true, false, true, false});
+  // spheres, planes, meshes, a collider moves, Coulomb friction, pins move, wind, attachments, skinned
+  CHECK(features("living") == ShaderFeatures{true, true, false, true, false, true, true, false, false});
+  CHECK(features("pinned2") == ShaderFeatures{false, false, false, false, false, false, false, false, false});
+  CHECK(features("hang_xpbd") == ShaderFeatures{false, false, false, false, true, false, false, false, false});
+  CHECK(features("flag_pole") == ShaderFeatures{false, false, true, false, true, false, true, false, false});
+  CHECK(features("cape") == ShaderFeatures{true, false, false, true, true, false, false, true, false});
 }

@@ -19,8 +19,8 @@ TEST_CASE("mesh colliders on the GPU: every pass and a whole drop as the referen
   for (const test::Shape& shape : test::shapes()) {
     const std::string obj = dir / (shape.name + ".obj");
     test::write_obj(shape.mesh, obj);
-    // (xpbd's and multigrid's sweeps list from predict's clearance bound: mesh_leaves_alone_after.)
-    for (const char* solver : {"classic", "xpbd", "multigrid"}) {
+    // (fabric's sweep decides from predict's clearance bound: mesh_leaves_alone_after.)
+    for (const char* solver : {"classic", "fabric"}) {
       INFO(shape.name << ", " << solver);
       // A moving mesh too (the torus rises 5 cm in the first half second), for the motion terms.
       const std::string motion = shape.name == "torus"
@@ -62,7 +62,7 @@ TEST_CASE("a drop onto two mesh colliders on the GPU is the reference's", "[gpu]
   const std::string sphere = dir / "icosphere.obj", torus = dir / "torus.obj";
   test::write_obj(shapes[1].mesh, sphere);
   test::write_obj(shapes[2].mesh, torus);
-  for (const char* solver : {"xpbd", "multigrid"}) {
+  for (const char* solver : {"classic", "fabric"}) {
     INFO(solver);
     const Scene s = test::make_scene(
         13, 13, 0, {"simulation.self_collision=false", fmt::format("simulation.solver=\"{}\"", solver)},
@@ -130,7 +130,7 @@ TEST_CASE("a field's slope bound holds between any two points of its grid", "[me
     INFO(shape.name);
     const std::string obj = dir / (shape.name + ".obj");
     test::write_obj(shape.mesh, obj);
-    const Scene s = test::drop_onto_mesh(obj, "xpbd");
+    const Scene s = test::drop_onto_mesh(obj, "fabric");
     const auto c = make_constants<float>(s, build_cloth(s));
     REQUIRE(c.control.meshes.size() == 1);
     const layout::MeshCollider& m = c.control.meshes[0];

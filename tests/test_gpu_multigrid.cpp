@@ -1,4 +1,4 @@
-// The multigrid solver on the GPU (issue 22; docs/model.md): each of its passes against its
+// The fabric solver's multigrid solve on the GPU (issue 22, 43; docs/model.md): each of its passes against its
 // CPU twin from an identical state (bit for bit on llvmpipe), on a grid with two coarse levels
 // and on the two-cloth mesh scene (self-collision, a sphere), and whole runs in lock step.
 // The physics checks (closed forms) run in test_gpu_closed_forms.cpp.
@@ -28,10 +28,10 @@ void check_multigrid_passes(const Scene& scene, int warmup) {
 
 }  // namespace
 
-TEST_CASE("each multigrid pass matches the reference from an identical state on a 33x17 cloth (two coarse levels)",
+TEST_CASE("each fabric pass matches the reference from an identical state on a 33x17 cloth (two coarse levels)",
           "[gpu]") {
   REQUIRE_GL_CONTEXT();
-  check_multigrid_passes(pressed_cloth(33, 17, {"simulation.solver=\"multigrid\""}), kWarmupFrames);
+  check_multigrid_passes(pressed_cloth(33, 17, {"simulation.solver=\"fabric\""}), kWarmupFrames);
   CHECK_NO_GL_ERRORS();
 }
 
@@ -48,27 +48,27 @@ TEST_CASE("each fabric pass matches the reference on a 33x17 cloth stiff for its
   CHECK_NO_GL_ERRORS();
 }
 
-TEST_CASE("each multigrid pass matches the reference on the two-cloth mesh scene (self-collision, a sphere)", "[gpu]") {
+TEST_CASE("each fabric pass matches the reference on the two-cloth mesh scene (self-collision, a sphere)", "[gpu]") {
   REQUIRE_GL_CONTEXT();
-  check_multigrid_passes(load_scene(test::source_path("scenes/two_cloths.json"), {"simulation.solver=\"multigrid\""}), 2);
+  check_multigrid_passes(load_scene(test::source_path("scenes/two_cloths.json"), {"simulation.solver=\"fabric\""}), 2);
   CHECK_NO_GL_ERRORS();
 }
 
 // A first coarse level over kSmallLevelVertices (2,401 vertices): its passes are dispatched
 // one by one, the levels below it in cycle_small_levels' single dispatch.
-TEST_CASE("each multigrid pass matches the reference on a 97x95 cloth (a large level, then the small ones in one dispatch)",
+TEST_CASE("each fabric pass matches the reference on a 97x95 cloth (a large level, then the small ones in one dispatch)",
           "[gpu]") {
   REQUIRE_GL_CONTEXT();
-  const Scene scene = pressed_cloth(97, 95, {"simulation.solver=\"multigrid\""});
+  const Scene scene = pressed_cloth(97, 95, {"simulation.solver=\"fabric\""});
   const ClothModel model = build_cloth(scene);
   REQUIRE(first_small_level(build_hierarchy(model, {scene.cloth.ks})) == 1);
   check_multigrid_passes(scene, 1);
   CHECK_NO_GL_ERRORS();
 }
 
-TEST_CASE("a multigrid run on the GPU follows the reference frame by frame, and counts its dispatches", "[gpu]") {
+TEST_CASE("a fabric run on the GPU follows the reference frame by frame, and counts its dispatches", "[gpu]") {
   REQUIRE_GL_CONTEXT();
-  const Scene scene = pressed_cloth(33, 17, {"simulation.solver=\"multigrid\""}, kTwoSpheresTwoPlanes);
+  const Scene scene = pressed_cloth(33, 17, {"simulation.solver=\"fabric\""}, kTwoSpheresTwoPlanes);
   const ClothModel model = build_cloth(scene);
   GpuSimulator gpu(scene, model, compute_dir());
   CpuBackend<float> cpu(scene, model);

@@ -29,7 +29,7 @@ TEST_CASE("each GPU pass matches the reference from an identical state on a 131x
 
 TEST_CASE("the limit_speed pass (simulation.max_speed) matches its CPU twin, checked from its row", "[gpu]") {
   REQUIRE_GL_CONTEXT();
-  for (const char* solver : {"classic", "xpbd"}) {
+  for (const char* solver : {"classic", "fabric"}) {
     const Scene scene = pass_fixtures::pressed_cloth(33, 17, {fmt::format("simulation.solver=\"{}\"", solver),
                                                               "simulation.max_speed=0.05"});
     const ClothModel model = build_cloth(scene);

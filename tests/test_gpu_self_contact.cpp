@@ -1,4 +1,4 @@
-// xpbd's bounded self-contact on the GPU (docs/model.md, "Self-contact that holds"): the pass
+// fabric's bounded self-contact on the GPU (docs/model.md, "Self-contact that holds"): the pass
 // on a folded cloth against the reference, and whole heaps that end with no intersecting
 // triangles (the exact counter of host/core/analysis/intersections.cpp, every tenth frame), bitwise the
 // reference's on llvmpipe. The CPU side is test_self_contact.cpp.
@@ -10,7 +10,7 @@ TEST_CASE("the GPU's bounded contact equals the reference's on a cloth folded on
   // folded back over rows 7..0, 12 mm above them, and squeezed along x to 10 mm apart, so
   // touching pairs are both across the fold and the cloth's own neighbours (kept at rest).
   Placed t(test::make_scene(33, 17, 0, {"cloth.width=0.4", "cloth.height=0.4", "cloth.thickness=0.01",
-                                         "simulation.solver=\"xpbd\"", "simulation.constraint_iterations=1",
+                                         "simulation.solver=\"fabric\"",
                                          "simulation.self_collision=true"}));
   REQUIRE(t.c.bounded_contact);
   t.fold_33x17(0.012f, 0.010f, 0.4f / 16, 5);
@@ -36,8 +36,7 @@ TEST_CASE("a 65 x 65 heap on the GPU has no intersecting triangles at any tenth 
   // heap256 on a 65 x 65 grid, thickness half the spacing (the contact distance one step). With
   // the CS184 contact it ends with 164 intersecting pairs at frame 70 (docs/model.md).
   const Scene scene = load_scene(test::source_path("scenes/heap256.json"),
-                                 {"cloth.num_width_points=65", "cloth.num_height_points=65", "cloth.thickness=0.0078125",
-                                  "simulation.solver=\"xpbd\""});
+                                 {"cloth.num_width_points=65", "cloth.num_height_points=65", "cloth.thickness=0.0078125"});
   const ClothModel model = build_cloth(scene);
   GpuSimulator gpu(scene, model, compute_dir());
   CpuBackend<float> cpu(scene, model);

@@ -96,7 +96,7 @@ void check_crack_free_run(const Scene& s, double bound) {
 }  // namespace
 
 TEST_CASE("multigrid hierarchy of a grid: every second particle of every second row, bilinear weights", "[multigrid]") {
-  const Scene s = test::make_scene(33, 17, 0, {"simulation.solver=\"multigrid\""});
+  const Scene s = test::make_scene(33, 17, 0, {"simulation.solver=\"fabric\""});
   const ClothModel m = build_cloth(s);
   const Hierarchy h = build_hierarchy(m, {5000.0});
   REQUIRE(h.levels.size() == 2);  // 561 -> 153 (17 x 9) -> 45 (9 x 5), at most 64 on the coarsest
@@ -133,7 +133,7 @@ TEST_CASE("multigrid hierarchy of a mesh: pins held on the coarse level, every p
   for (const char* name : {"disc_hole", "two_cloths", "tablecloth"}) {
     INFO(name);
     const Scene s = load_scene(std::filesystem::path(CLOTHSIM_SOURCE_DIR) / "scenes" / (std::string(name) + ".json"),
-                               {"simulation.solver=\"multigrid\""});
+                               {"simulation.solver=\"fabric\""});
     const ClothModel m = build_cloth(s);
     std::vector<double> ks;
     for (const ClothParams* c : s.cloths()) ks.push_back(c->ks);
@@ -163,18 +163,17 @@ TEST_CASE("multigrid hierarchy of a mesh: pins held on the coarse level, every p
   }
 }
 
-TEST_CASE("multigrid and fabric: a strip of real fabric pinned along a row of the other parity hangs still", "[multigrid]") {
+TEST_CASE("fabric: a strip of real fabric pinned along a row of the other parity hangs still", "[multigrid]") {
   // 9 x 20 particles 2.9 mm apart, density 0.2 kg/m², ks 5000 (a spring's stiffness against its
   // mass over a substep, k dt² / m, is about 500), pinned along its top row, 19: odd, where the
   // coarse rows are the even ones. Without the second pass of build_hierarchy the coarse strip
   // hung from nothing (rows 16 and 19 coarse, 17 and 18 not, no coarse spring between them) and
   // its correction threw the strip off at frame 2.
-  for (const char* solver : {"multigrid", "fabric"}) {
-    INFO(solver);
+  {
     const Scene s = test::make_scene(9, 20, 1,
                                      {"cloth.width=0.0232", "cloth.height=0.0551", "cloth.density=0.2", "cloth.ks=5000",
                                       "cloth.damping=0.5", test::pin_row(9, 19), "simulation.max_stretch=10",
-                                      "simulation.self_collision=false", fmt::format("simulation.solver=\"{}\"", solver)});
+                                      "simulation.self_collision=false", "simulation.solver=\"fabric\""});
     check_crack_free_run(s, 1.01);
   }
 }

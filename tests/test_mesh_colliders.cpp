@@ -157,7 +157,7 @@ TEST_CASE("a cloth dropped onto a mesh cube, sphere and torus never has a mass d
   for (const test::Shape& shape : test::shapes()) {
     const std::string obj = dir / (shape.name + ".obj");
     test::write_obj(shape.mesh, obj);
-    for (const char* solver : {"classic", "xpbd"}) {
+    for (const char* solver : {"classic", "fabric"}) {
       INFO(shape.name << ", " << solver);
       const Scene s = test::drop_onto_mesh(obj, solver);
       const ClothModel model = build_cloth(s);
@@ -189,7 +189,7 @@ TEST_CASE("a cloth on the mesh sphere rests within 2 mm of where it rests on the
   const std::string obj = dir / "sphere.obj";
   test::write_obj(test::icosphere_mesh(0.2, 5), obj);
   const glm::dvec3 at(0.3, 0.795, 0.3);
-  for (const char* solver : {"classic", "xpbd"}) {
+  for (const char* solver : {"classic", "fabric"}) {
     Scene on_mesh = test::drop_onto_mesh(obj, solver, R"(, "thickness": 0)",
                                          {"cloth.pinned=[[0,0],[12,0],[0,12],[12,12]]", "mesh.friction=0"});
     on_mesh.meshes[0].origin = at;
@@ -229,7 +229,7 @@ TEST_CASE("a cloth dropped over the hole of an open mesh stays out of it by the 
   bowl.triangles = kept;
   const std::string obj = dir / "bowl.obj";
   test::write_obj(bowl, obj);
-  for (const char* solver : {"classic", "xpbd"}) {
+  for (const char* solver : {"classic", "fabric"}) {
     const Scene s = test::drop_onto_mesh(obj, solver, R"(, "voxel_size": 0.01, "friction": 0.3)", {"cloth.ks=500"});
     const ClothModel model = build_cloth(s);
     CpuBackend<double> run(s, model);
@@ -267,7 +267,7 @@ TEST_CASE("a mass that goes through a mesh within one substep is caught on the s
     INFO(name);
     const std::string obj = dir / (std::string(name) + ".obj");
     test::write_obj(mesh, obj);
-    for (const char* solver : {"classic", "xpbd"}) {
+    for (const char* solver : {"classic", "fabric"}) {
       const Scene s = test::drop_onto_mesh(obj, solver, R"(, "voxel_size": 0.01)");
       const ClothModel model = build_cloth(s);
       auto c = make_constants<double>(s, model);

@@ -1,5 +1,5 @@
-// The multigrid solver (issue 22; docs/model.md, "One substep (multigrid solver)"): the
-// two checks of the issue against physics that CPU-equals-GPU cannot make:
+// The fabric solver's multigrid solve (issue 22, then 43; docs/model.md, "One substep (fabric
+// solver)"): the two checks of issue 22 against physics that CPU-equals-GPU cannot make:
 // a cloth hanging from two corners as stiff at 129² as at 33² (its rest state Newton's static
 // equilibrium, which grows only as the continuum's does), and an unpinned cloth draped over a
 // sphere without stretching. The GPU twins run in test_gpu_multigrid.cpp, the hierarchy's tests in
@@ -20,12 +20,12 @@ using namespace clothsim;
 
 namespace {
 
-// The 1 m cloth of scenes/hang_xpbd.json at n x n, tethers off, hanging from its top corners.
+// The 1 m cloth of scenes/hang_xpbd.json at n x n, hanging from its top corners.
 Scene hanging_cloth(int n) {
   return test::make_scene(n, n, 1,
                     {"cloth.density=0.15", "cloth.ks=5000", "cloth.damping=0.2",
                      fmt::format("cloth.pinned=[[0,{0}],[{0},{0}]]", n - 1), "simulation.max_stretch=10",
-                     "simulation.tether_stretch=100", "simulation.self_collision=false", "simulation.solver=\"multigrid\""});
+                     "simulation.self_collision=false", "simulation.solver=\"fabric\""});
 }
 
 struct Hung {
@@ -45,8 +45,8 @@ Hung hang(int n, int frames) {
 
 }  // namespace
 
-TEST_CASE("multigrid: a cloth hung from two corners is as stiff at 65² and 129² as at 33² and rests where Newton does",
-          "[multigrid][slow]") {
+TEST_CASE("fabric: a cloth hung from two corners is as stiff at 65² and 129² as at 33² and rests where Newton does",
+          "[fabric][slow]") {
   // The static equilibrium at 33² (Newton, double): the physical sag, 0.336 mm.
   const Scene s33 = hanging_cloth(33);
   const ClothModel m33 = build_cloth(s33);
@@ -57,10 +57,10 @@ TEST_CASE("multigrid: a cloth hung from two corners is as stiff at 65² and 129�
   INFO("sag (mm) 33²: " << a.sag * 1e3 << ", 65²: " << b.sag * 1e3 << ", 129²: " << c.sag * 1e3 << "; static at 33²: "
                         << static_sag * 1e3 << "; stretch p99 " << a.stats.p99_stretch_ratio << ", "
                         << b.stats.p99_stretch_ratio << ", " << c.stats.p99_stretch_ratio);
-  // At rest where the springs balance the weight (xpbd: 2.6x the static sag at 33²).
+  // At rest where the springs balance the weight (the removed xpbd: 2.6x the static sag at 33²).
   CHECK(a.sag == Approx(static_sag).epsilon(0.1));
   // As stiff when finer: the sag grows only as the continuum's does near the two point-like pins
-  // (Newton: 1.33x at 65²; xpbd's one sweep: 4.1x at 65², 17.7x at 129²).
+  // (Newton: 1.33x at 65²; the removed xpbd's one sweep: 4.1x at 65², 17.7x at 129²).
   CHECK(b.sag / a.sag < 1.6);
   CHECK(c.sag / a.sag < 1.8);
   for (const Hung* h : {&a, &b, &c}) {
@@ -72,12 +72,12 @@ TEST_CASE("multigrid: a cloth hung from two corners is as stiff at 65² and 129�
 // At 129², where the coarse levels matter: without its two rules (a mass a collider holds, and a
 // coarse vertex in a fold, stay out of the coarse problem) this run diverged at frame 12, and
 // with the first alone it stretched its folds to 1.2-1.4 and slid off the sphere.
-TEST_CASE("multigrid: an unpinned 129² cloth dropped onto a sphere stretches at most 5 % with no Provot limit",
-          "[multigrid][slow]") {
+TEST_CASE("fabric: an unpinned 129² cloth dropped onto a sphere stretches at most 5 % with no Provot limit",
+          "[fabric][slow]") {
   const Scene s = test::make_scene(129, 129, 0,
                              {"cloth.density=0.15", "cloth.ks=5000", "cloth.damping=0.2", "cloth.pinned=[]",
                               "simulation.max_stretch=10", "simulation.self_collision=false",
-                              "simulation.solver=\"multigrid\""},
+                              "simulation.solver=\"fabric\""},
                              R"(, "sphere": {"origin": [0.5, 0.75, 0.5], "radius": 0.2, "friction": 0.3})");
   const ClothModel m = build_cloth(s);
   CpuBackend<float> cpu(s, m);
@@ -88,33 +88,17 @@ TEST_CASE("multigrid: an unpinned 129² cloth dropped onto a sphere stretches at
   }
   const ClothStats st = measure(s, m, cpu.snapshot());
   INFO("largest stretch at the end " << st.max_stretch_ratio << ", at any tenth frame " << worst
-                                     << " (xpbd: 1.191 at the end)");
+                                     << " (the removed xpbd: 1.191 at the end)");
   CHECK(st.max_stretch_ratio <= 1.05);
   CHECK(worst <= 1.05);
   CHECK(st.sphere_clearance[0] > -1e-3);  // it lies on the sphere, not through it
   CHECK(st.sphere_clearance[0] < 1e-3);   // and has not slid off it
 }
 
-// The solve carries the pins' pull itself: predict gives multigrid no tethers, so the tightest
-// tethers change nothing, where under xpbd they move the cloth.
-TEST_CASE("multigrid takes no tethers: tether_stretch 0 and 100 give the same bits", "[multigrid]") {
-  auto run = [](Solver solver, double tether) {
-    Scene s = hanging_cloth(17);
-    s.simulation.solver = solver;
-    s.simulation.tether_stretch = tether;
-    const ClothModel m = build_cloth(s);
-    CpuBackend<float> cpu(s, m);
-    for (int f = 0; f < 30; ++f) cpu.step_frame();
-    return cpu.state().pos;
-  };
-  CHECK(run(Solver::Multigrid, 0) == run(Solver::Multigrid, 100));
-  CHECK(run(Solver::Xpbd, 0) != run(Solver::Xpbd, 100));  // the tethers do engage on this cloth
-}
-
 // A live edit makes the constants anew: the hierarchy (0.4 s to build at 513², and a re-upload on
 // the GPU) is kept unless the stiffness its coarse springs follow changed.
-TEST_CASE("multigrid: new constants keep the hierarchy built for the same ks and rebuild it for another",
-          "[multigrid]") {
+TEST_CASE("fabric: new constants keep the hierarchy built for the same ks and rebuild it for another",
+          "[fabric]") {
   Scene s = hanging_cloth(17);
   const ClothModel m = build_cloth(s);
   const Constants<float> first = make_constants<float>(s, m);
@@ -127,50 +111,18 @@ TEST_CASE("multigrid: new constants keep the hierarchy built for the same ks and
   CHECK(softer.hierarchy->spring_k.front() == Approx(kCoarseStiffness * 2500));
 }
 
-// heap256's collapse onto the floor with self-collision, at 65² with the contact distance one grid
-// step (as in test_self_contact.cpp), under multigrid at 120 substeps, its damping scaled to
-// lose as much per frame as 0.2 at 30. At 30 substeps implicit Euler damps the buckling and the
-// cloth stands for seconds (docs/solvers.md); at 120 it falls as the accurate explicit run
-// does, within its Provot limit of 1.1 at every frame and with no intersecting triangles.
-TEST_CASE("multigrid at 120 substeps: a 65² heap collapses within its Provot limit, with no intersecting triangles",
-          "[multigrid][slow]") {
-  const Scene s = load_scene(std::filesystem::path(CLOTHSIM_SOURCE_DIR) / "scenes" / "heap256.json",
-                             {"cloth.num_width_points=65", "cloth.num_height_points=65", "cloth.thickness=0.0078125",
-                              "cloth.damping=0.05", "simulation.simulation_steps=120", "simulation.solver=\"multigrid\"",
-                              "simulation.stretch_passes_max=-1"});  // the fixed passes alone, as measured
-  const ClothModel m = build_cloth(s);
-  CpuBackend<float> cpu(s, m);
-  double worst = 0;
-  int worst_frame = 0;
-  size_t intersecting = 0;
-  for (int f = 1; f <= 150; ++f) {
-    cpu.step_frame();
-    const ClothSnapshot frame = cpu.snapshot();
-    const double stretch = measure(s, m, frame).max_stretch_ratio;
-    if (stretch > worst) worst = stretch, worst_frame = f;
-    if (f % 10 == 0) intersecting = std::max(intersecting, count_self_intersections(m, frame));
-  }
-  double top = -1e9;
-  for (auto& p : cpu.snapshot().pos) top = std::max(top, double(p.y));
-  INFO("largest stretch " << worst << " at frame " << worst_frame << "; most intersecting pairs " << intersecting
-                          << "; top of the heap " << top << " m (0.86 at frame 60 with 30 substeps)");
-  CHECK(worst <= 1.10);
-  CHECK(intersecting == 0);
-  CHECK(top < 0.2);  // it did collapse: layers lie on layers
-}
-
 // The classic app's own cloth (scenes/pinned2.json at 49², the CS184 defaults: so heavy for its
-// ks that it hangs on its Provot limit of 10 %) under multigrid. The sweep's limit, one end at a
+// ks that it hangs on its Provot limit of 10 %) under fabric. The sweep's limit, one end at a
 // time in the middle of the Newton steps, does not hold it: the implicit solve pulls the
 // springs by the pins out again (1.88 at frame 27 on the 50² scene). stretch_passes passes of
-// the limit alone after the sweep hold it, as for xpbd (docs/model.md, step 7).
-TEST_CASE("multigrid: stretch_passes hold max_stretch on a cloth that leans on it, which the sweep alone does not",
-          "[multigrid][long]") {
+// the limit alone after the sweep hold it (docs/model.md, step 7).
+TEST_CASE("fabric: stretch_passes hold max_stretch on a cloth that leans on it, which the sweep alone does not",
+          "[fabric][long]") {
   auto worst_stretch = [](int passes) {
     return test::worst_stretch_over_frames(
         load_scene(std::filesystem::path(CLOTHSIM_SOURCE_DIR) / "scenes" / "pinned2.json",
                    {"cloth.num_width_points=49", "cloth.num_height_points=49", "cloth.pinned=[[0,0],[48,0]]",
-                    "simulation.solver=\"multigrid\"", "simulation.stretch_passes=" + std::to_string(passes)}),
+                    "simulation.solver=\"fabric\"", "simulation.stretch_passes=" + std::to_string(passes)}),
         30);
   };
   const double sweep = worst_stretch(0), two = worst_stretch(2), four = worst_stretch(4);
@@ -187,10 +139,10 @@ TEST_CASE("multigrid: stretch_passes hold max_stretch on a cloth that leans on i
   CHECK(automatic < four);
 }
 
-// stretch_passes -1 (auto, the default): passes only where the solver needs them, the multigrid
+// stretch_passes -1 (auto, the default): passes only where the solver needs them, fabric's
 // sweep on a cloth whose own weight would stretch it past half its limit.
-TEST_CASE("stretch_passes auto: 2 under multigrid for the classic app's heavy cloths, none for fabric or xpbd",
-          "[multigrid]") {
+TEST_CASE("stretch_passes auto: 2 under fabric for the classic app's heavy cloths, none for fabric-like cloths or classic",
+          "[fabric]") {
   auto shipped = [](const std::string& scene, const std::vector<std::string>& sets) {
     return load_scene(std::filesystem::path(CLOTHSIM_SOURCE_DIR) / "scenes" / (scene + ".json"), sets);
   };
@@ -198,15 +150,15 @@ TEST_CASE("stretch_passes auto: 2 under multigrid for the classic app's heavy cl
     const Scene s = shipped(scene, sets);
     return stretch_passes_for(s, build_cloth(s));
   };
-  const std::string multigrid = "simulation.solver=\"multigrid\"";
-  CHECK(passes("pinned2", {multigrid}) == kAutoStretchPasses);     // 150 kg/m², ks 5000: 0.29 by the estimate
-  CHECK(passes("table_drag", {multigrid}) == kAutoStretchPasses);  // ks 1.9: 0.62
-  CHECK(passes("two_cloths", {multigrid}) == 0);                   // fabric, both cloths
-  CHECK(passes("hang_xpbd", {multigrid, "simulation.max_stretch=0.1"}) == 0);  // fabric: 3e-4
-  CHECK(passes("hang_xpbd", {multigrid, "simulation.max_stretch=0.1", "cloth.ks=20"}) ==
+  const std::string fabric = "simulation.solver=\"fabric\"";
+  CHECK(passes("pinned2", {fabric}) == kAutoStretchPasses);     // 150 kg/m², ks 5000: 0.29 by the estimate
+  CHECK(passes("table_drag", {fabric}) == kAutoStretchPasses);  // ks 1.9: 0.62
+  CHECK(passes("two_cloths", {fabric}) == 0);                   // fabric, both cloths
+  CHECK(passes("hang_xpbd", {fabric, "simulation.max_stretch=0.1"}) == 0);  // fabric: 3e-4
+  CHECK(passes("hang_xpbd", {fabric, "simulation.max_stretch=0.1", "cloth.ks=20"}) ==
         kAutoStretchPasses);  // 0.074 > 0.05
-  CHECK(passes("pinned2", {"simulation.solver=\"xpbd\""}) == 0);  // xpbd's own sweep holds it
-  CHECK(passes("pinned2", {multigrid, "simulation.stretch_passes=0"}) == 0);  // the scene's word
+  CHECK(passes("pinned2", {}) == 0);  // classic: its own constraint iterations
+  CHECK(passes("pinned2", {fabric, "simulation.stretch_passes=0"}) == 0);  // the scene's word
   CHECK(passes("heap256", {}) == 4);
   CHECK(hanging_cloth(17).simulation.stretch_passes == -1);
   // Settling passes come with the auto ones (kAutoStretchPassesMax), never against the scene's word.
@@ -214,9 +166,8 @@ TEST_CASE("stretch_passes auto: 2 under multigrid for the classic app's heavy cl
     const Scene s = shipped(scene, sets);
     return make_constants<double>(s, build_cloth(s)).stretch_passes_max;
   };
-  const std::string fabric = "simulation.solver=\"fabric\"";
   CHECK(most("selfCollision", {fabric}) == kAutoStretchPassesMax);
-  CHECK(most("pinned2", {multigrid}) == kAutoStretchPassesMax);
+  CHECK(most("pinned2", {fabric}) == kAutoStretchPassesMax);
   CHECK(most("two_cloths", {}) == 0);
   CHECK(most("selfCollision", {fabric, "simulation.stretch_passes_max=-1", "simulation.stretch_passes=2"}) == 2);
   CHECK(most("selfCollision", {fabric, "simulation.stretch_passes_max=5"}) == 5);

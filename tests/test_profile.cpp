@@ -24,7 +24,7 @@ const char* const kRisingSphere = R"({
             "thickness": 0.004, "orientation": 0},
   "sphere": {"origin": [0.25, 0.7, 0.25], "radius": 0.2, "friction": 0.3,
              "motion": {"keyframes": [[0, [0.25, 0.7, 0.25]], [1, [0.25, 0.8, 0.25]]]}},
-  "simulation": {"solver": "xpbd", "self_collision": true}
+  "simulation": {"solver": "fabric", "self_collision": true}
 })";
 
 const PassProfile::Row* row_of(const PassProfile& p, const std::string& name) {
@@ -73,7 +73,7 @@ TEST_CASE("the reference profiled runs every pass it times and gives the same bi
   CHECK(plain.state().pos == timed.state().pos);
   CHECK(plain.state().disp == timed.state().disp);
   const int64_t substeps = int64_t(kFrames) * s.simulation.simulation_steps;
-  for (const char* name : {"substep control", "predict", "collide_self", "collide_objects", "solve_distance_constraints",
+  for (const char* name : {"substep control", "predict", "collide_self", "collide_objects", "solve_multigrid",
                            "enforce_stretch_limit"}) {
     INFO(name);
     const PassProfile::Row* r = row_of(p, name);
@@ -85,7 +85,7 @@ TEST_CASE("the reference profiled runs every pass it times and gives the same bi
     REQUIRE(row_of(p, name) != nullptr);
     CHECK(row_of(p, name)->runs == kFrames);
   }
-  CHECK(row_of(p, "advance") == nullptr);  // xpbd predicts
+  CHECK(row_of(p, "advance") == nullptr);  // fabric predicts
   CHECK(row_of(p, "skin_colliders") == nullptr);
 }
 
@@ -105,7 +105,7 @@ TEST_CASE("simulate --profile prints each pass's ms per frame and --stats-json k
   const nlohmann::json j = nlohmann::json::parse(std::ifstream(json));
   REQUIRE(j.contains("pass_ms_per_frame"));
   double sum = 0;
-  for (const char* name : {"predict", "collide_objects", "solve_distance_constraints", "compute_normals"}) {
+  for (const char* name : {"predict", "collide_objects", "solve_multigrid", "compute_normals"}) {
     INFO(name);
     REQUIRE(j["pass_ms_per_frame"].contains(name));
     sum += j["pass_ms_per_frame"][name].get<double>();

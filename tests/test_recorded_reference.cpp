@@ -1,7 +1,7 @@
 // The CPU reference against values recorded from the build before the cloth became a mesh
 // model (commit d3c791a, tests/golden/reference_hashes.txt): every shipped scene, in float and
-// in double, must give bit for bit the positions and displacements it gave then (heap256, an
-// xpbd scene whose cloth starts on its plane, since xpbd's friction became Coulomb). A hash of the
+// in double, must give bit for bit the positions and displacements it gave then (or since a
+// change recorded in the file's comments: heap256, say, since it moved to fabric). A hash of the
 // raw bits (FNV-1a over pos and disp, x y z w) catches any change, however small; the first
 // particle's position is printed beside it so that a failure says how far things moved.
 #include <catch2/catch.hpp>

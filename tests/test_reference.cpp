@@ -161,7 +161,7 @@ TEST_CASE("normals of a flat horizontal cloth point up", "[reference]") {
 // max_speed * dt per substep, so a dropped cloth's centre of mass never outruns it, where it
 // reaches 9.8 m/s after a second of free fall without the clamp.
 TEST_CASE("with simulation.max_speed 2 a dropped cloth never falls faster than 2 m/s", "[reference]") {
-  for (const char* solver : {"classic", "xpbd"}) {
+  for (const char* solver : {"classic", "fabric"}) {
     for (const double max_speed : {0.0, 2.0}) {
       Scene s = test::make_scene(9, 9, 0, {"simulation.self_collision=false", "cloth.damping=0",
                                            fmt::format("simulation.solver=\"{}\"", solver),
@@ -195,7 +195,7 @@ TEST_CASE("with simulation.max_speed 2 a dropped cloth never falls faster than 2
 // longer than max_speed * dt, whatever the constraints and the contacts did after the
 // integration (here a sphere the cloth falls onto, and pins that hold it at two corners).
 TEST_CASE("with simulation.max_speed no free mass moves faster than max_speed over any substep", "[reference]") {
-  for (const char* solver : {"classic", "xpbd", "multigrid"}) {
+  for (const char* solver : {"classic", "fabric"}) {
     Scene s = test::make_scene(17, 17, 0, {"cloth.damping=0", "cloth.pinned=[[0,0],[16,0]]",
                                            fmt::format("simulation.solver=\"{}\"", solver), "simulation.max_speed=1.5"},
                                R"(, "sphere": {"origin": [0.5, 0.2, 0.5], "radius": 0.5, "friction": 0.3})");

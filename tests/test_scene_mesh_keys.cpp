@@ -205,7 +205,7 @@ TEST_CASE("two cloths round-trip through scene_to_json to an equal scene", "[sce
        "mass_lumping": "uniform", "ks": 1234.5678, "damping": 0.5, "enable_bending": false,
        "pinned_motion": {"keyframes": [[0, [0, 0, 0]], [1, [0, 0.5, 0]]]}}],
       "sphere": {"origin": [0, 0, 0], "radius": 0.2, "friction": 0.1},
-      "simulation": {"solver": "xpbd", "simulation_steps": 20}})",
+      "simulation": {"solver": "fabric", "simulation_steps": 20}})",
                               "scenes/two.json");
   const std::string text = scene_to_json(s);
   const nlohmann::json j = nlohmann::json::parse(text);

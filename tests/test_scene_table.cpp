@@ -14,8 +14,9 @@
 namespace clothsim {
 namespace {
 
-enum class DemoSolver { Classic, Xpbd };
-constexpr const char* kSolverNames[] = {"classic", "xpbd"};
+enum class DemoSolver { Classic, Fabric };
+constexpr const char* kSolverNames[] = {"classic", "fabric"};
+constexpr RemovedChoice kRemovedNames[] = {{"xpbd", "removed: use \"fabric\""}};
 
 struct Gust {
   double strength = 1;
@@ -52,7 +53,7 @@ template <> std::span<const Param<Wind>> param_rows<Wind>() {
 }
 template <> std::span<const Param<Demo>> param_rows<Demo>() {
   static const Param<Demo> rows[] = {
-      row<&Demo::solver>({.key = "solver", .choices = kSolverNames}),
+      row<&Demo::solver>({.key = "solver", .choices = kSolverNames, .removed_choices = kRemovedNames}),
       row<&Demo::wind>({.key = "wind"}),
       row<&Demo::iterations>({.key = "iterations", .lo = 1, .hi = 10}),
   };
@@ -87,15 +88,15 @@ TEST_CASE("table rows: absent keys keep the struct's defaults, optional objects 
 }
 
 TEST_CASE("table rows: an enum as a string and nested optional objects load and write back", "[scene][table]") {
-  const Demo d = read(R"({"solver": "xpbd", "wind": {"velocity": [1, 0, 2], "gust": {"strength": 3}}})");
-  CHECK(d.solver == DemoSolver::Xpbd);
+  const Demo d = read(R"({"solver": "fabric", "wind": {"velocity": [1, 0, 2], "gust": {"strength": 3}}})");
+  CHECK(d.solver == DemoSolver::Fabric);
   REQUIRE(d.wind.has_value());
   CHECK(d.wind->velocity == glm::dvec3(1, 0, 2));
   REQUIRE(d.wind->gust.has_value());
   CHECK(d.wind->gust->strength == 3);
   CHECK(d.wind->gust->period == 2);  // the default inside a present object
   const nlohmann::json j = write_params(d);
-  CHECK(j["solver"] == "xpbd");
+  CHECK(j["solver"] == "fabric");
   CHECK(j["wind"]["gust"]["period"] == 2.0);
   Demo back;
   read_params(j, "back.json", "", back);
@@ -104,8 +105,10 @@ TEST_CASE("table rows: an enum as a string and nested optional objects load and 
 }
 
 TEST_CASE("table rows: errors name the key path of nested rows", "[scene][table]") {
-  CHECK(error(R"({"solver": "fast"})") == R"(t.json: solver: expected one of "classic", "xpbd", got string "fast")");
-  CHECK(error(R"({"solver": 1})") == R"(t.json: solver: expected one of "classic", "xpbd", got number 1)");
+  CHECK(error(R"({"solver": "fast"})") == R"(t.json: solver: expected one of "classic", "fabric", got string "fast")");
+  CHECK(error(R"({"solver": 1})") == R"(t.json: solver: expected one of "classic", "fabric", got number 1)");
+  // A removed name: its own message, then what is taken.
+  CHECK(error(R"({"solver": "xpbd"})") == R"(t.json: solver: "xpbd": removed: use "fabric"; expected one of "classic", "fabric")");
   CHECK(error(R"({"wind": {}})") == "t.json: wind.velocity: missing required key (expected an array of 3 numbers)");
   CHECK(error(R"({"wind": {"velocity": [0, 0, 0], "gust": {"strength": -1}}})") ==
         "t.json: wind.gust.strength: expected a strength >= 0, got -1");

@@ -1,4 +1,4 @@
-// xpbd's bounded self-contact (docs/model.md, "Self-contact that holds") on the CPU reference:
+// fabric's bounded self-contact (docs/model.md, "Self-contact that holds") on the CPU reference:
 // the pair rule (contact distance, or the rest distance for the cloth's own neighbours), the
 // speed limit of predict, and whole heaps that end with no intersecting triangles, checked by
 // the exact counter of host/core/analysis/intersections.cpp every tenth frame. The GPU twin is
@@ -18,13 +18,13 @@ namespace {
 
 std::filesystem::path shipped(const char* scene) { return std::filesystem::path(CLOTHSIM_SOURCE_DIR) / "scenes" / scene; }
 
-// heap256 (a vertical 1 m cloth collapsing onto the floor, xpbd, self-collision) on an n x n
+// heap256 (a vertical 1 m cloth collapsing onto the floor, fabric, self-collision) on an n x n
 // grid, with the thickness at half the spacing: the contact distance is one grid step.
 Scene small_heap(int n) {
   const double thickness = 0.5 / double(n - 1);
   return load_scene(shipped("heap256.json"),
                     {fmt::format("cloth.num_width_points={}", n), fmt::format("cloth.num_height_points={}", n),
-                     fmt::format("cloth.thickness={:.17g}", thickness), "simulation.solver=\"xpbd\""});
+                     fmt::format("cloth.thickness={:.17g}", thickness)});
 }
 
 // Two free masses of a 2 x 2 cloth placed by hand, at rest, then one resolve_self_contacts (the
@@ -37,7 +37,7 @@ struct Pair {
   explicit Pair(double rest_gap)
       : scene(parse_scene(fmt::format(R"({{"cloth": {{"width": {:.17g}, "height": 10.0, "num_width_points": 2,
                   "num_height_points": 2, "thickness": 0.01, "orientation": 0}},
-                  "simulation": {{"solver": "xpbd", "self_collision": true}}}})",
+                  "simulation": {{"solver": "fabric", "self_collision": true}}}})",
                                           rest_gap),
                               "<pair>")),
         model(build_cloth(scene)), c(make_constants<double>(scene, model)), s(initial_state<double>(model)) {}
@@ -100,7 +100,7 @@ TEST_CASE("bounded contact: predict moves no mass more than a quarter of the con
   // thickness * 90 * 30 per second).
   const Scene scene = parse_scene(R"({"cloth": {"width": 1.0, "height": 1.0, "num_width_points": 7,
       "num_height_points": 5, "thickness": 0.0009, "orientation": 0},
-      "simulation": {"solver": "xpbd", "self_collision": true}})",
+      "simulation": {"solver": "fabric", "self_collision": true}})",
                                   "<fall>");
   const ClothModel model = build_cloth(scene);
   CpuBackend<double> cpu(scene, model);

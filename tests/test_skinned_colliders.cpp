@@ -78,7 +78,7 @@ TEST_CASE("a skinned box's vertices follow its bone's keys: a quarter turn's hal
 
 TEST_CASE("the reference skins each substep as the double-precision pose of the same keys", "[skinned]") {
   test::TempDir dir("skinned", "twin");
-  const Scene s = cloth_on_box(dir, rise(), "xpbd", 0.5);
+  const Scene s = cloth_on_box(dir, rise(), "fabric", 0.5);
   const ClothModel m = build_cloth(s);
   CpuBackend<double> cpu(s, m);
   const auto mesh = load_collider_mesh(s, 0);
@@ -93,7 +93,7 @@ TEST_CASE("the reference skins each substep as the double-precision pose of the 
 
 TEST_CASE("a cloth resting on a skinned box rides up with it and stays its thickness above the top", "[skinned]") {
   test::TempDir dir("skinned", "ride");
-  const std::string solver = GENERATE("classic", "xpbd", "fabric");
+  const std::string solver = GENERATE("classic", "fabric");
   const Scene s = cloth_on_box(dir, rise(), solver, 0.5);
   const ClothModel m = build_cloth(s);
   CpuBackend<double> cpu(s, m);
@@ -116,7 +116,7 @@ TEST_CASE("a cloth resting on a skinned box rides up with it and stays its thick
 TEST_CASE("a skinned box that slides carries the cloth on it by friction, and leaves it without", "[skinned]") {
   test::TempDir dir("skinned", "slide");
   auto carried = [&](double friction) {
-    const Scene s = cloth_on_box(dir, slide(), "xpbd", friction);
+    const Scene s = cloth_on_box(dir, slide(), "fabric", friction);
     const ClothModel m = build_cloth(s);
     CpuBackend<double> cpu(s, m);
     for (int f = 0; f < 225; ++f) cpu.step_frame();  // 2.5 s: the slide ended at 1.5 s
@@ -187,7 +187,7 @@ TEST_CASE("a point cache or an OBJ sequence moves a collider's vertices, and a c
                  "orientation": 0, "density": 0.15, "ks": 500, "damping": 0.5}},
       "mesh": {{"file": "cube.obj", "origin": [0.05, 0.85, 0.05], "friction": 0.5, "thickness": {}, {},
                 "cache_frames_per_sec": 60, "loop": false}},
-      "simulation": {{"solver": "xpbd", "self_collision": false}}
+      "simulation": {{"solver": "fabric", "self_collision": false}}
     }})", kThickness, key), dir / "scene.json");
     const auto mesh = load_collider_mesh(s, 0);
     REQUIRE(mesh->skin);

@@ -46,9 +46,19 @@ SHARED_FN bool apart_at_rest(VEC3 ri, VEC3 rj, REAL contact) {
   return length3(rest_e) > contact;
 }
 
+// How far the sweep's contact keeps a pair (`start_e`: the pair's difference where the substep
+// began, x - d at each end): the contact distance, or the distance it started at if that was
+// less. The sweep only stops a pair from closing; it does not part one, which the push-out
+// before it did: a penalty that parts a pair in one substep turns the depth into speed (a
+// 65² heap with the contact distance one spacing rose again from 8 cm to 27 cm mean height at
+// 1-2 m/s, every layer bouncing on the one below; docs/model.md).
+SHARED_FN REAL sweep_contact_keep(VEC3 start_e, REAL contact) {
+  return min(contact, length3(start_e));
+}
+
 // The sweep's self-contact (relax_vertices, fabric's only, with self-collision): a penalty
-// spring of stiffness SELF_CONTACT_STIFFNESS times the mass's own ks pushing it out to `keep` (the
-// contact distance) from a mass of another colour that is apart_at_rest (docs/model.md,
+// spring of stiffness SELF_CONTACT_STIFFNESS times the mass's own ks pushing it out to `keep`
+// (sweep_contact_keep) from a mass of another colour that is apart_at_rest (docs/model.md,
 // "Self-contact in the sweep"). Its force joins f and its Hessian k n n^T the 3x3 block, so the
 // Newton step weighs the contact against the springs instead of undoing a push-out made before
 // the solve.

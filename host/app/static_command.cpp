@@ -1,7 +1,7 @@
 // `clothsim static SCENE [--export FILE.obj] [--tolerance NEWTONS] [--max-iterations N]`: the
 // cloth's static equilibrium by Newton's method in double (static_solve.hpp), independent of both
 // solvers: where a run of the scene should come to rest. The physical answer a solver's rest
-// state is compared with (scripts/xpbd-resolution prints it next to each solver's sag).
+// state is compared with (scripts/hang-resolution prints it next to each solver's sag).
 #include <algorithm>
 #include <fmt/format.h>
 

@@ -5,7 +5,7 @@ A 0.3 m x 0.2 m cloth lies on a plane tilted by 20 degrees (the gravity is tilte
 is the same thing); the sweep runs it once per Coulomb friction coefficient mu. A block on such a
 slope slides a distance 1/2 g (sin theta - mu cos theta) t^2 in time t, and not at all once mu
 reaches tan theta = 0.364. Each run's point cache gives the cloth's mean distance down the slope.
-The sweep is a product: every mu on each solver. xpbd and fabric apply Coulomb friction; the
+The sweep is a product: every mu on each solver. fabric applies Coulomb friction; the
 classic solver keeps CS184's rule (the tangential move scaled by 1 - mu), which is not Coulomb's.
 
     PYTHONPATH=build/python /usr/bin/python3 python/examples/sweep_friction.py OUT_DIR [PLOT.png]
@@ -27,7 +27,7 @@ THETA = math.radians(20.0)
 G = 9.8
 FRAMES, FPS = 45, 90  # half a second
 MUS = [round(0.05 * k, 2) for k in range(11)]  # 0 to 0.5
-SOLVERS = ["classic", "xpbd", "fabric"]  # a product: 33 runs
+SOLVERS = ["classic", "fabric"]  # a product: 22 runs
 
 SCENE = {
     # A cloth lying flat 0.1 mm above a floor, gravity tilted by THETA along +x.
@@ -60,14 +60,14 @@ def main():
         x = clothsim.read_pc2(os.path.join(out, "runs", run["id"], "cloth.pc2"))[:, :, 0].mean(axis=1)
         slide = x - x[0]
         measured[solver][mu] = slide[-1]
-        if solver == "xpbd":
+        if solver == "fabric":
             left.plot(t, 100 * slide, label=f"μ {mu:g}")
-    left.set(xlabel="time (s)", ylabel="distance down the slope (cm)", title="xpbd: the cloth's mean, per run")
+    left.set(xlabel="time (s)", ylabel="distance down the slope (cm)", title="fabric: the cloth's mean, per run")
     left.legend(fontsize=7, ncol=2)
     mus = np.linspace(0, max(MUS), 200)
     closed = 0.5 * np.maximum(0, G * (math.sin(THETA) - mus * math.cos(THETA))) * t[-1] ** 2
     right.plot(mus, 100 * closed, "k-", label="closed form ½ g (sin θ − μ cos θ) t²")
-    for solver, marker in zip(SOLVERS, "sox"):
+    for solver, marker in zip(SOLVERS, "so"):
         right.plot(list(measured[solver]), [100 * v for v in measured[solver].values()], marker, label=solver)
     right.axvline(math.tan(THETA), color="grey", ls=":", label="μ = tan θ: it holds")
     right.set(xlabel="friction coefficient μ", ylabel=f"distance after {t[-1]:g} s (cm)",

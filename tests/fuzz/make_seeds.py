@@ -81,7 +81,7 @@ def state_seeds(cpu, gpu, xpbd, fabric, pc2):
         ('v4_float_gpu.state', gpu, 'loads', 'simulate --backend gpu --frames 3 --save-state: 3x2, floats'),
         ('v3_float_gpu.state', v3_gpu, 'loads', 'the float state as version 3 (80-byte header, no offsets): still read'),
         ('v4_xpbd_double_cpu.state', xpbd, 'loads',
-         f'the same with --set simulation.solver=xpbd: {springs} springs\' multipliers after the streams'),
+         f'the same, saved under the removed xpbd solver: {springs} springs\' multipliers after the streams'),
         ('v4_fabric_double_cpu.state', fabric, 'loads',
          'simulate --backend cpu --frames 3 --set simulation.solver=fabric --save-state: version 4, with the solve offsets'),
         ('v2_float_gpu.state', v2, 'loads', 'the float state as version 2 (no multipliers): still read'),
@@ -174,6 +174,10 @@ def main():
     if len(sys.argv) != 2:
         sys.exit(__doc__)
     clothsim = os.path.abspath(sys.argv[1])
+    # A state of the removed xpbd solver (its springs' multipliers after the streams), kept from
+    # the corpus as it was last generated: files users saved then must still read.
+    with open(os.path.join(HERE, 'seeds_state', 'v4_xpbd_double_cpu.state'), 'rb') as f:
+        xpbd = f.read()
     tmp = tempfile.mkdtemp()
     try:
         def run(*args):
@@ -188,11 +192,10 @@ def main():
             f.write(SCENE)
         run('--backend', 'cpu', '--frames', '3', '--save-state', 'cpu.state', '--export', 'cache.pc2')
         run('--backend', 'gpu', '--frames', '3', '--save-state', 'gpu.state')
-        run('--backend', 'cpu', '--frames', '3', '--set', 'simulation.solver=xpbd', '--save-state', 'xpbd.state')
         run('--backend', 'cpu', '--frames', '3', '--set', 'simulation.solver=fabric', '--save-state', 'fabric.state')
         run('--backend', 'cpu', '--load-state', 'cpu.state', '--frames', '4', '--export-every', '2',
             '--export', 'resumed.pc2')
-        cpu, gpu, xpbd, fabric = read('cpu.state'), read('gpu.state'), read('xpbd.state'), read('fabric.state')
+        cpu, gpu, fabric = read('cpu.state'), read('gpu.state'), read('fabric.state')
         cache, resumed = read('cache.pc2'), read('resumed.pc2')
     finally:
         shutil.rmtree(tmp)

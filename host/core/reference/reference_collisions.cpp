@@ -53,7 +53,8 @@ template <class R> void resolve_self_contacts(const Constants<R>& c, State<R>& s
 // the buckets of the 27 cells around x, each bucket once (a later row skips the buckets of an
 // earlier row's run), with no filter by cell: the distance test drops the far ones.
 template <class R>
-void add_self_contacts(const Constants<R>& c, const State<R>& s, uint32_t i, const Vec3<R>& x, Vec3<R>& f, shared::Sym3<R>& hess) {
+void add_self_contacts(const Constants<R>& c, const State<R>& s, uint32_t i, const Vec3<R>& x, const Vec3<R>& start_i,
+                       Vec3<R>& f, shared::Sym3<R>& hess) {
   const R k = R(SELF_CONTACT_STIFFNESS) * c.particle_ks[i];  // as the shader's, from the material's ks
   const std::vector<uint32_t>& colour = c.hierarchy->fine_colour;
   const uint32_t own = colour[i];
@@ -72,10 +73,13 @@ void add_self_contacts(const Constants<R>& c, const State<R>& s, uint32_t i, con
         const Vec3<R> e3 = x - Vec3<R>(s.pos[j]);
         const R d = length3(e3);
         if (d >= c.contact_distance || d == R(0) || colour[j] == own) continue;
+        const Vec3<R> start_j = Vec3<R>(s.pos[j]) - Vec3<R>(s.disp[j]);
+        const R keep = shared::sweep_contact_keep(start_i - start_j, c.contact_distance);
+        if (d >= keep) continue;
         if (c.welds && c.weld[i] == c.weld[j]) continue;  // a sewn pair
         if (!shared::apart_at_rest(c.rest[i], c.rest[j], c.contact_distance)) continue;  // neighbours
         Vec3<R> n;
-        f = shared::add_self_contact_pull(f, e3, d, c.contact_distance, k, n);
+        f = shared::add_self_contact_pull(f, e3, d, keep, k, n);
         shared::add_spring_hessian(hess, n, k, R(0));
       }
     }
@@ -150,7 +154,7 @@ template <class R> void collide_objects(const Constants<R>& c, State<R>& s) {
 #define CLOTHSIM_INSTANTIATE(R) \
   template void collide_self<R>(const Constants<R>&, State<R>&); \
   template void resolve_self_contacts<R>(const Constants<R>&, State<R>&); \
-  template void add_self_contacts<R>(const Constants<R>&, const State<R>&, uint32_t, const Vec3<R>&, Vec3<R>&, \
+  template void add_self_contacts<R>(const Constants<R>&, const State<R>&, uint32_t, const Vec3<R>&, const Vec3<R>&, Vec3<R>&, \
                                      shared::Sym3<R>&); \
   template void collide_objects<R>(const Constants<R>&, State<R>&); \
   template void collide_particle<R>(const Constants<R>&, Vec3<R>&, Vec3<R>&, bool, uint32_t*, bool, bool); \

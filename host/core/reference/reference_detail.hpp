@@ -18,10 +18,11 @@ namespace clothsim {
 template <class R> void collide_particle(const Constants<R>& c, Vec3<R>& x, Vec3<R>& d, bool friction,
                                          uint32_t* slots = nullptr, bool search = false, bool still_only = false);
 // relax_vertices' self-contacts under fabric (reference_collisions.cpp, docs/model.md "Self-contact
-// in the sweep"): mass i's penalty springs (SELF_CONTACT_STIFFNESS times its ks) into f and hess.
+// in the sweep"): mass i's penalty springs (SELF_CONTACT_STIFFNESS times its ks) into f and hess;
+// start_i: where i began the substep (x - d).
 template <class R>
-void add_self_contacts(const Constants<R>& c, const State<R>& s, uint32_t i, const Vec3<R>& x, Vec3<R>& f,
-                       shared::Sym3<R>& hess);
+void add_self_contacts(const Constants<R>& c, const State<R>& s, uint32_t i, const Vec3<R>& x, const Vec3<R>& start_i,
+                       Vec3<R>& f, shared::Sym3<R>& hess);
 // A mass deeper than 0.1 mm inside a sphere, or behind a plane's front, goes back to the
 // surface (a plane's: its surface offset on the front), without friction; otherwise nothing.
 template <class R> void keep_out_of_colliders(const Constants<R>& c, Vec3<R>& x, Vec3<R>& d, uint32_t* slots = nullptr);

@@ -218,7 +218,7 @@ template <class R> void relax_vertices(const ClothModel& m, const Constants<R>& 
       add_spring_hessian(hess, Vec3<R>(0), R(0), c.attach[i].w);
     }
     if (c.bounded_contact && c.sweep_friction)  // fabric's sweep (docs/model.md, "Self-contact in the sweep")
-      add_self_contacts(c, s, i, x, f, hess);
+      add_self_contacts(c, s, i, x, x - d, f, hess);
     Vec3<R> step;
     if (solve3(hess, f, step)) {
       x = x + step;
