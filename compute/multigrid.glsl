@@ -1,4 +1,4 @@
-// What the multigrid solver's passes share (docs/model.md, "One substep (multigrid solver)"):
+// What the multigrid solver's passes share (docs/model.md, "One substep (fabric solver)"):
 // the hierarchy's views and the coarse residual (a spring's Hessian terms and the 3x3 block's
 // solve are compute/shared/springs.glsl's).
 #ifndef CLOTHSIM_MULTIGRID_GLSL

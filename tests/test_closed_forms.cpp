@@ -94,10 +94,10 @@ TEMPLATE_TEST_CASE("classic: a sheet pinned along its border rests under its wei
   CHECK(e <= 1e-3);
 }
 
-TEST_CASE("fabric: a chain at rest saved and resumed with twice the substeps stays at rest (displacements rescaled)",
+TEST_CASE("fabric: a chain at rest saved and resumed with twice the substeps stays at rest",
           "[closed-form][checkpoint]") {
-  // The displacements are per substep: loaded under half the substep length they must halve,
-  // or the first substep would move every link at twice its speed.
+  // The displacements are per substep and the solve's offsets (solve_start_offset) of the
+  // substep before: loaded under half the substep length, the chain must not start moving.
   const Scene s = test::hanging_chain("fabric");
   const ClothModel m = build_cloth(s);
   CpuBackend<double> first(s, m);
@@ -113,14 +113,6 @@ TEST_CASE("fabric: a chain at rest saved and resumed with twice the substeps sta
   INFO("after one frame at 60 substeps: largest relative link error " << e << ", max speed " << st.max_speed << " m/s");
   CHECK(e <= 0.01);
   CHECK(st.max_speed <= 2e-5);  // 5e-6 m/s: what is left of the settling
-  // The control: the same resume with the displacements put back to their saved size does kick.
-  CpuBackend<double> unscaled(finer, m);
-  unscaled.load_state(saved);
-  for (auto& d : unscaled.state().disp) d = d * 2.0;
-  unscaled.step_frame();
-  const double kicked = measure(finer, m, unscaled.snapshot()).max_speed;
-  INFO("the same with the displacements unscaled: max speed " << kicked << " m/s");
-  CHECK(kicked > 2e-5);
 }
 
 // fabric solves implicit Euler itself, so its rest state is the static solve's whatever the

@@ -1,4 +1,4 @@
-// The multigrid hierarchy (host/core/cloth/hierarchy.cpp; docs/model.md, "One substep (multigrid
+// The multigrid hierarchy (host/core/cloth/hierarchy.cpp; docs/model.md, "One substep (fabric
 // solver)"): on a grid every second particle of every second row with bilinear weights, on a
 // mesh the like; pins held on the coarse level; valid colourings; and no cracks, whose absence a
 // strip of real fabric needs to hang at all.

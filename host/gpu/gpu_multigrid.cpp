@@ -1,4 +1,4 @@
-// The multigrid solver's passes on the GPU (docs/model.md, "One substep (multigrid solver)"),
+// The multigrid solver's passes on the GPU (docs/model.md, "One substep (fabric solver)"),
 // each named like its .comp file and its CPU twin in host/core/reference/reference_multigrid.cpp, and the
 // hierarchy's buffers. Made on first use, so a run of another solver compiles none of it.
 #include "gpu_multigrid.hpp"

@@ -1,4 +1,4 @@
-// The multigrid solver's hierarchy (docs/model.md, "One substep (multigrid solver)"): coarser and
+// The multigrid solver's hierarchy (docs/model.md, "One substep (fabric solver)"): coarser and
 // coarser clouds of the cloth's own particles, each joined by springs of its own, built once from
 // the cloth model's rest shape. Grids and meshes coarsen alike: a level's vertices are a maximal
 // independent set of the finer level's graph, so on a CS184 grid every second particle of every

@@ -258,7 +258,7 @@ inline constexpr double kStretchSettled = 1.0 + 1.0 / double(1 << kStretchSettle
 // for the next. The CPU twin of compute/arm_stretch_pass.comp.
 inline bool arm_stretch_pass(bool& over) { return std::exchange(over, false); }
 
-// The multigrid solver (docs/model.md, "One substep (multigrid solver)"), after predict and the
+// The multigrid solver (docs/model.md, "One substep (fabric solver)"), after predict and the
 // contacts: compute_residuals (the springs' force on every mass), then a V-cycle over the
 // hierarchy's levels (cycle_levels: restrict_residuals level by level down, solve_coarsest,
 // then prolong_corrections and smooth_corrections colour by colour up), prolong_to_cloth, and

@@ -1,4 +1,4 @@
-// The multigrid solver's passes (docs/model.md, "One substep (multigrid solver)"), each the CPU
+// The multigrid solver's passes (docs/model.md, "One substep (fabric solver)"), each the CPU
 // twin of the compute shader of the same name. A substep solves implicit Euler,
 //   minimise  sum_i m_i / (2 dt^2) |x_i - y_i|^2 + sum_s k_s / 2 (|x_j - x_i| - L_s)^2
 // from the prediction y: one linear coarse-grid correction (a V-cycle over the hierarchy of
