@@ -152,7 +152,8 @@ TEST_CASE("fabric: a sphere sweeping through a curtain at 5 m/s stretches it as 
 
 // The classic selfCollision cloth (50², the CS184 values: so heavy for its ks that it rests on
 // its 10 % limit) under fabric, falling onto the floor in folds. The auto stretch_passes (2) left
-// it at 1.1019 (CPU, float; 1.1023 in double; 1.10135 since the sweep's self-contacts) as the
+// it at 1.1019 (CPU, float; 1.1023 in double; 1.10135 since the sweep's self-contacts, 1.10089
+// since their keep is no more than where a pair began the substep) as the
 // folds pulled on it; with them come settling passes up to kAutoStretchPassesMax, run only while
 // a spring is over, which hold the limit to 1.10002 (float; 1.1000 at every frame to 300 on
 // llvmpipe).
@@ -165,7 +166,7 @@ TEST_CASE("fabric: the classic selfCollision cloth holds its 10 % limit at every
   };
   const double automatic = worst_stretch({}), two = worst_stretch({"simulation.stretch_passes=2"});
   INFO("largest stretch over 70 frames: " << automatic << " auto, " << two << " with the 2 fixed passes alone");
-  CHECK(two > 1.101);
+  CHECK(two > 1.1005);  // over the limit by more than float's rounding and the settling tolerance
   CHECK(automatic < 1.1001);
 }
 

@@ -82,11 +82,7 @@ template <class R> glm::dvec3 drape_centre(CpuBackend<R>& cpu, int frames, doubl
 }
 
 TEMPLATE_TEST_CASE("fabric: a cloth draped on a sphere at friction 0.8 stays on it", "[friction][long]", float, double) {
-  const Scene s = test::make_scene(25, 25, 0,
-                                   {"cloth.pinned=[]", "cloth.density=0.15", "cloth.ks=5000", "cloth.damping=0.2",
-                                    "simulation.max_stretch=10", "simulation.self_collision=false",
-                                    "simulation.solver=\"fabric\""},
-                                   R"(, "sphere": {"origin": [0.5, 0.75, 0.5], "radius": 0.2, "friction": 0.8})");
+  const Scene s = test::sphere_drape(25, 0.8);
   const ClothModel m = build_cloth(s);
   CpuBackend<TestType> cpu(s, m);
   const bool single = sizeof(TestType) == 4;

@@ -43,6 +43,16 @@ inline Scene make_scene(int nw, int nh, int orientation, std::vector<std::string
   return parse_scene(text, "<test>", sets);
 }
 
+// scripts/sphere-drape's drop: an n x n cloth of 1 m (fabric density, ks 5000, damping 0.2, no
+// pins, no Provot limit, no self-collision) under fabric, 5 cm above a sphere of 0.2 m under its
+// centre with `friction`.
+inline Scene sphere_drape(int n, double friction) {
+  return make_scene(n, n, 0,
+                    {"cloth.pinned=[]", "cloth.density=0.15", "cloth.ks=5000", "cloth.damping=0.2",
+                     "simulation.max_stretch=10", "simulation.self_collision=false", "simulation.solver=\"fabric\""},
+                    fmt::format(R"(, "sphere": {{"origin": [0.5, 0.75, 0.5], "radius": 0.2, "friction": {}}})", friction));
+}
+
 // The --set override that pins every particle of grid row `row` of a cloth `width` points wide.
 inline std::string pin_row(int width, int row) {
   std::string pins = "cloth.pinned=[";

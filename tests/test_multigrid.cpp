@@ -74,11 +74,7 @@ TEST_CASE("fabric: a cloth hung from two corners is as stiff at 65² and 129² a
 // with the first alone it stretched its folds to 1.2-1.4 and slid off the sphere.
 TEST_CASE("fabric: an unpinned 129² cloth dropped onto a sphere stretches at most 5 % with no Provot limit",
           "[fabric][slow]") {
-  const Scene s = test::make_scene(129, 129, 0,
-                             {"cloth.density=0.15", "cloth.ks=5000", "cloth.damping=0.2", "cloth.pinned=[]",
-                              "simulation.max_stretch=10", "simulation.self_collision=false",
-                              "simulation.solver=\"fabric\""},
-                             R"(, "sphere": {"origin": [0.5, 0.75, 0.5], "radius": 0.2, "friction": 0.3})");
+  const Scene s = test::sphere_drape(129, 0.3);
   const ClothModel m = build_cloth(s);
   CpuBackend<float> cpu(s, m);
   double worst = 0;
