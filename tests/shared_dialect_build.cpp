@@ -152,6 +152,8 @@ template <class R> void exercise(const char* type) {
   expect(add_self_contact(zero, e, R(5), R(6), R(1)) == e * R(0.2), "add_self_contact", type);
   expect(bounded_keep(e, zero, R(6)) == R(5) && bounded_keep(e, zero, R(4)) == R(4), "bounded_keep", type);
   expect(apart_at_rest(e, zero, R(2)) && !apart_at_rest(e, zero, R(5)) && !apart_at_rest(e, zero, R(6)), "apart_at_rest", type);
+  expect(sweep_contact_keep(e, R(6)) == R(5) && sweep_contact_keep(e, R(4)) == R(4),
+         "sweep_contact_keep: the start distance (|e| = 5) below the contact distance, else the contact distance", type);
   V pull_n;
   expect(add_self_contact_pull(zero, e, R(5), R(6), R(2), pull_n) == e * R(0.4) && pull_n == e * R(0.2),
          "add_self_contact_pull", type);

@@ -172,12 +172,14 @@ TEST_CASE("fabric: the classic selfCollision cloth holds its 10 % limit at every
 
 // The sweep's self-contact (docs/model.md, "Self-contact in the sweep"): mass 1 of a 2 x 2 cloth
 // whose springs are switched off (they still colour it: 0 and 1 are of different colours) moved
-// 15 mm from mass 0, within their 20 mm contact distance. Its Newton step is then the penalty
-// spring's alone against its inertia, k (keep - d) / (m/dt^2 + k) with k = 10 ks, along the
-// pair (a light cloth, 0.15 g a mass, so the contact wins); without self-collision it stays, and
-// so it does where the pair is closer at rest (18 mm) than the contact distance (neighbours).
+// this substep from 25 mm to 15 mm from mass 0, within their 20 mm contact distance. Its Newton
+// step is then the penalty spring's alone against its inertia, k (keep - d) / (m/dt^2 + k) with
+// k = 10 ks, along the pair (a light cloth, 0.15 g a mass, so the contact wins); without
+// self-collision it stays, and so it does where the pair is closer at rest (18 mm) than the
+// contact distance (neighbours), and where it began the substep 15 mm apart already: the sweep
+// stops a pair closing, it does not part one (sweep_contact_keep).
 TEST_CASE("fabric: the sweep's Newton step pushes a mass out of a contact against its inertia", "[fabric]") {
-  auto relax_mass_1 = [](bool self_collision, double width = 0.06) {
+  auto relax_mass_1 = [](bool self_collision, double width = 0.06, double started = 0.025) {
     const Scene scene = parse_scene(fmt::format(R"({{"cloth": {{"width": {}, "height": 10.0, "num_width_points": 2,
         "num_height_points": 2, "thickness": 0.01, "orientation": 0, "ks": 5000, "density": 0.001,
         "enable_structural": false, "enable_shearing": false}},
@@ -189,6 +191,7 @@ TEST_CASE("fabric: the sweep's Newton step pushes a mass out of a contact agains
     State<double> s = initial_state<double>(model);
     s.offset.assign(s.pos.size(), Vec4<double>(0));
     s.pos[1].x = s.pos[0].x + 0.015;
+    s.disp[1].x = 0.015 - started;  // where it began the substep: x - d
     build_spatial_hash(s.pos, c.inv_cell, s.hash);
     relax_vertices(model, c, int(c.hierarchy->fine_colour[1]), s);
     const double k = 10.0 * 5000.0, inertia = c.mass[1] * c.inv_dt2;
@@ -200,4 +203,9 @@ TEST_CASE("fabric: the sweep's Newton step pushes a mass out of a contact agains
   CHECK(gap > 0.0198);  // the contact outweighs the mass's inertia 45-fold
   CHECK(relax_mass_1(false).first == 0.015);
   CHECK(relax_mass_1(true, 0.018).first == 0.015);
+  CHECK(relax_mass_1(true, 0.06, 0.015).first == 0.015);  // began the substep that close: kept there
+  // Began it 17 mm apart: pushed back towards 17 mm, not to the contact distance.
+  const double from17 = relax_mass_1(true, 0.06, 0.017).first;
+  CHECK(from17 > 0.0165);
+  CHECK(from17 < 0.017);
 }

@@ -51,8 +51,10 @@ def main():
             assert set(r["pass_ms"]) == passes, sorted(r["pass_ms"])
         if r["backend"] == "gpu":
             assert r["dispatches_per_frame"] > 0 and r["barriers_per_frame"] > 0 and r["gpu_memory_bytes"] > 0
-            # one dispatch per pass, per colour: at least advance + 12 colours per substep
-            assert r["dispatches_per_frame"] >= 13 * r["substeps_per_frame"]
+            # one dispatch per pass, per colour: classic at least advance + 12 colours per substep,
+            # fabric at least predict, compute_residuals, prolong_to_cloth and a colour of the sweep
+            floor = 13 if r["solver"] == "classic" else 4
+            assert r["dispatches_per_frame"] >= floor * r["substeps_per_frame"], r["dispatches_per_frame"]
     solvers = {r["solver"] for r in results}
     assert solvers == {"classic", "fabric"}, f"solvers {solvers}: the tiny bench runs both"
     print(f"{sys.argv[1]}: {len(results)} results, all fields present")
