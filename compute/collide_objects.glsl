@@ -86,24 +86,20 @@ bool plane_may_move(vec4 point_front, vec3 n, vec3 m, vec3 x, vec3 d, bool frict
   return plane_sides(x, d, point_front.xyz, n, m, dist, dist_prev) ||
          !stays_in_front(dist, point_front.w, friction && COULOMB_FRICTION);
 }
-bvec2 or_each(bvec2 may, bool i, bool j) { return bvec2(may.x || i, may.y || j); }
-
-// Whether a sphere or a plane could change masses i and j (a spring's ends in a sweep): true
-// where one may move it. Each collider's parameters are fetched once for both (on llvmpipe a
-// fetch is a call, dearer than the tests).
-bvec2 analytic_may_move_pair(vec3 xi, vec3 di, vec3 xj, vec3 dj, bool friction) {
-  bvec2 may = bvec2(false);
+// Whether a sphere or a plane could change a mass at x that moved by d: true where one may move
+// it (sphere_may_move, plane_may_move).
+bool analytic_may_move(vec3 x, vec3 d, bool friction) {
+  bool may = false;
   for (int s = 0; s < sphere_count(); ++s) {
     vec4 origin_radius = texelFetch(spheres_view, SPHERE_TEXELS * s);
     vec3 m = collider_motion(texelFetch(spheres_view, SPHERE_TEXELS * s + 2).xyz);
-    may = or_each(may, sphere_may_move(origin_radius, m, xi, di), sphere_may_move(origin_radius, m, xj, dj));
+    may = may || sphere_may_move(origin_radius, m, x, d);
   }
   for (int k = 0; k < plane_count(); ++k) {
     vec4 point_front = texelFetch(planes_view, PLANE_TEXELS * k);
     vec3 n = texelFetch(planes_view, PLANE_TEXELS * k + 1).xyz;
     vec3 m = collider_motion(texelFetch(planes_view, PLANE_TEXELS * k + 2).xyz);
-    may = or_each(may, plane_may_move(point_front, n, m, xi, di, friction),
-                  plane_may_move(point_front, n, m, xj, dj, friction));
+    may = may || plane_may_move(point_front, n, m, x, d, friction);
   }
   return may;
 }
@@ -129,20 +125,15 @@ bool meshes_leave_alone(vec3 x, vec3 d, out float clearance) {
 // (meshes_leave_alone).
 bool may_collide(vec3 x, vec3 d, bool friction, out float clearance) {
   bool meshes_alone = meshes_leave_alone(x, d, clearance);
-  return analytic_may_move_pair(x, d, x, d, friction).x || !meshes_alone;
+  return analytic_may_move(x, d, friction) || !meshes_alone;
 }
 
-// The same for masses i and j in the passes after predict (xpbd's and multigrid's sweeps), each
-// with the clearance predict kept: the meshes decide without a field sample
-// (mesh_leaves_alone_after), listing a mass near a mesh that the response may then leave
-// alone. xpbd's sweep lists the masses it is true for, and collide_objects runs on those alone
-// (compute/contact_list.glsl); relax_vertices pushes those out inline.
-bvec2 may_collide_pair_after(int i, vec3 xi, vec3 di, float ci, int j, vec3 xj, vec3 dj, float cj, bool friction) {
-  bvec2 may = analytic_may_move_pair(xi, di, xj, dj, friction);
-  for (int k = 0; k < mesh_count(); ++k) {
-    MeshField field = mesh_field(k);
-    may = or_each(may, !mesh_leaves_alone_after(field, xi, di, ci, i), !mesh_leaves_alone_after(field, xj, dj, cj, j));
-  }
+// The same for mass i in fabric's sweep, with the clearance predict kept (`clearance`): the
+// meshes decide without a field sample (mesh_leaves_alone_after), so a mass near a mesh may be
+// pushed out inline and then left alone by the response (relax_vertices' push_out).
+bool may_collide_after(int i, vec3 x, vec3 d, float clearance, bool friction) {
+  bool may = analytic_may_move(x, d, friction);
+  for (int k = 0; k < mesh_count(); ++k) may = may || !mesh_leaves_alone_after(mesh_field(k), x, d, clearance, i);
   return may;
 }
 

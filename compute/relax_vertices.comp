@@ -20,16 +20,16 @@ layout(std430, binding = BINDING_MG_OFFSET) writeonly buffer Offsets { vec4 offs
 // The hash collide_self built this substep (its ids; the positions are read as they are now).
 layout(std430, binding = BINDING_CELL_ENTRIES) readonly buffer Entries { uint entries[]; };
 
-// A correction must not push a mass into a collider or through a plane (as in xpbd's sweep);
+// A correction must not push a mass into a collider or through a plane;
 // with Coulomb friction under fabric (params.sweep_friction), as the prediction's contacts are.
 // Inline, in this dispatch (the mass's own state only, and no mass of the colour reads
 // another's), as a loop of one trip or none rather than an if: llvmpipe runs an if's body for
 // every lane, taken or not, but skips a loop that no lane of the batch enters, so a batch with
-// no mass near a collider pays only may_collide_pair_after's test (the contact list's reason,
+// no mass near a collider pays only may_collide_after's test (the contact list's reason,
 // compute/contact_list.glsl, without its dispatch after each colour). u_count (at least 1) is
 // the bound, not 1, so that the compiler cannot see the loop has one trip and make it an if.
 void push_out(int i, inout vec3 x, inout vec3 d, float clearance) {
-  bool push = may_collide_pair_after(i, x, d, clearance, i, x, d, clearance, params.sweep_friction != 0u).x;
+  bool push = may_collide_after(i, x, d, clearance, params.sweep_friction != 0u);
   for (uint trip = 0u; trip < (push ? u_count : 0u); trip = u_count) {
     g_self = i;
     g_friction_still_only = true;

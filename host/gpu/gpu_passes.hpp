@@ -84,7 +84,6 @@ class GpuPasses {
   void barrier(GLbitfield bits);  // glMemoryBarrier, counted
   void first_pass(PassId pass, bool then_collide_objects);  // advance or predict
   void colour_pass(PassId pass, int colour);  // one colour of a constraint sweep
-  void timed_dispatch(PassId pass);  // dispatch_row, timed on its own row with a profile
   // Runs f; with a profile (simulate --profile), timed as `name` between two glFinish calls.
   template <class F> void timed(std::string_view name, F&& f) {
     profiled(profile_, name, std::forward<F>(f), [] { glFinish(); });
