@@ -13,7 +13,7 @@
 bool folded(uint g, uvec4 v) {
   vec4 q = position_of(int(v.x));
   vec3 p = q.xyz;
-  float chord = folded_chord_at(material_of(int(v.x)).stiffness.x * q.w, params);
+  float chord = folded_chord_at(material_of(int(v.x)).stiffness.z * q.w, params);
   uint last = mg_vertex(g + 1u).w;
   for (uint k = v.w; k < last; ++k) {
     uvec4 s = mg_entry(k);  // y rest bits, w the other end's particle

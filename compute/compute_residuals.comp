@@ -42,8 +42,12 @@ void main() {
     precise vec3 e = (position_of(j).xyz + offset_of(j)) - xi;
     f = add_spring_force(f, e, rest, k);
   }
+  Sym3 unused = sym3_diagonal(0.0);
+  f = add_material_terms(i, mat, xi, true, f, unused);
   vec4 rel;
   vec3 origin;
   if (ATTACHMENTS && attachment_of(i, rel, origin)) f = add_anchor_pull(f, xi, rel.xyz, origin, rel.w);
-  residual[i] = vec4(f, mass);
+  // The coarse problem weighs each mass with its hinges' block as inertia (hinge_block).
+  precise float weight = mass + params.dt2 * hinge_block(i, mat);
+  residual[i] = vec4(f, weight);
 }

@@ -109,8 +109,8 @@ using uint = uint32_t;
 #define TEXTURE_CELL_START 13        // R32UI, one texel per hash bucket (+1 sentinel)
 #define TEXTURE_SORTED_POSITIONS 14  // RGBA32F, one texel per hash entry
 // The rest of the cloth model (ClothModel in host/core/cloth/cloth.hpp), static over a run.
-#define TEXTURE_GATHER_START 16      // R32UI, per particle + 1: its first entry in the gather list
-#define TEXTURE_GATHER 17            // RGBA32UI, per gather entry: x the other end | type << 30, y the rest length's bits, z the spring, w 1 if the particle is its i end
+#define TEXTURE_GATHER_START 16      // R32UI, per particle + 1: its first gather entry; with a material, then its first membrane and hinge entries likewise
+#define TEXTURE_GATHER 17            // RGBA32UI, per gather entry: x the other end | type << 30, y the rest length's bits; then 2 per membrane and hinge entry (gpu_state.cpp)
 #define TEXTURE_PARTICLES 18         // RGBA32F, per particle: x mass (kg), y its cloth's material index, z its attachment's collider (kind + 4 index, 0 none), w the skinned vertex it follows (a skinned collider's)
 #define TEXTURE_MATERIALS 19         // RGBA32F, MATERIAL_TEXELS per cloth (MaterialTexels)
 #define TEXTURE_CORNER_START 20      // R32UI, per particle + 1: its first entry in the corner list
@@ -142,7 +142,7 @@ using uint = uint32_t;
 #define TEXTURE_MG_RHS 34            // RGBA32F, per coarse vertex: BINDING_MG_RHS, read by the smoothing and the prolongation
 // RGBA32F texels per struct in the views above: member m of element k is texel
 // k * STRUCT_TEXELS + m (tests/test_gpu_layout.cpp checks these against the std430 strides).
-#define MATERIAL_TEXELS 2
+#define MATERIAL_TEXELS 3
 #define SPHERE_TEXELS 3
 #define PLANE_TEXELS 3
 #define MESH_TEXELS 9
@@ -172,8 +172,9 @@ struct MultigridEntry {
 
 // One cloth's material (MaterialC in host/core/reference/reference.hpp).
 struct MaterialTexels {
-  vec4 stiffness;  // ks, ks_bending (N/m), zw unused
+  vec4 stiffness;  // ks, ks_bending, the start's (MaterialC::start_ks) (N/m), w unused
   vec4 keep;       // x 1 - damping / 100; y, z, w 1 where structural, shearing, bending springs are enabled
+  vec4 moduli;     // a material's C11, C22, C12, G (N/m; shared/membrane.glsl), else 0
 };
 
 // `motion`: the collider's displacement over this substep (keyframed motion, set by the host

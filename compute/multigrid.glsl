@@ -6,6 +6,7 @@
 
 #include "particle_views.glsl"
 #include "shared/integration.glsl"
+#include "shared/membrane.glsl"
 #include "shared/springs.glsl"
 
 layout(binding = TEXTURE_MG_VERTICES) uniform usamplerBuffer mg_vertices_view;
@@ -19,6 +20,49 @@ layout(binding = TEXTURE_MG_RHS) uniform samplerBuffer mg_rhs_view;
 
 // Particle i's offset x - y (predict wrote it, prolong_to_cloth and relax_vertices move it).
 vec3 offset_of(int i) { return texelFetch(mg_offset_view, i).xyz; }
+
+// Where the material's terms read particle j: now, or at the solve's start (plus its offset:
+// compute_residuals).
+vec3 material_position(int j, bool at_start) {
+  precise vec3 p = position_of(j).xyz + offset_of(j);
+  return at_start ? p : position_of(j).xyz;
+}
+
+// The sum of k0^2 over particle i's bending entries (hinge_block in
+// host/core/reference/reference_multigrid.cpp, which says why).
+float hinge_block(int i, Material mat) {
+  precise float sum = 0.0;
+  if (!(mat.moduli.x > 0.0)) return sum;
+  uint last = hinge_first(i + 1);
+  for (uint e = hinge_first(i); e < last; e += 2u) {
+    float k0 = uintBitsToFloat(texelFetch(gather_view, int(e) + 1).x);
+    sum = sum + k0 * k0;
+  }
+  return sum;
+}
+
+// Particle i's membrane triangles and hinges at x (docs/materials.md): their forces added to f,
+// their blocks to hess, in the entries' order. None without a material (moduli 0, and then
+// no starts were uploaded to read). The CPU twin is add_material_terms in
+// host/core/reference/reference_multigrid.cpp.
+vec3 add_material_terms(int i, Material mat, vec3 x, bool at_start, vec3 f, inout Sym3 hess) {
+  if (!(mat.moduli.x > 0.0)) return f;
+  uint last = membrane_first(i + 1);
+  for (uint e = membrane_first(i); e < last; e += 2u) {
+    uvec4 t = texelFetch(gather_view, int(e));
+    vec4 dminv = uintBitsToFloat(texelFetch(gather_view, int(e) + 1));
+    f = add_membrane_terms(f, hess, x, material_position(int(t.x), at_start), material_position(int(t.y), at_start),
+                           dminv, uintBitsToFloat(t.z), mat.moduli);
+  }
+  last = hinge_first(i + 1);
+  for (uint e = hinge_first(i); e < last; e += 2u) {
+    uvec4 o = texelFetch(gather_view, int(e));
+    vec4 k = uintBitsToFloat(texelFetch(gather_view, int(e) + 1));
+    f = add_hinge_terms(f, hess, x, material_position(int(o.x), at_start), material_position(int(o.y), at_start),
+                        material_position(int(o.z), at_start), k, uintBitsToFloat(o.w));
+  }
+  return f;
+}
 
 // How a pass reads a residual, a right-hand side and a correction, each written by an earlier
 // dispatch: through their views (a storage-buffer read in a loop is a bounds-checked loop over

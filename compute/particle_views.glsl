@@ -57,11 +57,13 @@ bool attachment_of(int i, out vec4 rel, out vec3 origin) {
 
 // One cloth's material (MaterialTexels in layout.glsl, MaterialC in host/core/reference/reference.hpp).
 struct Material {
-  vec4 stiffness;  // ks, ks_bending, zw unused
+  vec4 stiffness;  // ks, ks_bending, start_ks, w unused
   vec4 keep;       // keep_velocity, then 1 per enabled spring type
+  vec4 moduli;     // a material's C11, C22, C12, G (0: none)
 };
 Material material(int m) {
-  return Material(texelFetch(materials_view, MATERIAL_TEXELS * m), texelFetch(materials_view, MATERIAL_TEXELS * m + 1));
+  return Material(texelFetch(materials_view, MATERIAL_TEXELS * m), texelFetch(materials_view, MATERIAL_TEXELS * m + 1),
+                  texelFetch(materials_view, MATERIAL_TEXELS * m + 2));
 }
 Material material_of(int i) { return material(material_index_of(i)); }
 // Both from one fetch of particle i's texel (a pass that needs its mass and its material).
@@ -93,6 +95,12 @@ bool gathered_spring(uint g, Material mat, out int other, out uint type, out flo
   }
   return true;
 }
+
+// With a material (ClothModel::membrane, ::hinges): particle i's membrane entries are the
+// texel pairs [membrane_first(i), membrane_first(i + 1)) of TEXTURE_GATHER, its hinge entries
+// [hinge_first(i), hinge_first(i + 1)); their starts follow the springs' (gpu_state.cpp).
+uint membrane_first(int i) { return texelFetch(gather_start_view, int(particle_count()) + 1 + i).x; }
+uint hinge_first(int i) { return texelFetch(gather_start_view, 2 * (int(particle_count()) + 1) + i).x; }
 
 // The triangles around particle i are corner entries [corners_first(i), corners_first(i + 1)),
 // ascending: the order compute_normals and compute_wind_forces gather in on both backends.

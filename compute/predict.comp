@@ -39,7 +39,7 @@ bool predict_particle(int i) {
   precise vec3 next = p.xyz + d;
   // The multigrid solve's offset: the external forces' share, which it applies with the
   // springs (predict in host/core/reference/reference_forces.cpp).
-  offset[i] = vec4(solve_start_offset(acc, offset[i].xyz, material_of(i).stiffness.x * p.w, params), 0.0);
+  offset[i] = vec4(solve_start_offset(acc, offset[i].xyz, material_of(i).stiffness.z * p.w, params), 0.0);
   // w: the mass's clearance bound from the meshes, which the sweep's contact list reads
   // (mesh_leaves_alone_after) and every pass up to it keeps; 0 is no bound.
   float clearance = 0.0;

@@ -114,6 +114,7 @@ void main() {
     f = add_spring_pull(f, n, len, rest, k);
     add_spring_hessian(hess, n, sa, sd);
   }
+  f = add_material_terms(i, mat, x, false, f, hess);
   // An attachment: its pull and its block k I (docs/model.md, "Attachments").
   vec4 rel;
   vec3 origin;

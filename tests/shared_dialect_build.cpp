@@ -122,6 +122,14 @@ template <class R> void exercise(const char* type) {
   R len, s, dd;
   expect(spring_terms(zero, e, R(5), R(1), n, len, s, dd) && len == R(5), "spring_terms", type);
   expect(solve3(h, V(R(3), R(2), R(2)), t) && t == V(R(1)), "solve3 of diag(3, 2, 2)", type);
+  // A triangle at rest (the unit right triangle, dminv = I): no force; a flat hinge: -k0 v.
+  using V4 = glm::vec<4, R>;
+  Sym3<R> hm = sym3_diagonal(R(0));
+  expect(add_membrane_terms(zero, hm, zero, ex, V(R(0), R(0), R(1)), V4(R(1), R(0), R(0), R(1)), R(0.5),
+                            V4(R(2), R(2), R(0), R(1))) == zero, "add_membrane_terms at rest", type);
+  Sym3<R> hh = sym3_diagonal(R(0));
+  expect(add_hinge_terms(zero, hh, up, zero, zero, zero, V4(R(2), R(1), R(1), R(1)), R(0)) == up * R(-4) && hh.a.x == R(4),
+         "add_hinge_terms of a flat hinge: -k0 (k0 x) and the block k0^2 I", type);
 
   layout::StepParamsT<R> params{};
   params.dt2 = R(1);

@@ -93,3 +93,19 @@ TEST_CASE("a fabric run on the GPU follows the reference frame by frame, and cou
   check_same("displacements after 4 frames", g.disp, cpu.state().disp, kRunTolerance);
   CHECK_NO_GL_ERRORS();
 }
+
+// A material's membrane and bending terms (docs/materials.md) in the sweep and the residuals, and
+// its hinges' weight in the coarse problem: on a grid (its plate stencils) and on a mesh with
+// self-collision and a sphere (its hinges).
+TEST_CASE("each fabric pass matches the reference on cloths with a material (a grid's stencils, a mesh's hinges)",
+          "[gpu]") {
+  REQUIRE_GL_CONTEXT();
+  check_multigrid_passes(pressed_cloth(33, 17, {"simulation.solver=\"fabric\"", "cloth.material=\"denim\""}), kWarmupFrames);
+  const std::string mesh = test::source_path("scenes/meshes/disc_hole.obj").string();
+  const Scene disc = parse_scene(fmt::format(R"({{"cloth": {{"mesh": "{}", "scale": 0.8, "offset": [0.4, 1.1, 0.4],
+      "rotation_axis": [0, 0, 1], "rotation_degrees": 20, "thickness": 0.008, "material": "silk"}},
+      "sphere": {{"origin": [0.4, 0.8, 0.4], "radius": 0.2, "friction": 0.5}},
+      "simulation": {{"solver": "fabric", "self_collision": true}}}})", mesh), "<disc>");
+  check_multigrid_passes(disc, 2);
+  CHECK_NO_GL_ERRORS();
+}

@@ -22,7 +22,7 @@ void check_gpu_limits(const Scene& scene, const ClothModel& m) {
   glGetIntegeri_v(GL_MAX_COMPUTE_WORK_GROUP_COUNT, 0, &max_groups);
   glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &max_texels);
   // The largest view and buffer: the gather list (an entry per spring end) or the springs.
-  const uint64_t texels = std::max<uint64_t>(m.gather.size(), m.count());
+  const uint64_t texels = std::max<uint64_t>(m.gather.size() + 2 * (m.membrane.size() + m.hinges.size()), m.count());
   const uint64_t largest = std::max<uint64_t>(m.springs.size() * sizeof(layout::SpringTexel), m.count() * sizeof(glm::vec4));
   const uint64_t groups = std::max<uint64_t>((uint64_t(hash_table_size(uint32_t(m.count()))) + WORKGROUP_SIZE - 1) / WORKGROUP_SIZE,
                                              (m.springs.size() + WORKGROUP_SIZE - 1) / WORKGROUP_SIZE);
@@ -73,23 +73,40 @@ void GpuState::upload_model() {
     springs.push_back({{s.i, s.j, std::bit_cast<uint32_t>(float(s.rest)), uint32_t(s.type) | (s.material << 2)}});
   std::vector<glm::uvec4> gather;
   for (uint32_t g : m.gather) {
-    // The other end and the side are filled in per particle below; every particle index fits
-    // in 30 bits.
-    gather.push_back({0u, std::bit_cast<uint32_t>(float(m.springs[g].rest)), g, 0u});
+    // The other end is filled in per particle below; every particle index fits in 30 bits.
+    gather.push_back({0u, std::bit_cast<uint32_t>(float(m.springs[g].rest)), 0u, 0u});
   }
   for (uint32_t i = 0; i < uint32_t(m.count()); ++i)
     for (uint32_t g = m.gather_start[i]; g < m.gather_start[i + 1]; ++g) {
       const Spring& s = m.springs[m.gather[g]];
       gather[g].x = (s.i == i ? s.j : s.i) | (uint32_t(s.type) << 30);
-      gather[g].w = s.i == i ? 1u : 0u;
     }
+  // With a material: each membrane entry as (a, b, area, 0), (dminv), each hinge entry as
+  // (others, rest), (weights), after the springs' entries; their starts follow the springs' in
+  // the start list (membrane_first and hinge_first in particle_views.glsl).
+  std::vector<uint32_t> starts = m.gather_start;
+  auto bits = [](double v) { return std::bit_cast<uint32_t>(float(v)); };
+  if (m.has_material()) {
+    const uint32_t membrane_base = uint32_t(gather.size());
+    for (const MembraneEntry& e : m.membrane) {
+      gather.push_back({e.a, e.b, bits(e.area), 0u});
+      gather.push_back({bits(e.dminv[0]), bits(e.dminv[1]), bits(e.dminv[2]), bits(e.dminv[3])});
+    }
+    const uint32_t hinge_base = uint32_t(gather.size());
+    for (const HingeEntry& h : m.hinges) {
+      gather.push_back({h.other[0], h.other[1], h.other[2], bits(h.rest)});
+      gather.push_back({bits(h.k[0]), bits(h.k[1]), bits(h.k[2]), bits(h.k[3])});
+    }
+    for (uint32_t s : m.membrane_start) starts.push_back(membrane_base + 2 * s);
+    for (uint32_t s : m.hinge_start) starts.push_back(hinge_base + 2 * s);
+  }
   std::vector<glm::uvec4> triangles;
   for (auto& t : m.triangles) triangles.push_back({t[0], t[1], t[2], 0u});
   // A storage buffer or view may not be empty: one dummy element for a cloth without springs.
   auto nonempty = [](auto v) { if (v.empty()) v.resize(1); return v; };
   gl::upload_vector(springs_, nonempty(springs), GL_STATIC_DRAW);
   gl::upload_vector(gather_, nonempty(gather), GL_STATIC_DRAW);
-  gl::upload_vector(gather_start_, m.gather_start, GL_STATIC_DRAW);
+  gl::upload_vector(gather_start_, starts, GL_STATIC_DRAW);
   gl::upload_vector(triangles_, nonempty(triangles), GL_STATIC_DRAW);
   gl::upload_vector(corner_start_, m.corner_start, GL_STATIC_DRAW);
   gl::upload_vector(corner_triangles_, nonempty(m.corner_triangles), GL_STATIC_DRAW);

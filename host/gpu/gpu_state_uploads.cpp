@@ -104,8 +104,9 @@ void GpuState::upload_rest_positions(const Constants<float>& c) {
 void GpuState::upload_materials(const Constants<float>& c) {
   std::vector<layout::MaterialTexels> materials;
   for (const MaterialC<float>& mat : c.materials)
-    materials.push_back({glm::vec4(mat.ks, mat.ks_bending, 0.f, 0.f),
-                         glm::vec4(mat.keep_velocity, float(mat.enabled[0]), float(mat.enabled[1]), float(mat.enabled[2]))});
+    materials.push_back({glm::vec4(mat.ks, mat.ks_bending, mat.start_ks, 0.f),
+                         glm::vec4(mat.keep_velocity, float(mat.enabled[0]), float(mat.enabled[1]), float(mat.enabled[2])),
+                         glm::vec4(mat.moduli)});
   // z: the particle's attachment's collider (kind + 4 index, exact in a float), 0 for none.
   std::vector<glm::vec4> particles;
   for (size_t i = 0; i < c.mass.size(); ++i)

@@ -27,6 +27,7 @@ class MeshProbe final : public ParamVisitor {
     if (std::string_view(p.key) == kMeshKey) mesh = !v.empty();
   }
   void number(const ParamInfo&, double&) override {}
+  void pair(const ParamInfo&, std::array<double, 2>&) override {}
   void integer(const ParamInfo&, int&) override {}
   void boolean(const ParamInfo&, bool&) override {}
   void vec3(const ParamInfo&, glm::dvec3&) override {}
@@ -53,6 +54,15 @@ class PanelRows final : public ParamVisitor {
     float f = float(v * w.scale);
     if (ImGui::DragFloat(label(p).c_str(), &f, w.speed, float(w.lo), float(w.hi), w.format)) {
       v = (w.lo < w.hi ? std::clamp(double(f), w.lo, w.hi) : double(f)) / w.scale;
+      changed = true;
+    }
+  }
+  // [warp, weft]: one drag each, in the row's unit.
+  void pair(const ParamInfo& p, std::array<double, 2>& v) override {
+    if (!shown(p) || p.widget.style != Widget::Drag) return;
+    float f[2] = {float(v[0]), float(v[1])};
+    if (ImGui::DragFloat2(label(p).c_str(), f, p.widget.speed, float(p.widget.lo), float(p.widget.hi), p.widget.format)) {
+      for (int k = 0; k < 2; ++k) v[size_t(k)] = p.widget.lo < p.widget.hi ? std::clamp(double(f[k]), p.widget.lo, p.widget.hi) : double(f[k]);
       changed = true;
     }
   }

@@ -59,6 +59,9 @@ class InRange final : public ParamVisitor {
   void number(const ParamInfo& p, double& v) override {
     expect(std::isfinite(v) && v >= p.lo && v <= p.hi, join(prefix_, p.key) + " finite and in its row's range");
   }
+  void pair(const ParamInfo& p, std::array<double, 2>& v) override {
+    for (double x : v) expect(std::isfinite(x) && x >= p.lo && x <= p.hi, join(prefix_, p.key) + " finite and in its row's range");
+  }
   void integer(const ParamInfo& p, int& v) override {
     expect(v >= p.lo && v <= p.hi, join(prefix_, p.key) + " in its row's range");
   }
@@ -106,6 +109,7 @@ class Flatten final : public ParamVisitor {
   using Values = std::vector<std::pair<std::string, std::string>>;
   Flatten(Values& out, std::string prefix = "") : out_(out), prefix_(std::move(prefix)) {}
   void number(const ParamInfo& p, double& v) override { add(p, fmt::format("{:a}", v)); }
+  void pair(const ParamInfo& p, std::array<double, 2>& v) override { add(p, fmt::format("{:a} {:a}", v[0], v[1])); }
   void integer(const ParamInfo& p, int& v) override { add(p, fmt::format("{}", v)); }
   void boolean(const ParamInfo& p, bool& v) override { add(p, v ? "true" : "false"); }
   void vec3(const ParamInfo& p, glm::dvec3& v) override { add(p, fmt::format("{:a} {:a} {:a}", v.x, v.y, v.z)); }

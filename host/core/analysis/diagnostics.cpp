@@ -86,7 +86,7 @@ ClothStats measure(const Scene& scene, const ClothModel& m, const ClothSnapshot&
     ratios.push_back(len / sp.rest);
     const ClothParams& p = *cloths.at(sp.material);
     const bool enabled[3] = {p.enable_structural, p.enable_shearing, p.enable_bending};
-    if (enabled[int(sp.type)]) {
+    if (enabled[int(sp.type)] && !p.material) {  // a material's energy is its triangles' and hinges', not counted here
       const double k = sp.type == SpringType::Bending ? 0.2 * p.ks : p.ks;
       st.spring += 0.5 * k * (len - sp.rest) * (len - sp.rest);
     }

@@ -63,10 +63,12 @@ std::optional<std::string> divergence_message(const Scene& scene, const ClothMod
   const std::vector<double> masses = particle_masses(scene, model);  // follows a live density edit
   double ks = 0, mass = 0, ratio = HUGE_VAL;
   for (size_t i = 0; i < size_t(model.count()); ++i) {
-    const double k = cloths[model.material[i]]->ks, m = masses[i];
+    const double k = cloths[model.material[i]]->spring_ks(), m = masses[i];
     if (model.pinned[i] || !(k > 0) || !(m / k < ratio)) continue;
     ratio = m / k, ks = k, mass = m;
   }
+  // A material's stiffness is its stretch (ks here stands for it: ClothParams::spring_ks).
+  const char* ks_key = scene.cloth.material ? "cloth.material.stretch (as a spring constant)" : "cloth.ks";
   const double dt = scene.dt();
   const int steps = scene.simulation.simulation_steps;
   const int max_steps = max_simulation_steps();
@@ -81,9 +83,9 @@ std::optional<std::string> divergence_message(const Scene& scene, const ClothMod
     const double soft_ks = mass * std::pow(kStableStepFraction / dt, 2);
     cause = fmt::format(
         "Likely cause: the springs are too stiff for the time step (ks {:g} N/m on {:.3g} kg particles needs "
-        "substeps shorter than about {:.2g} s; these are {:.2g} s). Lower cloth.ks (now {:g}; about {:.3g} is stable "
+        "substeps shorter than about {:.2g} s; these are {:.2g} s). Lower {} (now {:g}; about {:.3g} is stable "
         "with these substeps)",
-        ks, mass, stable_dt, dt, ks, soft_ks);
+        ks, mass, stable_dt, dt, ks_key, ks, soft_ks);
     if (steps < max_steps)
       cause += fmt::format(" or raise simulation.simulation_steps (now {}, at most {}), e.g. --set "
                            "simulation.simulation_steps={}",

@@ -31,7 +31,7 @@ double jitter_amplitude(double spacing) {
 }
 
 double particle_mass(const ClothParams& p) {
-  return p.width * p.height * p.density / (double(p.num_width_points) * double(p.num_height_points));
+  return p.width * p.height * p.areal_density() / (double(p.num_width_points) * double(p.num_height_points));
 }
 
 std::vector<double> particle_masses(const Scene& scene, const ClothModel& m) {
@@ -41,9 +41,10 @@ std::vector<double> particle_masses(const Scene& scene, const ClothModel& m) {
     const ClothPart& part = m.parts[k];
     const ClothParams& p = *cloths.at(k);
     // A grid keeps the CS184 formula exactly (its particles all weigh the same, to the bit).
-    const double grid_mass = part.nw > 0 ? particle_mass(p) : 0.0;
+    const bool even = part.nw > 0 && !p.material;
+    const double grid_mass = even ? particle_mass(p) : 0.0;
     for (uint32_t i = part.first; i < part.first + part.count; ++i)
-      mass[i] = part.nw > 0 ? grid_mass : m.area[i] * p.density;
+      mass[i] = even ? grid_mass : m.area[i] * p.areal_density();
   }
   return mass;
 }
@@ -218,6 +219,7 @@ static ClothModel build_cloth_model(const Scene& scene) {
   PartSprings seams = sew_seams(scene, m);
   if (!seams.springs.empty()) parts.push_back(std::move(seams));
   finish_model(m, parts);
+  add_fabric_terms(scene, m);
   m.mass = particle_masses(scene, m);
   return m;
 }

@@ -39,6 +39,27 @@ struct ClothPart {
   std::string mesh;                                   // the mesh file, empty for a grid
 };
 
+// A cloth with a material (docs/materials.md) takes its forces from its triangles and hinges,
+// not its springs (which stay for the colouring and the coarse levels). Each particle lists its
+// own entries, so the fabric sweep gathers them like its springs:
+// A triangle seen from one corner i: its other corners a, b (the triangle's order from i) and
+// its rest shape in the material's frame (metres along warp u and weft v): dminv is
+// [ua - ui, ub - ui]^-1 row-major, area its rest area.
+struct MembraneEntry {
+  uint32_t a = 0, b = 0;
+  double area = 0;
+  std::array<double, 4> dminv{};
+};
+// A bending hinge (an edge between two triangles) seen from one of its four particles: the
+// others, and the weights of v = k0 x_self + k1 x_o0 + k2 x_o1 + k3 x_o2, the quadratic bending
+// model's curvature vector (Bergou et al. 2006) scaled by sqrt(B c) so its energy is
+// 1/2 (|v| - rest)^2; rest is |v| at the rest shape (0 for a flat cloth).
+struct HingeEntry {
+  std::array<uint32_t, 3> other{};
+  double rest = 0;
+  std::array<double, 4> k{};
+};
+
 struct ClothModel {
   // Particles.
   std::vector<glm::dvec3> initial;   // start positions
@@ -66,6 +87,11 @@ struct ClothModel {
   // With seams: per particle the least particle it is sewn to, through any chain of seams (itself
   // if none). Self-collision never pushes two particles of one weld apart. Empty without seams.
   std::vector<uint32_t> weld;
+  // Per particle its membrane entries [membrane_start[i], membrane_start[i + 1]) and hinge
+  // entries likewise (fabric_terms.cpp); all three empty when no cloth has a material.
+  std::vector<uint32_t> membrane_start, hinge_start;
+  std::vector<MembraneEntry> membrane;
+  std::vector<HingeEntry> hinges;
   // The grid's size when the whole model is one CS184 grid (row-major i = y * nw + x), else 0.
   int nw = 0, nh = 0;
 
@@ -74,6 +100,7 @@ struct ClothModel {
   int colours() const { return int(colour_start.size()) - 1; }
   SpringType colour_type(int c) const { return springs[colour_start[c]].type; }
   bool has_seams() const { return !weld.empty(); }
+  bool has_material() const { return !membrane_start.empty(); }
   bool is_grid() const { return nw > 0; }
   // Springs of one type (independent of the enable_* flags).
   int springs_of(SpringType type) const;
@@ -120,6 +147,10 @@ PartSprings sew_seams(const Scene& scene, ClothModel& model);
 PartSprings append_grid(ClothModel& model, const ClothParams& params, uint32_t material, uint32_t seed = 0);
 // A mesh cloth appended likewise (cloth_mesh.cpp).
 PartSprings append_mesh(ClothModel& model, const Scene& scene, const ClothParams& params, uint32_t material);
+
+// The membrane and hinge entries of every cloth with a material (fabric_terms.cpp); nothing
+// when none has one.
+void add_fabric_terms(const Scene& scene, ClothModel& model);
 
 // Mass of every particle of a grid: width * height * density / particle count (kg).
 double particle_mass(const ClothParams& params);

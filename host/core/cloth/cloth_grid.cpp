@@ -23,7 +23,10 @@ PartSprings append_grid(ClothModel& m, const ClothParams& p, uint32_t material, 
                               ? glm::dvec3(x * sx, 1.0 + (seed ? vertical_offset(local, jitter, seed) : 0.0), y * sy)
                               : glm::dvec3(x * sx, y * sy, vertical_offset(local, jitter, seed)));
       m.uv.push_back({double(x) / (nw - 1), double(y) / (nh - 1)});
-      m.area.push_back(area);
+      // A material's mass is its density times the particle's own share of the cloth (a
+      // quarter cell at a corner, half at an edge); the CS184 grid spreads it evenly.
+      m.area.push_back(p.material ? sx * sy * (x == 0 || x == nw - 1 ? 0.5 : 1.0) * (y == 0 || y == nh - 1 ? 0.5 : 1.0)
+                                  : area);
       m.pinned.push_back(0);
       m.material.push_back(material);
       m.tangent_ends.push_back({index(x > 0 ? x - 1 : x, y), index(x + 1 < nw ? x + 1 : x, y)});

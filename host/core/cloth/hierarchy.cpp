@@ -20,7 +20,7 @@ void sort_unique(Graph& g) {
 }
 
 // The particles joined by springs (any cloth, enabled or not: the graph is the rest shape's, not
-// the run's): every spring for the colouring of a sweep (`all`), else the structural and
+// the run's): every spring and hinge for the colouring of a sweep (`all`), else the structural and
 // shearing ones, which coarsen. Seams do not: their start length is no rest shape, so each
 // panel coarsens on its own and the fine sweep joins them.
 Graph spring_graph(const ClothModel& m, bool all) {
@@ -30,6 +30,10 @@ Graph spring_graph(const ClothModel& m, bool all) {
     g[s.i].push_back(s.j);
     g[s.j].push_back(s.i);
   }
+  // A hinge's four particles read each other in the sweep: no two of one colour.
+  for (uint32_t i = 0; all && i + 1 < m.hinge_start.size(); ++i)
+    for (uint32_t h = m.hinge_start[i]; h < m.hinge_start[i + 1]; ++h)
+      for (uint32_t o : m.hinges[h].other) g[i].push_back(o);
   sort_unique(g);
   return g;
 }

@@ -175,7 +175,7 @@ int stretch_passes_for(const Scene& scene, const ClothModel& model) {
     const double extent = std::max({size.x, size.y, size.z});
     // The stretch of a strip hanging from its top under its own weight, its springs alone
     // holding it (an upper bound: the shearing and bending springs carry some of it).
-    const double sag_stretch = cloths[k]->density * glm::length(sp.gravity) * extent / cloths[k]->ks;
+    const double sag_stretch = cloths[k]->areal_density() * glm::length(sp.gravity) * extent / cloths[k]->spring_ks();
     if (!(sag_stretch <= 0.5 * sp.max_stretch)) return kAutoStretchPasses;  // ks 0 too
   }
   // Seams: one pass, whose seam colours weld the sewn pairs (docs/model.md, "Sewing"); the
@@ -202,18 +202,24 @@ Constants<R> make_constants(const Scene& scene, const ClothModel& model, std::sh
   c.steps = R(sp.simulation_steps);
   for (const ClothParams* k : scene.cloths()) {
     MaterialC<R> mat{};
-    mat.ks = R(k->ks);
-    mat.ks_bending = R(0.2 * k->ks);
+    mat.ks = R(k->spring_ks());
+    mat.ks_bending = R(0.2 * k->spring_ks());
+    mat.start_ks = R(k->material ? kMaterialStartStiffness : k->ks);
     mat.keep_velocity = R(1.0 - k->damping / 100.0);
-    mat.enabled[0] = k->enable_structural;
-    mat.enabled[1] = k->enable_shearing;
-    mat.enabled[2] = k->enable_bending;
+    // A material's triangles and hinges replace the springs (docs/materials.md).
+    mat.enabled[0] = k->enable_structural && !k->material;
+    mat.enabled[1] = k->enable_shearing && !k->material;
+    mat.enabled[2] = k->enable_bending && !k->material;
+    if (k->material) mat.moduli = Vec4<R>(R(k->material->stretch[0]), R(k->material->stretch[1]), R(0), R(k->material->shear));
     mat.enabled[3] = true;  // seams
     c.materials.push_back(mat);
   }
   // From the scene, so a live density edit takes effect.
   for (double m : particle_masses(scene, model)) c.mass.push_back(R(m));
-  for (uint32_t i = 0; i < uint32_t(model.count()); ++i) c.particle_ks.push_back(c.materials[model.material[i]].ks);
+  for (uint32_t i = 0; i < uint32_t(model.count()); ++i) {
+    c.particle_ks.push_back(c.materials[model.material[i]].ks);
+    c.start_ks.push_back(c.materials[model.material[i]].start_ks);
+  }
   const bool fabric = sp.solver == Solver::Fabric;
   c.multigrid = fabric;
   // Where the multigrid solve starts (shared/integration.glsl, solve_start_offset): multigrid less
@@ -227,7 +233,7 @@ Constants<R> make_constants(const Scene& scene, const ClothModel& model, std::sh
   c.max_move = R(sp.max_speed * dt);  // 0: no speed clamp
   if (c.multigrid) {
     std::vector<double> ks;
-    for (const ClothParams* k : scene.cloths()) ks.push_back(k->ks);
+    for (const ClothParams* k : scene.cloths()) ks.push_back(k->spring_ks());
     c.hierarchy = reuse && reuse->ks == ks ? std::move(reuse) : std::make_shared<const Hierarchy>(build_hierarchy(model, ks));
   }
   c.iterations = sp.constraint_iterations;

@@ -98,7 +98,8 @@ template <class R> struct Constants : layout::StepParamsT<R> {
   std::vector<Vec3<R>> rest;
   std::vector<MaterialC<R>> materials;  // by cloth, Scene::cloths() order
   std::vector<R> mass;  // kg, per particle (particle_masses: follows a live density edit)
-  std::vector<R> particle_ks;  // N/m, per particle: its cloth's ks (fabric's fold threshold)
+  std::vector<R> particle_ks;  // N/m, per particle: its cloth's ks (the self-contact's stiffness)
+  std::vector<R> start_ks;     // N/m, per particle: MaterialC::start_ks (fabric's start and fold threshold)
   int iterations;
   int stretch_passes = 0;  // fabric: enforce_stretch_limit's passes after the sweep
   // fabric: enforce_stretch_limit's passes in all, the settling ones included (not above
@@ -278,6 +279,11 @@ inline constexpr double kFoldedChordFabric = 0.95;
 // above (adaptive_share, folded_chord_at). The 513² hang (rho 1,200) tore with the whole share,
 // flag512 (rho 300) on landing with the bound at 300; at 250 a small disc slid off (docs/solvers.md).
 inline constexpr double kAdaptiveStartRho = 200.0;
+// A cloth with a material starts its solve where multigrid did (its share 0, adaptive_share of
+// a stiffness this high): its bending, which the coarse levels do not carry, leaves a share of
+// the fall in the start unsolved, and the cantilever (tests/test_materials.cpp) then swings
+// without settling (docs/materials.md).
+inline constexpr double kMaterialStartStiffness = 1e30;
 inline constexpr int kCoarsestSweeps = 4;  // on the coarsest level (solve_coarsest)
 // A level of at most this many vertices, and every level below it, is small: the GPU runs
 // their part of the cycle in one workgroup (cycle_small_levels), where a dispatch and a

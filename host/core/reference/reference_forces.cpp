@@ -108,7 +108,7 @@ template <class R> void predict(const ClothModel& m, const Constants<R>& c, Stat
     // and applies it with the springs, so a cloth at rest starts where it rests and stays
     // exactly there (docs/model.md). The contacts still see the full prediction (Coulomb
     // friction takes its depth from it); prolong_to_cloth moves the masses by the offset.
-    s.offset[i] = Vec4<R>(shared::solve_start_offset(acc, Vec3<R>(s.offset[i]), c.particle_ks[i] * w, c), R(0));
+    s.offset[i] = Vec4<R>(shared::solve_start_offset(acc, Vec3<R>(s.offset[i]), c.start_ks[i] * w, c), R(0));
     s.disp[i] = Vec4<R>(d, R(0));
     s.pos[i] = Vec4<R>(x, w);
   }

@@ -7,6 +7,7 @@
 // solve the same energy, so a rest state of the step is the static equilibrium of the springs.
 #include "reference/reference.hpp"
 #include "reference/reference_detail.hpp"
+#include "reference/reference_material.hpp"
 #include "reference/reference_skinning.hpp"
 #include "../../../compute/shared/collisions.glsl"
 #include "../../../compute/shared/integration.glsl"
@@ -86,7 +87,7 @@ template <class R> bool touches_colliders(const Constants<R>& c, const Vec3<R>& 
 template <class R> bool folded(const Hierarchy& h, const Constants<R>& c, const State<R>& s, uint32_t g) {
   const uint32_t i = h.particle[g];
   const Vec3<R> p(s.pos[i]);
-  const R chord = shared::folded_chord_at(c.particle_ks[i] * s.pos[i].w, c);
+  const R chord = shared::folded_chord_at(c.start_ks[i] * s.pos[i].w, c);
   for (uint32_t k = h.spring_start[g]; k < h.spring_start[g + 1]; ++k)
     if (length3(Vec3<R>(s.pos[h.particle[h.spring_other[k]]]) - p) < chord * R(h.spring_rest[k])) return true;
   return false;
@@ -117,9 +118,13 @@ template <class R> void compute_residuals(const ClothModel& m, const Constants<R
       const Vec3<R> e = (Vec3<R>(s.pos[j]) + Vec3<R>(s.offset[j])) - xi;
       f = shared::add_spring_force(f, e, c.rest_of(sp), c.stiffness_of(m, sp));
     }
+    Sym3<R> unused = shared::sym3_diagonal(R(0));
+    f = add_material_terms(m, c, i, xi, [&](uint32_t j) { return Vec3<R>(s.pos[j]) + Vec3<R>(s.offset[j]); }, f, unused);
     if (c.has_attachments() && c.attach[i].w != R(0))
       f = shared::add_anchor_pull(f, xi, Vec3<R>(c.attach[i]), c.attached_origin(i), c.attach[i].w);
-    s.residual[i] = Vec4<R>(f, c.mass[i]);
+    // The coarse problem weighs each mass with its hinges' block as inertia (hinge_inertia).
+    const R weight = c.mass[i] + c.dt2 * hinge_block(m, i, R(0));
+    s.residual[i] = Vec4<R>(f, weight);
   }
 }
 
@@ -212,6 +217,7 @@ template <class R> void relax_vertices(const ClothModel& m, const Constants<R>& 
       f = shared::add_spring_pull(f, n, len, rest, k_s);
       add_spring_hessian(hess, n, sa, sd);
     }
+    f = add_material_terms(m, c, i, x, [&](uint32_t j) { return Vec3<R>(s.pos[j]); }, f, hess);
     // An attachment: its pull and its block k I (docs/model.md, "Attachments").
     if (c.has_attachments() && c.attach[i].w != R(0)) {
       f = shared::add_anchor_pull(f, x, Vec3<R>(c.attach[i]), c.attached_origin(i), c.attach[i].w);

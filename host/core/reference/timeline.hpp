@@ -6,6 +6,7 @@
 #include <vector>
 
 #include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
 
 #include "cloth/cloth.hpp"
 #include "reference/skin_lists.hpp"
@@ -28,8 +29,13 @@ struct Timeline {
 // One cloth's material, converted once to R (a scene with several cloths has one each).
 template <class R> struct MaterialC {
   R ks, ks_bending;        // N/m: structural and shearing, bending (0.2 ks)
+  // N/m: the stiffness fabric's start and fold threshold weigh the inertia against
+  // (adaptive_share): ks, or kMaterialStartStiffness for a cloth with a material.
+  R start_ks;
   R keep_velocity;         // 1 - damping / 100
   bool enabled[kSpringTypes];  // by SpringType (seams always)
+  // A material's membrane moduli (C11, C22, C12, G) in N/m (membrane.glsl); 0 without one.
+  glm::vec<4, R> moduli{};
   R stiffness(SpringType t) const { return t == SpringType::Bending ? ks_bending : ks; }
 };
 

@@ -45,6 +45,9 @@ class Doc final : public ParamVisitor {
   Doc(std::string& out, std::string prefix) : out_(out), prefix_(std::move(prefix)) {}
 
   void number(const ParamInfo& p, double& v) override { add(p, "number", p.required ? "" : num(v), range(p)); }
+  void pair(const ParamInfo& p, std::array<double, 2>& v) override {
+    add(p, "number or [warp, weft]", p.required ? "" : fmt::format("[{}, {}]", num(v[0]), num(v[1])), range(p));
+  }
   void integer(const ParamInfo& p, int& v) override {
     add(p, "integer", p.required ? "" : fmt::format("{}", v), range(p));
   }
@@ -109,6 +112,7 @@ class Sections final : public ParamVisitor {
   }
   // Scalars at the top level would be a new kind of scene file; none exist.
   void number(const ParamInfo&, double&) override {}
+  void pair(const ParamInfo&, std::array<double, 2>&) override {}
   void integer(const ParamInfo&, int&) override {}
   void boolean(const ParamInfo&, bool&) override {}
   void vec3(const ParamInfo&, glm::dvec3&) override {}

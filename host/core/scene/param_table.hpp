@@ -76,6 +76,9 @@ struct ParamInfo {
   const char* (*after_read)(glm::dvec3&) = nullptr;
   // A text row that also takes a non-negative integer, kept as its digits (mesh.animation).
   bool index_or_name = false;
+  // An object row that may also be written as a string: the string is the value of this key of
+  // the object (cloth.material: "cotton" is {"preset": "cotton"}).
+  const char* string_as = nullptr;
 };
 
 class ParamVisitor;
@@ -117,6 +120,8 @@ class ParamVisitor {
   virtual void choice(const ParamInfo&, int& index) = 0;  // index into info.choices
   // A string (the mesh file, as the scene writes it): UTF-8, non-empty when present.
   virtual void text(const ParamInfo&, std::string&) = 0;
+  // `[warp, weft]`, or one number for both (a material's stretch and bending).
+  virtual void pair(const ParamInfo&, std::array<double, 2>&) = 0;
   // `[i, ...]`: integers in [info.lo, info.hi] (pinned_vertices: >= 0; the mesh builder checks
   // them against the mesh).
   virtual void indices(const ParamInfo&, std::vector<int>&) = 0;
@@ -206,6 +211,7 @@ void visit_member(typename member_traits<decltype(M)>::owner& s, const ParamInfo
   else if constexpr (std::is_same_v<T, bool>) v.boolean(info, m);
   else if constexpr (std::is_same_v<T, glm::dvec3>) v.vec3(info, m);
   else if constexpr (std::is_same_v<T, std::string>) v.text(info, m);
+  else if constexpr (std::is_same_v<T, std::array<double, 2>>) v.pair(info, m);
   else if constexpr (std::is_same_v<T, std::vector<int>>) v.indices(info, m);  // before the list of objects
   else if constexpr (std::is_same_v<T, GridIndices>) v.grid_indices(info, m, s.num_width_points, s.num_height_points);
   else if constexpr (std::is_same_v<T, Keyframes>) v.keyframes(info, m);  // before the list of objects

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "io/input_file.hpp"
+#include "scene/materials.hpp"
 #include "scene/scene_overrides.hpp"
 #include "scene/scene_table.hpp"
 
@@ -164,6 +165,19 @@ Scene parse_scene(const std::string& text, const std::string& source, const std:
     ClothParams& c = i == 0 ? s.cloth : s.extra_cloths[i - 1];
     const std::string key = array ? fmt::format("cloth[{}]", i) : std::string("cloth");
     finish_cloth(c, source, key);
+    if (c.material) {
+      resolve_material(*c.material, source, key + ".material");
+      if (s.simulation.solver != Solver::Fabric)
+        throw SceneError(fmt::format("{}: {}.material: a material in physical units needs the fabric solver: set "
+                                     "simulation.solver to \"fabric\" (the classic solver takes density and ks)",
+                                     source, key));
+      // The material replaces these: given both, which one holds would be a guess.
+      const json& cj = array ? j["cloth"][i] : j["cloth"];
+      for (const char* k : {"density", "ks", "enable_structural", "enable_shearing", "enable_bending"})
+        if (cj.is_object() && cj.contains(k))
+          throw SceneError(fmt::format("{}: {}.{}: a cloth with a material takes its mass and stiffness from {}.material; "
+                                       "remove one of the two", source, key, k, key));
+    }
     check_attachments(s, c, source, key);
     check_seams(s, c, s.extra_cloths.size() + 1, source, key);
     if (c.is_mesh()) continue;

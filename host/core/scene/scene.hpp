@@ -85,6 +85,20 @@ struct SeamParams {
 // shared equally, as the CS184 grid does (docs/model.md, "Mesh cloth").
 enum class MassLumping { Area = 0, Uniform = 1 };
 
+// `cloth.material` (docs/materials.md): a fabric in physical units for the fabric solver, a
+// preset's name or these keys. `preset` fills every value the scene leaves at 0 (the loader
+// resolves it, so after loading every value is set); `stretch` and `bending` are [warp, weft]
+// (warp along the grid's width or the mesh's texture u), a single number meaning both.
+struct MaterialParams {
+  std::string preset;
+  double density = 0;                 // kg/m^2
+  std::array<double, 2> stretch{};    // N/m, uniaxial: force per width over strain
+  double shear = 0;                   // N/m, in-plane shear modulus
+  std::array<double, 2> bending{};    // N·m, bending rigidity
+
+  bool operator==(const MaterialParams&) const = default;
+};
+
 // Field names are the JSON keys (one name end to end: file, code, GUI).
 struct ClothParams {
   double width = 1.0;
@@ -116,8 +130,16 @@ struct ClothParams {
   glm::dvec3 rotation_axis{0, 1, 0};
   double rotation_degrees = 0;
   MassLumping mass_lumping = MassLumping::Area;
+  // A fabric in physical units (fabric solver only): replaces density, ks and the springs.
+  std::optional<MaterialParams> material;
 
   bool is_mesh() const { return !mesh.empty(); }
+  // Mass per area (kg/m^2): the material's, else `density`.
+  double areal_density() const { return material ? material->density : density; }
+  // The spring constant the solver's estimates use (the coarse springs, the fold threshold, the
+  // start): ks, or for a material the mean stretch stiffness over 1.4 (a CS184 grid of springs
+  // ks resists a uniform stretch as 1.4 ks: docs/model.md).
+  double spring_ks() const { return material ? 0.5 * (material->stretch[0] + material->stretch[1]) / 1.4 : ks; }
   bool operator==(const ClothParams&) const = default;
 };
 

@@ -109,6 +109,15 @@ class Reader final : public ParamVisitor {
   void number(const ParamInfo& info, double& m) override {
     if (const json* v = r_.get(info, "a number")) m = r_.check_number(*v, r_.key(info.key), info.lo, info.hi, info.expected);
   }
+  void pair(const ParamInfo& info, std::array<double, 2>& m) override {  // one number for both, or [warp, weft]
+    const json* v = r_.get(info, "a number or [warp, weft]");
+    if (!v) return;
+    const std::string kp = r_.key(info.key);
+    if (!v->is_number() && !(v->is_array() && v->size() == 2))
+      r_.fail(kp, fmt::format("expected a number or [warp, weft], got {}", ObjectReader::describe(*v)));
+    for (size_t c = 0; c < 2; ++c)
+      m[c] = r_.check_number(v->is_array() ? (*v)[c] : *v, v->is_array() ? fmt::format("{}[{}]", kp, c) : kp, info.lo, info.hi, info.expected);
+  }
   void integer(const ParamInfo& info, int& m) override {
     // A row without a range takes any int (HUGE_VAL does not convert to an integer).
     const long long lo = (long long)std::max(info.lo, double(INT_MIN)), hi = (long long)std::min(info.hi, double(INT_MAX));
@@ -230,7 +239,10 @@ class Reader final : public ParamVisitor {
   void object(const ParamInfo& info, ObjectRef& o) override {
     const json* v = r_.get(info, fmt::format("the {} object", info.key));
     o.set_present(v != nullptr);
-    if (v) read_object(*v, r_.source(), r_.key(info.key), o);
+    // `string_as`: "cotton" stands for {"preset": "cotton"}; nothing else but an object.
+    if (v && info.string_as && !v->is_string() && !v->is_object())
+      r_.fail(r_.key(info.key), fmt::format("expected a {} (a string) or an object, got {}", info.string_as, ObjectReader::describe(*v)));
+    if (v) read_object(v->is_string() && info.string_as ? json{{info.string_as, *v}} : *v, r_.source(), r_.key(info.key), o);
   }
   // `one_or_many`: one object (the classic cloth, sphere, plane) or an array of them (extension).
   void list(const ParamInfo& info, ListRef& l) override {
@@ -266,6 +278,7 @@ class Writer final : public ParamVisitor {
  public:
   explicit Writer(json& j) : j_(j) {}
   void number(const ParamInfo& info, double& m) override { put(info, m); }
+  void pair(const ParamInfo& info, std::array<double, 2>& m) override { put(info, m[0] == m[1] ? json(m[0]) : json::array({m[0], m[1]})); }
   void integer(const ParamInfo& info, int& m) override { put(info, m); }
   void boolean(const ParamInfo& info, bool& m) override { put(info, m); }
   void vec3(const ParamInfo& info, glm::dvec3& m) override { put(info, json::array({m.x, m.y, m.z})); }

@@ -162,6 +162,29 @@ const Param<ClothParams> kCloth[] = {
                                                 "uniform: every vertex the same mass",
                                      .widget = kReadOnly, .choices = kMassLumpings, .shape = kMesh,
                                      .instead = "a grid cloth's masses are all equal"}),
+    row<&ClothParams::material>({.key = "material",
+                                 .meaning = "a fabric in physical units (fabric solver): a preset's name (\"silk\", "
+                                            "\"cotton\", \"wool\", \"denim\", \"leather\") or an object; replaces "
+                                            "density, ks and the springs (docs/materials.md)",
+                                 .string_as = "preset"}),
+};
+
+// cloth.material (docs/materials.md): 0 takes the preset's value (resolve_material).
+const Param<MaterialParams> kMaterial[] = {
+    row<&MaterialParams::preset>({.key = "preset", .expected = "a preset: \"silk\", \"cotton\", \"wool\", "
+                                                             "\"denim\" or \"leather\"",
+                                  .meaning = "its values fill every key below that is absent", .widget = kReadOnly}),
+    row<&MaterialParams::density>({.key = "density", .lo = 0, .expected = "a density > 0 (kg/m^2)", .unit = "kg/m^2",
+                                   .meaning = "mass per area", .widget = drag(0.001f, 1e-4, 100.0, "%.4f")}),
+    row<&MaterialParams::stretch>({.key = "stretch", .lo = 0, .expected = "a stiffness > 0 (N/m)", .unit = "N/m",
+                                   .meaning = "uniaxial tensile stiffness (force per width over strain), warp and "
+                                              "weft", .widget = kReadOnly}),
+    row<&MaterialParams::shear>({.key = "shear", .lo = 0, .expected = "a shear stiffness > 0 (N/m)", .unit = "N/m",
+                                 .meaning = "in-plane shear modulus (force per width over shear angle)",
+                                 .widget = kReadOnly}),
+    row<&MaterialParams::bending>({.key = "bending", .lo = 0, .expected = "a bending rigidity > 0 (N·m)",
+                                   .unit = "N·m", .meaning = "bending rigidity (moment per width over curvature), "
+                                                             "warp and weft", .widget = kReadOnly}),
 };
 
 const Param<BoxParams> kBox[] = {
@@ -322,5 +345,6 @@ template <> std::span<const Param<GustParams>> param_rows<GustParams>() { return
 template <> std::span<const Param<BoxParams>> param_rows<BoxParams>() { return kBox; }
 template <> std::span<const Param<AttachmentParams>> param_rows<AttachmentParams>() { return kAttachment; }
 template <> std::span<const Param<SeamParams>> param_rows<SeamParams>() { return kSeam; }
+template <> std::span<const Param<MaterialParams>> param_rows<MaterialParams>() { return kMaterial; }
 
 }  // namespace clothsim

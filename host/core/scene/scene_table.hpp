@@ -23,6 +23,7 @@ template <> std::span<const Param<GustParams>> param_rows<GustParams>();
 template <> std::span<const Param<BoxParams>> param_rows<BoxParams>();
 template <> std::span<const Param<AttachmentParams>> param_rows<AttachmentParams>();
 template <> std::span<const Param<SeamParams>> param_rows<SeamParams>();
+template <> std::span<const Param<MaterialParams>> param_rows<MaterialParams>();
 
 // Reads the rows of `object` from `j`, the value at key path `path` ("" for the top level) of
 // the file `source`: strict (unknown keys, wrong types, values out of range are a SceneError
