@@ -59,7 +59,9 @@ class PanelRows final : public ParamVisitor {
   }
   // [warp, weft]: one drag each, in the row's unit.
   void pair(const ParamInfo& p, std::array<double, 2>& v) override {
-    if (!shown(p) || p.widget.style != Widget::Drag) return;
+    if (!shown(p)) return;
+    if (p.widget.style == Widget::ReadOnly) fixed.push_back(fmt::format("{} = [{}, {}]", label(p), v[0], v[1]));
+    if (p.widget.style != Widget::Drag) return;
     float f[2] = {float(v[0]), float(v[1])};
     if (ImGui::DragFloat2(label(p).c_str(), f, p.widget.speed, float(p.widget.lo), float(p.widget.hi), p.widget.format)) {
       for (int k = 0; k < 2; ++k) v[size_t(k)] = p.widget.lo < p.widget.hi ? std::clamp(double(f[k]), p.widget.lo, p.widget.hi) : double(f[k]);

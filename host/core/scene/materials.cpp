@@ -10,7 +10,7 @@ namespace {
 // density kg/m^2, stretch [warp, weft] N/m, shear N/m, bending [warp, weft] N·m.
 // docs/materials.md, "Presets", cites each.
 const MaterialPreset kPresets[] = {
-    {"silk", {"", 0.060, {1000, 500}, 15, {1.6e-6, 1.2e-6}}},
+    {"silk", {"", 0.060, {1000, 500}, 15, {1.0e-6, 7.8e-7}}},
     {"cotton", {"", 0.125, {5000, 3000}, 56, {1.2e-5, 8.0e-6}}},
     {"wool", {"", 0.163, {2500, 2000}, 34, {6.6e-6, 6.6e-6}}},
     {"denim", {"", 0.40, {5000, 2000}, 90, {6.0e-5, 4.0e-5}}},

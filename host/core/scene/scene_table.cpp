@@ -175,16 +175,17 @@ const Param<MaterialParams> kMaterial[] = {
                                                              "\"denim\" or \"leather\"",
                                   .meaning = "its values fill every key below that is absent", .widget = kReadOnly}),
     row<&MaterialParams::density>({.key = "density", .lo = 0, .expected = "a density > 0 (kg/m^2)", .unit = "kg/m^2",
-                                   .meaning = "mass per area", .widget = drag(0.001f, 1e-4, 100.0, "%.4f")}),
+                                   .meaning = "mass per area (absent: the preset's)", .widget = drag(0.001f, 1e-4, 100.0, "%.4f")}),
     row<&MaterialParams::stretch>({.key = "stretch", .lo = 0, .expected = "a stiffness > 0 (N/m)", .unit = "N/m",
                                    .meaning = "uniaxial tensile stiffness (force per width over strain), warp and "
-                                              "weft", .widget = kReadOnly}),
+                                              "weft (absent: the preset's)", .widget = drag(10.f, 1.0, 1e6, "%.0f")}),
     row<&MaterialParams::shear>({.key = "shear", .lo = 0, .expected = "a shear stiffness > 0 (N/m)", .unit = "N/m",
-                                 .meaning = "in-plane shear modulus (force per width over shear angle)",
-                                 .widget = kReadOnly}),
+                                 .meaning = "in-plane shear modulus (force per width over shear angle; absent: the preset's)",
+                                 .widget = drag(0.5f, 0.01, 1e5, "%.2f")}),
     row<&MaterialParams::bending>({.key = "bending", .lo = 0, .expected = "a bending rigidity > 0 (N·m)",
                                    .unit = "N·m", .meaning = "bending rigidity (moment per width over curvature), "
-                                                             "warp and weft", .widget = kReadOnly}),
+                                                             "warp and weft (absent: the preset's; a new value rebuilds the cloth)",
+                                   .widget = kReadOnly}),
 };
 
 const Param<BoxParams> kBox[] = {
