@@ -1,7 +1,9 @@
 // Reads positions and the offsets (through the views); writes the residuals of the particles. One invocation
 // per particle, the multigrid solve's first pass (docs/model.md): the residual force of the
 // implicit step at the start x = y + offset (predict's offset: minus the external forces'
-// share), -m/dt^2 (x - y) + the springs' forces summed in the gather order; w its mass (0 for a pinned or held mass, which does not take part). The CPU twin is
+// share), -m/dt^2 (x - y) + the springs' forces summed in the gather order (with a material,
+// its triangles' and stencils': add_material_terms); w its mass, with its stencils' block as
+// inertia (hinge_block), 0 for a pinned or held mass, which does not take part. The CPU twin is
 // compute_residuals in host/core/reference/reference_multigrid.cpp.
 #include "layout.glsl"
 #include "common.glsl"

@@ -1,7 +1,8 @@
 // Reads positions and displacements (through the views) and the offsets; writes positions,
 // displacements and offsets of one colour of particles. One invocation per particle of the
 // colour (entries [u_first, u_first + u_count) of the order): a Newton step of the implicit
-// step's energy on the mass's 3x3 block, f = -m/dt^2 (x - y) + its springs' forces (and, with
+// step's energy on the mass's 3x3 block, f = -m/dt^2 (x - y) + its springs' forces (with a
+// material, its triangles' and bending stencils' instead: add_material_terms; with
 // self-collision, its contacts'), H = m/dt^2 I + their Hessians; then max_stretch as a hard limit
 // and the colliders' push-out. No spring
 // joins two particles of a colour, so the writes never race with a read. The CPU twin is

@@ -171,8 +171,7 @@ const Param<ClothParams> kCloth[] = {
 
 // cloth.material (docs/materials.md): 0 takes the preset's value (resolve_material).
 const Param<MaterialParams> kMaterial[] = {
-    row<&MaterialParams::preset>({.key = "preset", .expected = "a preset: \"silk\", \"cotton\", \"wool\", "
-                                                             "\"denim\" or \"leather\"",
+    row<&MaterialParams::preset>({.key = "preset", .expected = "a preset: \"silk\", \"cotton\", \"wool\", \"denim\" or \"leather\"",
                                   .meaning = "its values fill every key below that is absent", .widget = kReadOnly}),
     row<&MaterialParams::density>({.key = "density", .lo = 0, .expected = "a density > 0 (kg/m^2)", .unit = "kg/m^2",
                                    .meaning = "mass per area (absent: the preset's)", .widget = drag(0.001f, 1e-4, 100.0, "%.4f")}),
@@ -184,8 +183,7 @@ const Param<MaterialParams> kMaterial[] = {
                                  .widget = drag(0.5f, 0.01, 1e5, "%.2f")}),
     row<&MaterialParams::bending>({.key = "bending", .lo = 0, .expected = "a bending rigidity > 0 (N·m)",
                                    .unit = "N·m", .meaning = "bending rigidity (moment per width over curvature), "
-                                                             "warp and weft (absent: the preset's; a new value rebuilds the cloth)",
-                                   .widget = kReadOnly}),
+                                                             "warp and weft (absent: the preset's; a new value rebuilds the cloth)", .widget = kReadOnly}),
 };
 
 const Param<BoxParams> kBox[] = {
