@@ -209,18 +209,7 @@ void add_fabric_terms(const Scene& scene, ClothModel& m) {
         terms += std::abs(w[size_t(q)]) * glm::length(m.initial[v[size_t(q)]] - x0);
       }
       const double curvature = glm::length(rest) > 1e-9 * terms ? glm::length(rest) : 0.0;
-      for (int s = 0; s < 4; ++s) {
-        HingeEntry h;
-        h.rest = curvature;
-        h.k[0] = w[size_t(s)];
-        for (int q = 0, o = 0; q < 4; ++q)
-          if (q != s) {
-            h.other[size_t(o)] = v[size_t(q)];
-            h.k[size_t(o) + 1] = w[size_t(q)];
-            ++o;
-          }
-        hinges[v[size_t(s)]].push_back(h);
-      }
+      add_stencil(hinges, {v.begin(), v.end()}, {w.begin(), w.end()}, curvature);
     }
   }
   m.membrane_start.assign(1, 0);

@@ -35,7 +35,8 @@ Vec3<R> add_material_terms(const ClothModel& m, const Constants<R>& c, uint32_t 
 // they compute for the bending's residual as if only the inertia resisted it overshoots the
 // stiff bend of a fine cloth, so each mass enters them weighing that block too (docs/materials.md).
 template <class R> R hinge_block(const ClothModel& m, uint32_t i, R sum) {
-  for (uint32_t e = m.has_material() ? m.hinge_start[i] : 0; m.has_material() && e < m.hinge_start[i + 1]; ++e)
+  if (!m.has_material()) return sum;
+  for (uint32_t e = m.hinge_start[i]; e < m.hinge_start[i + 1]; ++e)
     sum = sum + R(m.hinges[e].k[0]) * R(m.hinges[e].k[0]);
   return sum;
 }
