@@ -28,11 +28,13 @@ vec3 material_position(int j, bool at_start) {
   return at_start ? p : position_of(j).xyz;
 }
 
-// The sum of k0^2 over particle i's bending entries (hinge_block in
-// host/core/reference/reference_multigrid.cpp, which says why).
+// Particle i's bending block Q_ii plus the sum of k0^2 over its curved hinges (hinge_block in
+// host/core/reference/reference_material.hpp, which says why).
 float hinge_block(int i, Material mat) {
   precise float sum = 0.0;
   if (!(mat.moduli.x > 0.0)) return sum;
+  uint first = bend_first(i);
+  if (first < bend_first(i + 1)) sum = uintBitsToFloat(texelFetch(gather_view, int(first)).y);
   uint last = hinge_first(i + 1);
   for (uint e = hinge_first(i); e < last; e += 2u) {
     float k0 = uintBitsToFloat(texelFetch(gather_view, int(e) + 1).x);
@@ -41,10 +43,11 @@ float hinge_block(int i, Material mat) {
   return sum;
 }
 
-// Particle i's membrane triangles and hinges at x (docs/materials.md): their forces added to f,
-// their blocks to hess, in the entries' order. None without a material (moduli 0, and then
-// no starts were uploaded to read). The CPU twin is add_material_terms in
-// host/core/reference/reference_multigrid.cpp.
+// Particle i's membrane triangles, bending row and curved hinges at x (docs/materials.md):
+// their forces added to f, their blocks to hess (the membrane's not at_start: the residual drops
+// them), in that order. None without a material
+// (moduli 0, and then no starts were uploaded to read). The CPU twin is add_material_terms in
+// host/core/reference/reference_material.hpp.
 vec3 add_material_terms(int i, Material mat, vec3 x, bool at_start, vec3 f, inout Sym3 hess) {
   if (!(mat.moduli.x > 0.0)) return f;
   uint last = membrane_first(i + 1);
@@ -52,7 +55,15 @@ vec3 add_material_terms(int i, Material mat, vec3 x, bool at_start, vec3 f, inou
     uvec4 t = texelFetch(gather_view, int(e));
     vec4 dminv = uintBitsToFloat(texelFetch(gather_view, int(e) + 1));
     f = add_membrane_terms(f, hess, x, material_position(int(t.x), at_start), material_position(int(t.y), at_start),
-                           dminv, uintBitsToFloat(t.z), mat.moduli);
+                           dminv, uintBitsToFloat(t.z), mat.moduli, !at_start);
+  }
+  uint first = bend_first(i);
+  last = bend_first(i + 1);
+  if (first < last) add_spring_hessian(hess, vec3(0.0), 0.0, uintBitsToFloat(texelFetch(gather_view, int(first)).y));
+  for (uint e = first; e < last; ++e) {
+    uvec4 q = texelFetch(gather_view, int(e));
+    f = add_bend_pull(f, x, material_position(int(q.x), at_start), uintBitsToFloat(q.y));
+    f = add_bend_pull(f, x, material_position(int(q.z), at_start), uintBitsToFloat(q.w));
   }
   last = hinge_first(i + 1);
   for (uint e = hinge_first(i); e < last; e += 2u) {

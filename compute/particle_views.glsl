@@ -96,11 +96,14 @@ bool gathered_spring(uint g, Material mat, out int other, out uint type, out flo
   return true;
 }
 
-// With a material (ClothModel::membrane, ::hinges): particle i's membrane entries are the
-// texel pairs [membrane_first(i), membrane_first(i + 1)) of TEXTURE_GATHER, its hinge entries
-// [hinge_first(i), hinge_first(i + 1)); their starts follow the springs' (gpu_state.cpp).
-uint membrane_first(int i) { return texelFetch(gather_start_view, int(particle_count()) + 1 + i).x; }
-uint hinge_first(int i) { return texelFetch(gather_start_view, 2 * (int(particle_count()) + 1) + i).x; }
+// With a material (ClothModel::membrane, ::bend, ::hinges): particle i's membrane entries are
+// the texel pairs [membrane_first(i), membrane_first(i + 1)) of TEXTURE_GATHER, its bending row
+// the texels [bend_first(i), bend_first(i + 1)) (two entries each), its hinge entries the texel
+// pairs [hinge_first(i), hinge_first(i + 1)); their starts follow the springs' (gpu_state.cpp).
+uint material_start(int list, int i) { return texelFetch(gather_start_view, list * (int(particle_count()) + 1) + i).x; }
+uint membrane_first(int i) { return material_start(1, i); }
+uint bend_first(int i) { return material_start(2, i); }
+uint hinge_first(int i) { return material_start(3, i); }
 
 // The triangles around particle i are corner entries [corners_first(i), corners_first(i + 1)),
 // ascending: the order compute_normals and compute_wind_forces gather in on both backends.

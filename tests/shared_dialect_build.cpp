@@ -126,7 +126,8 @@ template <class R> void exercise(const char* type) {
   using V4 = glm::vec<4, R>;
   Sym3<R> hm = sym3_diagonal(R(0));
   expect(add_membrane_terms(zero, hm, zero, ex, V(R(0), R(0), R(1)), V4(R(1), R(0), R(0), R(1)), R(0.5),
-                            V4(R(2), R(2), R(0), R(1))) == zero, "add_membrane_terms at rest", type);
+                            V4(R(2), R(2), R(0), R(1)), true) == zero, "add_membrane_terms at rest", type);
+  expect(add_bend_pull(zero, ex, up + ex, R(2)) == up * R(-2), "add_bend_pull: -q (xj - xs)", type);
   Sym3<R> hh = sym3_diagonal(R(0));
   expect(add_hinge_terms(zero, hh, up, zero, zero, zero, V4(R(2), R(1), R(1), R(1)), R(0)) == up * R(-4) && hh.a.x == R(4),
          "add_hinge_terms of a flat hinge: -k0 (k0 x) and the block k0^2 I", type);

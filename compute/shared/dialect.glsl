@@ -47,6 +47,9 @@ template <class REAL> inline bool nonzero3(const glm::vec<3, REAL>& v) { return 
 
 #define SHARED inline constexpr
 #define SHARED_FN template <class REAL> inline
+// A formula the sweep calls per entry of a long gather, inlined into it by force: g++ keeps a
+// call to a function this long, whose cost the CPU reference then pays per entry.
+#define SHARED_FN_INLINE template <class REAL> [[gnu::always_inline]] inline
 #define SHARED_BEGIN namespace clothsim::shared {
 #define SHARED_END }
 #define VEC3 glm::vec<3, REAL>
@@ -58,6 +61,7 @@ template <class REAL> inline bool nonzero3(const glm::vec<3, REAL>& v) { return 
 #else
 #define SHARED
 #define SHARED_FN
+#define SHARED_FN_INLINE
 #define SHARED_BEGIN
 #define SHARED_END
 #define REAL float

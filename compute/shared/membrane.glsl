@@ -1,5 +1,5 @@
 // The material's formulas (docs/materials.md, "How the model uses them"): a membrane
-// triangle's and a bending hinge's force on one of its particles, and that particle's block of
+// triangle's, a bending row entry's and a curved hinge's force on one of its particles, and that particle's block of
 // their Hessian, kept positive semi-definite (the sweep's Newton step needs it). Included by
 // compute/relax_vertices.comp and compute/compute_residuals.comp through multigrid.glsl, and by
 // host/core/reference/reference_multigrid.cpp; the gathers stay with each backend.
@@ -14,11 +14,12 @@ SHARED_BEGIN
 // frame (row-major in x, y, z, w), `area` its rest area, moduli (C11, C22, C12, G) (N/m). St
 // Venant-Kirchhoff: F = [xa - xi, xb - xi] dminv, E = (F^T F - I) / 2, energy per area
 // C11 E00^2 / 2 + C12 E00 E11 + C22 E11^2 / 2 + 2 G E01^2 (a shear angle g costs G g^2 / 2).
-// Returns f - area F S g, g = dN_i = -(the rows of dminv summed); adds
+// Returns f - area F S g, g = dN_i = -(the rows of dminv summed); with `block`, adds
 // area (max(0, g.S g) I + F M F^T) to h, M the elasticity contracted with g twice (the
-// dropped part is the compressive one, as a spring's).
-SHARED_FN VEC3 add_membrane_terms(VEC3 f, INOUT(SYM3) h, VEC3 xi, VEC3 xa, VEC3 xb, VEC4 dminv, REAL area,
-                                  VEC4 moduli) {
+// dropped part is the compressive one, as a spring's). The residual needs no block: without
+// it the term costs half as much.
+SHARED_FN_INLINE VEC3 add_membrane_terms(VEC3 f, INOUT(SYM3) h, VEC3 xi, VEC3 xa, VEC3 xb, VEC4 dminv, REAL area,
+                                  VEC4 moduli, bool block) {
   PRECISE VEC3 ea = xa - xi;
   PRECISE VEC3 eb = xb - xi;
   PRECISE VEC3 f0 = ea * dminv.x + eb * dminv.z;
@@ -35,6 +36,7 @@ SHARED_FN VEC3 add_membrane_terms(VEC3 f, INOUT(SYM3) h, VEC3 xi, VEC3 xa, VEC3 
   PRECISE REAL sg1 = s01 * g0 + s11 * g1;
   PRECISE VEC3 pg = f0 * sg0 + f1 * sg1;
   PRECISE VEC3 r = f - pg * area;
+  if (!block) return r;
   PRECISE REAL d = max(REAL(0), g0 * sg0 + g1 * sg1) * area;
   PRECISE REAL m00 = (moduli.x * g0 * g0 + moduli.w * g1 * g1) * area;
   PRECISE REAL m11 = (moduli.w * g0 * g0 + moduli.y * g1 * g1) * area;
@@ -67,6 +69,15 @@ SHARED_FN VEC3 add_hinge_terms(VEC3 f, INOUT(SYM3) h, VEC3 xs, VEC3 x0, VEC3 x1,
   add_spring_hessian(h, n, sa, sd);
   PRECISE REAL magnitude = k.x * (len - rest);
   PRECISE VEC3 r = f - n * magnitude;
+  return r;
+}
+
+// An entry q = Q_sj of the bending row of the particle at xs (ClothModel::bend): the flat
+// stencils' energy 1/2 x^T Q x pulls it by -q (xj - xs) (the row sums to 0, so the differences
+// keep the sum's rounding to the cloth's size rather than its distance from the origin). The
+// row's first entry, the particle's own, adds exactly nothing; its block is Q_ss I throughout.
+SHARED_FN VEC3 add_bend_pull(VEC3 f, VEC3 xs, VEC3 xj, REAL q) {
+  PRECISE VEC3 r = f - (xj - xs) * q;
   return r;
 }
 

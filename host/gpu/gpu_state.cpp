@@ -22,7 +22,7 @@ void check_gpu_limits(const Scene& scene, const ClothModel& m) {
   glGetIntegeri_v(GL_MAX_COMPUTE_WORK_GROUP_COUNT, 0, &max_groups);
   glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &max_texels);
   // The largest view and buffer: the gather list (an entry per spring end) or the springs.
-  const uint64_t texels = std::max<uint64_t>(m.gather.size() + 2 * (m.membrane.size() + m.hinges.size()), m.count());
+  const uint64_t texels = std::max<uint64_t>(m.gather.size() + 2 * (m.membrane.size() + m.hinges.size()) + m.bend.size() / 2, m.count());
   const uint64_t largest = std::max<uint64_t>(m.springs.size() * sizeof(layout::SpringTexel), m.count() * sizeof(glm::vec4));
   const uint64_t groups = std::max<uint64_t>((uint64_t(hash_table_size(uint32_t(m.count()))) + WORKGROUP_SIZE - 1) / WORKGROUP_SIZE,
                                              (m.springs.size() + WORKGROUP_SIZE - 1) / WORKGROUP_SIZE);
@@ -81,9 +81,10 @@ void GpuState::upload_model() {
       const Spring& s = m.springs[m.gather[g]];
       gather[g].x = (s.i == i ? s.j : s.i) | (uint32_t(s.type) << 30);
     }
-  // With a material: each membrane entry as (a, b, area, 0), (dminv), each hinge entry as
-  // (others, rest), (weights), after the springs' entries; their starts follow the springs' in
-  // the start list (membrane_first and hinge_first in particle_views.glsl).
+  // With a material: each membrane entry as (a, b, area, 0), (dminv), each pair of bending row
+  // entries as (other, weight, other, weight), each hinge entry as (others, rest), (weights),
+  // after the springs' entries; their starts follow the springs' in the start list
+  // (membrane_first, bend_first and hinge_first in particle_views.glsl).
   std::vector<uint32_t> starts = m.gather_start;
   auto bits = [](double v) { return std::bit_cast<uint32_t>(float(v)); };
   if (m.has_material()) {
@@ -92,12 +93,16 @@ void GpuState::upload_model() {
       gather.push_back({e.a, e.b, bits(e.area), 0u});
       gather.push_back({bits(e.dminv[0]), bits(e.dminv[1]), bits(e.dminv[2]), bits(e.dminv[3])});
     }
+    const uint32_t bend_base = uint32_t(gather.size());
+    for (size_t e = 0; e < m.bend.size(); e += 2)
+      gather.push_back({m.bend[e].other, bits(m.bend[e].weight), m.bend[e + 1].other, bits(m.bend[e + 1].weight)});
     const uint32_t hinge_base = uint32_t(gather.size());
     for (const HingeEntry& h : m.hinges) {
       gather.push_back({h.other[0], h.other[1], h.other[2], bits(h.rest)});
       gather.push_back({bits(h.k[0]), bits(h.k[1]), bits(h.k[2]), bits(h.k[3])});
     }
     for (uint32_t s : m.membrane_start) starts.push_back(membrane_base + 2 * s);
+    for (uint32_t s : m.bend_start) starts.push_back(bend_base + s / 2);
     for (uint32_t s : m.hinge_start) starts.push_back(hinge_base + 2 * s);
   }
   std::vector<glm::uvec4> triangles;

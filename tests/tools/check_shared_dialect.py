@@ -15,7 +15,7 @@ out). Each file is compiled as GLSL by the shaders and as C++ by the CPU referen
   - a call to anything but the built-ins the dialect brings into C++ (sqrt, floor, ceil, abs,
     min, max, floatBitsToUint, uintBitsToFloat), the dialect's own (nonzero3, F32, the type constructors) and the functions the
     shared files define;
-  - a function without SHARED_FN (or SHARED for integer ones) in front.
+  - a function without SHARED_FN or SHARED_FN_INLINE (or SHARED for integer ones) in front.
 With --calls CPP, also that every SHARED_FN function is called in the C++ file CPP (the test
 that compiles them for float and double with -Werror -Wconversion -Wdouble-promotion), so none
 escapes that compile. Exit 1 on findings; with --expect N, exit 0 exactly when there are N (the
@@ -99,7 +99,7 @@ def check_file(path, known, findings):
     for m in DEFINITION.finditer(text):
         if m.group("name") in KEYWORDS:
             continue
-        if not re.search(r"\bSHARED(_FN)?\b", m.group("prefix")):
+        if not re.search(r"\bSHARED(_FN(_INLINE)?)?\b", m.group("prefix")):
             report(m.start("name"), f"function {m.group('name')} without SHARED_FN (or SHARED) in front")
 
 
@@ -129,7 +129,7 @@ def main(argv):
     if calls is not None:
         called = set(re.findall(r"\b(\w+)\s*\(", strip_comments(calls.read_text())))
         for f, t in texts.items():
-            for m in re.finditer(r"SHARED_FN\s+[\w<>]+\s+(\w+)\s*\(", t):
+            for m in re.finditer(r"SHARED_FN(?:_INLINE)?\s+[\w<>]+\s+(\w+)\s*\(", t):
                 if m.group(1) not in called:
                     findings.append(f"{f}: {m.group(1)} is not called in {calls}, so no strict compile checks it")
     for line in findings:

@@ -40,8 +40,8 @@ struct ClothPart {
 };
 
 // A cloth with a material (docs/materials.md) takes its forces from its triangles and hinges,
-// not its springs (which stay for the colouring and the coarse levels). Each particle lists its
-// own entries, so the fabric sweep gathers them like its springs:
+// not its springs (which stay for the colouring and the coarse levels; its gather keeps only
+// its seams). Each particle lists its own entries, so the fabric sweep gathers them like springs:
 // A triangle seen from one corner i: its other corners a, b (the triangle's order from i) and
 // its rest shape in the material's frame (metres along warp u and weft v): dminv is
 // [ua - ui, ub - ui]^-1 row-major, area its rest area.
@@ -58,6 +58,14 @@ struct HingeEntry {
   std::array<uint32_t, 3> other{};
   double rest = 0;
   std::array<double, 4> k{};
+};
+// The hinges and stencils with a flat rest (rest 0) have the energy 1/2 x^T Q x, Q = the sum of
+// their k k^T: constant, so they are summed once, into Q's rows (Bergou et al. 2006). Particle
+// i's row: Q_ii first (other = i), then Q_ij by ascending j, padded to an even count with
+// (i, 0); its force is -sum Q_ij (x_j - x_i) (a row sums to 0), its block Q_ii I.
+struct BendEntry {
+  uint32_t other = 0;
+  double weight = 0;
 };
 
 struct ClothModel {
@@ -87,10 +95,12 @@ struct ClothModel {
   // With seams: per particle the least particle it is sewn to, through any chain of seams (itself
   // if none). Self-collision never pushes two particles of one weld apart. Empty without seams.
   std::vector<uint32_t> weld;
-  // Per particle its membrane entries [membrane_start[i], membrane_start[i + 1]) and hinge
-  // entries likewise (fabric_terms.cpp); all three empty when no cloth has a material.
-  std::vector<uint32_t> membrane_start, hinge_start;
+  // Per particle its membrane entries [membrane_start[i], membrane_start[i + 1]), its row of
+  // flat bending entries and its curved hinge entries likewise (fabric_terms.cpp); all empty
+  // when no cloth has a material.
+  std::vector<uint32_t> membrane_start, bend_start, hinge_start;
   std::vector<MembraneEntry> membrane;
+  std::vector<BendEntry> bend;
   std::vector<HingeEntry> hinges;
   // The grid's size when the whole model is one CS184 grid (row-major i = y * nw + x), else 0.
   int nw = 0, nh = 0;

@@ -7,18 +7,36 @@
 
 #include <glm/geometric.hpp>
 
-#include "cloth/cloth.hpp"
+#include "cloth/fabric_terms.hpp"
 
 namespace clothsim {
-namespace {
 
-// A triangle's rest frame: unit warp u (along the texture's u, or the first edge where the
-// texture gives none), weft v = n x u, and its corners' coordinates in it (metres).
-struct TriangleFrame {
-  glm::dvec3 u{0.0}, v{0.0};
-  glm::dvec2 q[3];
-  double area = 0;
-};
+void add_stencil(Stencils& out, const std::vector<uint32_t>& v, const std::vector<double>& w, double rest) {
+  if (rest == 0) {
+    for (size_t s = 0; s < v.size(); ++s)
+      for (size_t q = 0; q < v.size(); ++q) out.rows[v[s]][v[q]] += w[s] * w[q];
+    return;
+  }
+  for (size_t s = 0; s < v.size(); ++s) {
+    HingeEntry h;
+    h.rest = rest;
+    h.k[0] = w[s];
+    size_t o = 0;
+    for (size_t q = 0; q < v.size(); ++q)
+      if (q != s) {
+        h.other[o] = v[q];
+        h.k[o + 1] = w[q];
+        ++o;
+      }
+    for (; o < 3; ++o) {
+      h.other[o] = h.other[0];
+      h.k[o + 1] = 0;
+    }
+    out.hinges[v[s]].push_back(h);
+  }
+}
+
+namespace {
 
 TriangleFrame frame_of(const ClothModel& m, const std::array<uint32_t, 3>& t) {
   TriangleFrame f;
@@ -47,37 +65,13 @@ double cot(const glm::dvec3& a, const glm::dvec3& b) {
   return s > 0 ? glm::dot(a, b) / s : 0.0;
 }
 
-// One bending stencil: v = sum w_k x_k over its particles, energy (|v| - rest)^2 / 2, as an entry
-// of each of its particles (a three-particle stencil pads with a weight of 0).
-void add_stencil(std::vector<std::vector<HingeEntry>>& hinges, const std::vector<uint32_t>& v,
-                 const std::vector<double>& w, double rest) {
-  for (size_t s = 0; s < v.size(); ++s) {
-    HingeEntry h;
-    h.rest = rest;
-    h.k[0] = w[s];
-    size_t o = 0;
-    for (size_t q = 0; q < v.size(); ++q)
-      if (q != s) {
-        h.other[o] = v[q];
-        h.k[o + 1] = w[q];
-        ++o;
-      }
-    for (; o < 3; ++o) {
-      h.other[o] = h.other[0];
-      h.k[o + 1] = 0;
-    }
-    hinges[v[s]].push_back(h);
-  }
-}
-
 // A grid's bending: an orthotropic plate with no Poisson coupling, energy per area
 // (B_warp k_xx^2 + B_weft k_yy^2 + 2 sqrt(B_warp B_weft) k_xy^2) / 2, its curvatures the
 // second differences of the positions (the curvature vector of an isometric bend): k_xx at
 // every particle with a neighbour either side along x (over its own area), k_yy likewise,
 // k_xy on every cell. Isotropic where B_warp = B_weft (a bend at any angle to the grid costs
 // the same), and flat at rest (the jitter of a vertical grid is a start, not a shape).
-void add_grid_stencils(const ClothModel& m, const ClothPart& part, const ClothParams& p,
-                       std::vector<std::vector<HingeEntry>>& hinges) {
+void add_grid_stencils(const ClothModel& m, const ClothPart& part, const ClothParams& p, Stencils& stencils) {
   const MaterialParams& mat = *p.material;
   const int nw = part.nw, nh = part.nh;
   const double hx = p.width / (nw - 1), hy = p.height / (nh - 1);
@@ -98,18 +92,32 @@ void add_grid_stencils(const ClothModel& m, const ClothPart& part, const ClothPa
       if (x > 0 && x + 1 < nw) {
         const double s =
             std::sqrt(mat.bending[0] * area(x, y) * clamp(at(x, y), at(x - 1, y), at(x + 1, y))) / (hx * hx);
-        add_stencil(hinges, {at(x, y), at(x - 1, y), at(x + 1, y)}, {-2 * s, s, s}, 0);
+        add_stencil(stencils, {at(x, y), at(x - 1, y), at(x + 1, y)}, {-2 * s, s, s}, 0);
       }
       if (y > 0 && y + 1 < nh) {
         const double s =
             std::sqrt(mat.bending[1] * area(x, y) * clamp(at(x, y), at(x, y - 1), at(x, y + 1))) / (hy * hy);
-        add_stencil(hinges, {at(x, y), at(x, y - 1), at(x, y + 1)}, {-2 * s, s, s}, 0);
+        add_stencil(stencils, {at(x, y), at(x, y - 1), at(x, y + 1)}, {-2 * s, s, s}, 0);
       }
       if (x + 1 < nw && y + 1 < nh) {
         const double s = std::sqrt(2 * std::sqrt(mat.bending[0] * mat.bending[1]) * hx * hy) / (hx * hy);
-        add_stencil(hinges, {at(x, y), at(x + 1, y), at(x, y + 1), at(x + 1, y + 1)}, {s, -s, -s, s}, 0);
+        add_stencil(stencils, {at(x, y), at(x + 1, y), at(x, y + 1), at(x + 1, y + 1)}, {s, -s, -s, s}, 0);
       }
     }
+}
+
+// Whether a mesh's rest shape is flat: every triangle's normal along the first's, either way
+// round (a flat panel, which bends as a plate, whatever its winding), not a curved shell (which
+// keeps its rest curvature through hinges).
+bool flat(const std::vector<TriangleFrame>& frames) {
+  glm::dvec3 n0(0.0);
+  for (const TriangleFrame& f : frames) {
+    if (!(f.area > 0)) continue;
+    const glm::dvec3 n = glm::cross(f.u, f.v);
+    if (n0 == glm::dvec3(0.0)) n0 = n;
+    if (!(std::abs(glm::dot(n, n0)) > 1 - 1e-9)) return false;
+  }
+  return true;
 }
 
 }  // namespace
@@ -121,11 +129,15 @@ void add_fabric_terms(const Scene& scene, ClothModel& m) {
   if (!any) return;
   const size_t n = size_t(m.count());
   std::vector<std::vector<MembraneEntry>> membrane(n);
-  std::vector<std::vector<HingeEntry>> hinges(n);
+  Stencils stencils;
+  stencils.rows.resize(n);
+  stencils.hinges.resize(n);
+  std::vector<uint8_t> has_row(n, 0);
   for (size_t k = 0; k < m.parts.size(); ++k) {
     if (!cloths[k]->material) continue;
     const MaterialParams& mat = *cloths[k]->material;
     const ClothPart& part = m.parts[k];
+    for (uint32_t i = part.first; i < part.first + part.count; ++i) has_row[i] = 1;
     std::vector<TriangleFrame> frames;
     for (uint32_t t = part.first_triangle; t < part.first_triangle + part.triangle_count; ++t) {
       const auto& tri = m.triangles[t];
@@ -146,10 +158,14 @@ void add_fabric_terms(const Scene& scene, ClothModel& m) {
       }
     }
     if (part.nw > 0) {
-      add_grid_stencils(m, part, *cloths[k], hinges);
+      add_grid_stencils(m, part, *cloths[k], stencils);
       continue;
     }
-    // A mesh's bending: the quadratic model's hinges (Bergou et al. 2006) on its interior edges,
+    if (flat(frames)) {
+      add_mesh_plate_stencils(m, part, mat, frames, stencils);
+      continue;
+    }
+    // A curved mesh's bending: the quadratic model's hinges (Bergou et al. 2006) on its interior edges,
     // in order of discovery: the two triangles on each and their opposite corners.
     std::map<std::pair<uint32_t, uint32_t>, size_t> edge_index;
     struct Edge {
@@ -209,17 +225,36 @@ void add_fabric_terms(const Scene& scene, ClothModel& m) {
         terms += std::abs(w[size_t(q)]) * glm::length(m.initial[v[size_t(q)]] - x0);
       }
       const double curvature = glm::length(rest) > 1e-9 * terms ? glm::length(rest) : 0.0;
-      add_stencil(hinges, {v.begin(), v.end()}, {w.begin(), w.end()}, curvature);
+      add_stencil(stencils, {v.begin(), v.end()}, {w.begin(), w.end()}, curvature);
     }
   }
   m.membrane_start.assign(1, 0);
+  m.bend_start.assign(1, 0);
   m.hinge_start.assign(1, 0);
-  for (size_t i = 0; i < n; ++i) {
+  for (uint32_t i = 0; i < uint32_t(n); ++i) {
     m.membrane.insert(m.membrane.end(), membrane[i].begin(), membrane[i].end());
-    m.hinges.insert(m.hinges.end(), hinges[i].begin(), hinges[i].end());
+    m.hinges.insert(m.hinges.end(), stencils.hinges[i].begin(), stencils.hinges[i].end());
+    if (has_row[i]) {  // Q_ii first, then the others ascending, padded to pairs (a texel each)
+      auto& row = stencils.rows[i];
+      m.bend.push_back({i, row.count(i) ? row[i] : 0.0});
+      for (const auto& [j, q] : row)
+        if (j != i) m.bend.push_back({j, q});
+      if ((m.bend.size() - m.bend_start.back()) % 2) m.bend.push_back({i, 0.0});
+    }
     m.membrane_start.push_back(uint32_t(m.membrane.size()));
+    m.bend_start.push_back(uint32_t(m.bend.size()));
     m.hinge_start.push_back(uint32_t(m.hinges.size()));
   }
+  // A material particle's springs are off for good (the scene may not turn them on beside a
+  // material): its gather keeps only its seams, so no sweep walks the rest to skip them.
+  std::vector<uint32_t> start(1, 0), gather;
+  for (uint32_t i = 0; i < uint32_t(n); ++i) {
+    for (uint32_t g = m.gather_start[i]; g < m.gather_start[i + 1]; ++g)
+      if (!has_row[i] || m.springs[m.gather[g]].type == SpringType::Seam) gather.push_back(m.gather[g]);
+    start.push_back(uint32_t(gather.size()));
+  }
+  m.gather_start = std::move(start);
+  m.gather = std::move(gather);
 }
 
 }  // namespace clothsim

@@ -30,10 +30,13 @@ Graph spring_graph(const ClothModel& m, bool all) {
     g[s.i].push_back(s.j);
     g[s.j].push_back(s.i);
   }
-  // A hinge's four particles read each other in the sweep: no two of one colour.
-  for (uint32_t i = 0; all && i + 1 < m.hinge_start.size(); ++i)
+  // A stencil's particles read each other in the sweep: no two of one colour.
+  for (uint32_t i = 0; all && i + 1 < m.hinge_start.size(); ++i) {
     for (uint32_t h = m.hinge_start[i]; h < m.hinge_start[i + 1]; ++h)
       for (uint32_t o : m.hinges[h].other) g[i].push_back(o);
+    for (uint32_t e = m.bend_start[i]; e < m.bend_start[i + 1]; ++e)
+      if (m.bend[e].other != i) g[i].push_back(m.bend[e].other);
+  }
   sort_unique(g);
   return g;
 }

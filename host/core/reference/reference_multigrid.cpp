@@ -119,7 +119,7 @@ template <class R> void compute_residuals(const ClothModel& m, const Constants<R
       f = shared::add_spring_force(f, e, c.rest_of(sp), c.stiffness_of(m, sp));
     }
     Sym3<R> unused = shared::sym3_diagonal(R(0));
-    f = add_material_terms(m, c, i, xi, [&](uint32_t j) { return Vec3<R>(s.pos[j]) + Vec3<R>(s.offset[j]); }, f, unused);
+    f = add_material_terms(m, c, i, xi, [&](uint32_t j) { return Vec3<R>(s.pos[j]) + Vec3<R>(s.offset[j]); }, f, unused, false);
     if (c.has_attachments() && c.attach[i].w != R(0))
       f = shared::add_anchor_pull(f, xi, Vec3<R>(c.attach[i]), c.attached_origin(i), c.attach[i].w);
     // The coarse problem weighs each mass with its hinges' block as inertia (hinge_inertia).
@@ -217,7 +217,7 @@ template <class R> void relax_vertices(const ClothModel& m, const Constants<R>& 
       f = shared::add_spring_pull(f, n, len, rest, k_s);
       add_spring_hessian(hess, n, sa, sd);
     }
-    f = add_material_terms(m, c, i, x, [&](uint32_t j) { return Vec3<R>(s.pos[j]); }, f, hess);
+    f = add_material_terms(m, c, i, x, [&](uint32_t j) { return Vec3<R>(s.pos[j]); }, f, hess, true);
     // An attachment: its pull and its block k I (docs/model.md, "Attachments").
     if (c.has_attachments() && c.attach[i].w != R(0)) {
       f = shared::add_anchor_pull(f, x, Vec3<R>(c.attach[i]), c.attached_origin(i), c.attach[i].w);
