@@ -173,7 +173,7 @@ Scene parse_scene(const std::string& text, const std::string& source, const std:
                                      source, key));
       // The material replaces these: given both, which one holds would be a guess.
       const json& cj = array ? j["cloth"][i] : j["cloth"];
-      for (const char* k : {"density", "ks", "enable_structural", "enable_shearing", "enable_bending"})
+      for (std::string_view k : kKeysMaterialReplaces)
         if (cj.is_object() && cj.contains(k))
           throw SceneError(fmt::format("{}: {}.{}: a cloth with a material takes its mass and stiffness from {}.material; "
                                        "remove one of the two", source, key, k, key));

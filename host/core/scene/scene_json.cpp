@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "scene/materials.hpp"
 #include "scene/scene_overrides.hpp"
 #include "scene/scene_table.hpp"
 
@@ -317,6 +318,8 @@ class Writer final : public ParamVisitor {
   void finish() {
     for (const ParamInfo* info : shaped_)
       if ((info->shape == Shape::Mesh) != mesh_) j_.erase(info->key);
+    if (j_.contains("material"))  // a cloth's: the keys it replaces would not load beside it
+      for (std::string_view k : kKeysMaterialReplaces) j_.erase(std::string(k));
   }
 
  private:
