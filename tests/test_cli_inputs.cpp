@@ -175,6 +175,20 @@ TEST_CASE("static refuses a scene with a mesh collider as it does spheres and pl
   CHECK_THAT(r.err, Catch::Contains("no colliders"));
 }
 
+TEST_CASE("static refuses a cloth with a material (its membrane is the fabric sweep's): exit 2", "[cli][inputs]") {
+  TempFile dir("static_material");
+  fs::create_directories(dir.path);
+  write(dir.path / "silk.json",
+        R"({"cloth": {"width": 1, "height": 1, "num_width_points": 3, "num_height_points": 3, "thickness": 0.01,
+            "orientation": 0, "pinned": [[0, 0]], "material": "silk"},
+            "simulation": {"solver": "fabric", "self_collision": false}})");
+  const Result r = run({"static", (dir.path / "silk.json").string()});
+  INFO(r.both());
+  CHECK(r.code == 2);
+  CHECK_THAT(r.err, Catch::Contains("silk.json"));
+  CHECK_THAT(r.err, Catch::Contains("cloth.material"));
+}
+
 TEST_CASE("static on a cloth whose every particle is pinned says so and exits 0", "[cli][inputs]") {
   TempFile dir("pinned");
   fs::create_directories(dir.path);

@@ -320,3 +320,28 @@ TEST_CASE("A mesh strip of bending rigidity B droops to Peirce's 41.5° chord at
     CHECK(std::abs(angle - 41.5) < 2.0);
   }
 }
+
+// max_stretch holds a material cloth too: its structural springs add no force (the membrane is
+// its stretch) but stay in the limit's passes (simulation.stretch_passes). A membrane of 5 N/m
+// hanging from its top corners would stretch by tens of percent; with two passes no structural
+// spring ends a frame longer than (1 + max_stretch) rest, to the passes' convergence.
+TEST_CASE("A material cloth's max_stretch passes hold its structural springs at the limit", "[materials]") {
+  auto longest = [](int passes) {
+    Scene scene = parse_scene(fmt::format(R"({{"cloth": {{"width": 0.4, "height": 0.4, "num_width_points": 9,
+        "num_height_points": 9, "thickness": 0.005, "orientation": 1, "pinned": [[0, 8], [8, 8]],
+        "material": {{"density": 0.2, "stretch": 5, "shear": 1, "bending": 1e-6}}}},
+        "simulation": {{"solver": "fabric", "self_collision": false, "max_stretch": 0.05, "stretch_passes": {}}}}})",
+                                          passes), "<limit>");
+    const ClothModel m = build_cloth(scene);
+    const State<double> s = run<double>(scene, 30);
+    double worst = 0;
+    for (const Spring& sp : m.springs)
+      if (sp.type == SpringType::Structural)
+        worst = std::max(worst, glm::length(V3(s.pos[sp.i]) - V3(s.pos[sp.j])) / sp.rest);
+    return worst;
+  };
+  const double free = longest(0), held = longest(2);
+  INFO("longest structural spring: " << free << " x rest without the passes, " << held << " x with two");
+  CHECK(free > 1.2);
+  CHECK(held < 1.05 * 1.01);
+}

@@ -115,6 +115,9 @@ StaticEquilibrium solve_static_equilibrium(const Scene& scene, const ClothModel&
       scene.simulation.self_collision)
     throw std::invalid_argument("solve_static_equilibrium: only springs, pins and gravity (no colliders, wind or "
                                 "self-collision)");
+  if (model.has_material())  // its membrane and bending are the fabric sweep's, not this solve's
+    throw std::invalid_argument("solve_static_equilibrium: only springs, pins and gravity (cloth.material: a "
+                                "material's membrane and bending are not in the static solve)");
   const Problem p(scene, model);
   StaticEquilibrium out;
   out.pos = model.initial;

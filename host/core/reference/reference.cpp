@@ -206,8 +206,10 @@ Constants<R> make_constants(const Scene& scene, const ClothModel& model, std::sh
     mat.ks_bending = R(0.2 * k->spring_ks());
     mat.start_ks = R(k->material ? kMaterialStartStiffness : k->ks);
     mat.keep_velocity = R(1.0 - k->damping / 100.0);
-    // A material's triangles and hinges replace the springs (docs/materials.md).
-    mat.enabled[0] = k->enable_structural && !k->material;
+    // A material's triangles and stencils replace the springs (docs/materials.md); its
+    // structural springs stay on for max_stretch's passes alone (enforce_stretch_limit): its
+    // particles' gathers hold none, so they add no force.
+    mat.enabled[0] = k->enable_structural;
     mat.enabled[1] = k->enable_shearing && !k->material;
     mat.enabled[2] = k->enable_bending && !k->material;
     if (k->material) mat.moduli = Vec4<R>(R(k->material->stretch[0]), R(k->material->stretch[1]), R(0), R(k->material->shear));
