@@ -255,7 +255,7 @@ namespace {
 // A strip as a mesh of near-equilateral triangles (every other row shifted by half a spacing,
 // with its ends at 0 and `length` and a vertex at `clamp`, so that every row is held up to the
 // clamp's edge), in y = 0, x along the strip (the warp, texture u), z across.
-std::string strip_mesh(double length, double width, int along, double clamp) {
+std::string strip_mesh(double length, double width, int along, double clamp, bool uv = true) {
   const double h = length / along;
   const int rows = std::max(2, int(std::lround(width / (h * 0.866)))) + 1;
   std::vector<std::vector<std::pair<double, int>>> row{size_t(rows)};
@@ -268,7 +268,7 @@ std::string strip_mesh(double length, double width, int along, double clamp) {
     if (r % 2) xs.insert(std::upper_bound(xs.begin(), xs.end(), clamp), clamp);
     const double z = width * r / (rows - 1);
     for (double x : xs) {
-      v += fmt::format("v {} 0 {}\nvt {} {}\n", x, z, x / length, z / width);
+      v += uv ? fmt::format("v {} 0 {}\nvt {} {}\n", x, z, x / length, z / width) : fmt::format("v {} 0 {}\n", x, z);
       row[size_t(r)].push_back({x, ++count});
     }
   }
@@ -278,7 +278,7 @@ std::string strip_mesh(double length, double width, int along, double clamp) {
     while (i + 1 < a.size() || j + 1 < b.size()) {
       const bool take_a = j + 1 >= b.size() || (i + 1 < a.size() && a[i + 1].first <= b[j + 1].first);
       const int p = a[i].second, q = b[j].second, next = take_a ? a[++i].second : b[++j].second;
-      f += fmt::format("f {0}/{0} {1}/{1} {2}/{2}\n", p, next, q);
+      f += uv ? fmt::format("f {0}/{0} {1}/{1} {2}/{2}\n", p, next, q) : fmt::format("f {} {} {}\n", p, next, q);
     }
   }
   return v + f;
@@ -344,4 +344,23 @@ TEST_CASE("A material cloth's max_stretch passes hold its structural springs at 
   INFO("longest structural spring: " << free << " x rest without the passes, " << held << " x with two");
   CHECK(free > 1.2);
   CHECK(held < 1.05 * 1.01);
+}
+
+// A mesh without texture coordinates has no warp: each triangle's is its first edge, which
+// point every way round a vertex. Its plate must still cost B k^2 / 2 per area (isotropic B).
+TEST_CASE("A flat mesh without texture coordinates bends as an isotropic plate", "[materials]") {
+  test::TempDir dir;
+  const auto path = dir.write("plain.obj", strip_mesh(0.3, 0.2, 30, 0.0, false));
+  const Scene scene = parse_scene(fmt::format(R"({{"cloth": {{"mesh": "{}", "thickness": 0.004,
+      "material": {{"density": 0.2, "stretch": 2000, "shear": 20, "bending": 1e-5}}}},
+      "simulation": {{"solver": "fabric"}}}})", path.string()), "<plain>");
+  const ClothModel m = build_cloth(scene);
+  double area = 0;
+  for (const auto& t : m.triangles)
+    area += 0.5 * glm::length(glm::cross(m.initial[t[1]] - m.initial[t[0]], m.initial[t[2]] - m.initial[t[0]]));
+  for (bool across_x : {true, false}) {
+    const double expect = 0.5 * 1e-5 / (0.3 * 0.3) * area, got = bending_energy(m, wrapped(m, 0.3, across_x));
+    INFO("across " << (across_x ? "x" : "z") << ": " << got << " J, closed form " << expect << " J");
+    CHECK(std::abs(got / expect - 1) < 0.02);
+  }
 }

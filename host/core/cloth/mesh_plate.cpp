@@ -68,6 +68,7 @@ void add_mesh_plate_stencils(const ClothModel& m, const ClothPart& part, const M
   // Each triangle's area goes to its inner corners, so the boundary's strip is not lost.
   std::map<uint32_t, double> area;
   for (uint32_t t = 0; t < part.triangle_count; ++t) {
+    if (!(frames[t].area > 0)) continue;
     const auto& tri = m.triangles[part.first_triangle + t];
     const auto inner = std::count_if(tri.begin(), tri.end(), [&](uint32_t v) { return !boundary.count(v); });
     for (uint32_t v : tri)
@@ -77,10 +78,18 @@ void add_mesh_plate_stencils(const ClothModel& m, const ClothPart& part, const M
   for (const auto& [c, a] : area) {
     // The material's frame at c: its triangles' warp, averaged (one direction on a flat mesh
     // whose texture is affine), and the weft across it.
+    // Without texture coordinates each triangle's warp is its first edge, and opposite edges
+    // can cancel: then the first triangle's (the plate is isotropic where warp = weft).
+    const TriangleFrame& first = frames[around[c][0]];
+    const glm::dvec3 n = glm::cross(first.u, first.v);
     glm::dvec3 u(0.0);
-    for (uint32_t t : around[c]) u += frames[t].u * frames[t].area;
-    const glm::dvec3 n = glm::cross(frames[around[c][0]].u, frames[around[c][0]].v);
-    u = glm::normalize(u - n * glm::dot(n, u));
+    double total = 0;
+    for (uint32_t t : around[c]) {
+      u += frames[t].u * frames[t].area;
+      total += frames[t].area;
+    }
+    u -= n * glm::dot(n, u);
+    u = glm::length(u) > 0.1 * total ? glm::normalize(u) : first.u;
     const glm::dvec3 v = glm::cross(n, u);
     // The ring, or the ring and the ring's rings where the ring alone fits no quadratic.
     std::vector<uint32_t> members(ring[c].begin(), ring[c].end());
