@@ -174,7 +174,7 @@ struct MultigridEntry {
 struct MaterialTexels {
   vec4 stiffness;  // ks, ks_bending, the start's (MaterialC::start_ks) (N/m), w unused
   vec4 keep;       // x 1 - damping / 100; y, z, w 1 where structural, shearing, bending springs are enabled
-  vec4 moduli;     // a material's C11, C22, C12, G (N/m; shared/membrane.glsl), else 0
+  vec4 moduli;     // a material's C11, C22 (N/m), compression ratio, G (N/m; shared/membrane.glsl), else 0
 };
 
 // `motion`: the collider's displacement over this substep (keyframed motion, set by the host

@@ -59,7 +59,7 @@ bool attachment_of(int i, out vec4 rel, out vec3 origin) {
 struct Material {
   vec4 stiffness;  // ks, ks_bending, start_ks, w unused
   vec4 keep;       // keep_velocity, then 1 per enabled spring type
-  vec4 moduli;     // a material's C11, C22, C12, G (0: none)
+  vec4 moduli;     // a material's C11, C22, compression ratio, G (0: none)
 };
 Material material(int m) {
   return Material(texelFetch(materials_view, MATERIAL_TEXELS * m), texelFetch(materials_view, MATERIAL_TEXELS * m + 1),

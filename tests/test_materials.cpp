@@ -21,11 +21,13 @@ namespace {
 using V3 = glm::dvec3;
 using V4 = glm::dvec4;
 
-// St Venant-Kirchhoff in the material frame, written out on its own (not membrane.glsl's).
+// St Venant-Kirchhoff in the material frame, written out on its own (not membrane.glsl's): c =
+// (warp, weft, compression ratio, shear); a shortened direction takes the ratio of its stiffness.
 double membrane_energy(V3 xi, V3 xa, V3 xb, V4 dminv, double area, V4 c) {
   const V3 f0 = (xa - xi) * dminv.x + (xb - xi) * dminv.z, f1 = (xa - xi) * dminv.y + (xb - xi) * dminv.w;
   const double e00 = 0.5 * (glm::dot(f0, f0) - 1), e11 = 0.5 * (glm::dot(f1, f1) - 1), e01 = 0.5 * glm::dot(f0, f1);
-  return area * (0.5 * c.x * e00 * e00 + c.z * e00 * e11 + 0.5 * c.y * e11 * e11 + 2 * c.w * e01 * e01);
+  const double c11 = e00 < 0 ? c.x * c.z : c.x, c22 = e11 < 0 ? c.y * c.z : c.y;
+  return area * (0.5 * c11 * e00 * e00 + 0.5 * c22 * e11 * e11 + 2 * c.w * e01 * e01);
 }
 
 double hinge_energy(V3 xs, V3 x0, V3 x1, V3 x2, V4 k, double rest) {
@@ -51,8 +53,9 @@ TEST_CASE("A membrane triangle's force is minus its energy's gradient, its block
   const V3 xa(0.011, 0.002, -0.001), xb(-0.002, 0.001, 0.012);
   // Rest: corners at (0, 0), (0.01, 0), (0, 0.01) in the material frame.
   const V4 dminv(100, 0, 0, 100);
-  const V4 c(2000, 1000, 0, 30);
-  for (V3 xi : {V3(0.0), V3(0.001, -0.002, 0.0005), V3(0.004, 0.001, 0.003)}) {
+  const V4 c(2000, 1000, 0.2, 30);
+  // Stretched both ways (the first two and the last), and with the warp shortened (the third).
+  for (V3 xi : {V3(0.0), V3(0.001, -0.002, 0.0005), V3(0.004, 0.001, 0.003), V3(-0.0005, 0.0, -0.0005)}) {
     shared::Sym3<double> h = shared::sym3_diagonal(0.0);
     const V3 f = shared::add_membrane_terms(V3(0.0), h, xi, xa, xb, dminv, 5e-5, c, true);
     const V3 expect = numeric_force([&](V3 x) { return membrane_energy(x, xa, xb, dminv, 5e-5, c); }, xi);

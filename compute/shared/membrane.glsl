@@ -11,9 +11,12 @@
 SHARED_BEGIN
 
 // Triangle (xi, xa, xb) seen from xi: dminv its rest [ua - ui, ub - ui]^-1 in the material's
-// frame (row-major in x, y, z, w), `area` its rest area, moduli (C11, C22, C12, G) (N/m). St
-// Venant-Kirchhoff: F = [xa - xi, xb - xi] dminv, E = (F^T F - I) / 2, energy per area
-// C11 E00^2 / 2 + C12 E00 E11 + C22 E11^2 / 2 + 2 G E01^2 (a shear angle g costs G g^2 / 2).
+// frame (row-major in x, y, z, w), `area` its rest area, moduli (C11, C22, b, G): the warp's and
+// the weft's stretch and the shear (N/m), b the compression ratio. St Venant-Kirchhoff without
+// Poisson coupling: F = [xa - xi, xb - xi] dminv, E = (F^T F - I) / 2, energy per area
+// C11' E00^2 / 2 + C22' E11^2 / 2 + 2 G E01^2 (a shear angle g costs G g^2 / 2), where a
+// direction shortened (E < 0) takes b times its stiffness: woven fabric buckles at its yarns
+// under compression (docs/materials.md, "compression").
 // Returns f - area F S g, g = dN_i = -(the rows of dminv summed); with `block`, adds
 // area (max(0, g.S g) I + F M F^T) to h, M the elasticity contracted with g twice (the
 // dropped part is the compressive one, as a spring's). The residual needs no block: without
@@ -27,8 +30,10 @@ SHARED_FN_INLINE VEC3 add_membrane_terms(VEC3 f, INOUT(SYM3) h, VEC3 xi, VEC3 xa
   PRECISE REAL e00 = (dot3(f0, f0) - REAL(1)) * REAL(0.5);
   PRECISE REAL e11 = (dot3(f1, f1) - REAL(1)) * REAL(0.5);
   PRECISE REAL e01 = dot3(f0, f1) * REAL(0.5);
-  PRECISE REAL s00 = moduli.x * e00 + moduli.z * e11;
-  PRECISE REAL s11 = moduli.z * e00 + moduli.y * e11;
+  PRECISE REAL c11 = e00 < REAL(0) ? moduli.x * moduli.z : moduli.x;
+  PRECISE REAL c22 = e11 < REAL(0) ? moduli.y * moduli.z : moduli.y;
+  PRECISE REAL s00 = c11 * e00;
+  PRECISE REAL s11 = c22 * e11;
   PRECISE REAL s01 = REAL(2) * moduli.w * e01;
   PRECISE REAL g0 = -(dminv.x + dminv.z);
   PRECISE REAL g1 = -(dminv.y + dminv.w);
@@ -38,9 +43,9 @@ SHARED_FN_INLINE VEC3 add_membrane_terms(VEC3 f, INOUT(SYM3) h, VEC3 xi, VEC3 xa
   PRECISE VEC3 r = f - pg * area;
   if (!block) return r;
   PRECISE REAL d = max(REAL(0), g0 * sg0 + g1 * sg1) * area;
-  PRECISE REAL m00 = (moduli.x * g0 * g0 + moduli.w * g1 * g1) * area;
-  PRECISE REAL m11 = (moduli.w * g0 * g0 + moduli.y * g1 * g1) * area;
-  PRECISE REAL m01 = (moduli.z + moduli.w) * (g0 * g1) * area;
+  PRECISE REAL m00 = (c11 * g0 * g0 + moduli.w * g1 * g1) * area;
+  PRECISE REAL m11 = (moduli.w * g0 * g0 + c22 * g1 * g1) * area;
+  PRECISE REAL m01 = moduli.w * (g0 * g1) * area;
   // F M F^T = m00 f0 f0^T + m11 f1 f1^T + m01 (f0 f1^T + f1 f0^T)
   PRECISE VEC3 a0 = f0 * m00 + f1 * m01;  // F M's columns
   PRECISE VEC3 a1 = f0 * m01 + f1 * m11;

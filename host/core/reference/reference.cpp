@@ -212,7 +212,7 @@ Constants<R> make_constants(const Scene& scene, const ClothModel& model, std::sh
     mat.enabled[0] = k->enable_structural;
     mat.enabled[1] = k->enable_shearing && !k->material;
     mat.enabled[2] = k->enable_bending && !k->material;
-    if (k->material) mat.moduli = Vec4<R>(R(k->material->stretch[0]), R(k->material->stretch[1]), R(0), R(k->material->shear));
+    if (k->material) mat.moduli = Vec4<R>(R(k->material->stretch[0]), R(k->material->stretch[1]), R(k->material->compression), R(k->material->shear));
     mat.enabled[3] = true;  // seams
     c.materials.push_back(mat);
   }

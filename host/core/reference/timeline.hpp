@@ -34,7 +34,8 @@ template <class R> struct MaterialC {
   R start_ks;
   R keep_velocity;         // 1 - damping / 100
   bool enabled[kSpringTypes];  // by SpringType (seams always)
-  // A material's membrane moduli (C11, C22, C12, G) in N/m (membrane.glsl); 0 without one.
+  // A material's membrane moduli (C11, C22 and G in N/m, z the compression ratio: membrane.glsl);
+  // 0 without one.
   glm::vec<4, R> moduli{};
   R stiffness(SpringType t) const { return t == SpringType::Bending ? ks_bending : ks; }
 };

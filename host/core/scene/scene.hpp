@@ -95,6 +95,7 @@ struct MaterialParams {
   std::array<double, 2> stretch{};    // N/m, uniaxial: force per width over strain
   double shear = 0;                   // N/m, in-plane shear modulus
   std::array<double, 2> bending{};    // N·m, bending rigidity
+  double compression = 0;             // a shortened direction's stiffness over its stretch, (0, 1]
 
   bool operator==(const MaterialParams&) const = default;
 };
