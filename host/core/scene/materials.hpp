@@ -15,11 +15,6 @@ struct MaterialPreset {
   MaterialParams values;  // preset empty
 };
 
-// The cloth keys a material replaces: the loader refuses them beside one (which should hold
-// would be a guess) and scene_to_json leaves them out of a cloth that has one.
-inline constexpr std::string_view kKeysMaterialReplaces[] = {"density", "ks", "enable_structural", "enable_shearing",
-                                                             "enable_bending"};
-
 // silk, cotton, wool, denim, leather: in that order.
 std::span<const MaterialPreset> material_presets();
 

@@ -6,6 +6,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -99,6 +100,10 @@ struct MaterialParams {
 
   bool operator==(const MaterialParams&) const = default;
 };
+// The cloth keys a material replaces: the loader refuses them beside one (which should hold
+// would be a guess) and scene_to_json leaves them out of a cloth that has one.
+inline constexpr std::string_view kKeysMaterialReplaces[] = {"density", "ks", "enable_structural", "enable_shearing",
+                                                             "enable_bending"};
 
 // Field names are the JSON keys (one name end to end: file, code, GUI).
 struct ClothParams {

@@ -9,7 +9,6 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "scene/materials.hpp"
 #include "scene/scene_overrides.hpp"
 #include "scene/scene_table.hpp"
 
@@ -273,8 +272,8 @@ class Reader final : public ParamVisitor {
   ObjectReader& r_;
 };
 
-// Writes each row into one JSON object; finish() then drops the rows of the other kind of
-// cloth (a grid cloth's mesh rows, a mesh cloth's grid rows), which the loader would reject.
+// Writes each row into one JSON object; finish() then drops what the loader would reject: the
+// other kind of cloth's rows (a grid's mesh rows, a mesh's grid rows), the keys a material replaces.
 class Writer final : public ParamVisitor {
  public:
   explicit Writer(json& j) : j_(j) {}
@@ -318,8 +317,7 @@ class Writer final : public ParamVisitor {
   void finish() {
     for (const ParamInfo* info : shaped_)
       if ((info->shape == Shape::Mesh) != mesh_) j_.erase(info->key);
-    if (j_.contains("material"))  // a cloth's: the keys it replaces would not load beside it
-      for (std::string_view k : kKeysMaterialReplaces) j_.erase(std::string(k));
+    if (j_.contains("material")) for (std::string_view k : kKeysMaterialReplaces) j_.erase(std::string(k));
   }
 
  private:

@@ -181,13 +181,10 @@ const Param<MaterialParams> kMaterial[] = {
     row<&MaterialParams::shear>({.key = "shear", .lo = 0, .expected = "a shear stiffness > 0 (N/m)", .unit = "N/m",
                                  .meaning = "in-plane shear modulus (force per width over shear angle; absent: the preset's)",
                                  .widget = drag(0.5f, 0.01, 1e5, "%.2f")}),
-    row<&MaterialParams::bending>({.key = "bending", .lo = 0, .expected = "a bending rigidity > 0 (N·m)",
-                                   .unit = "N·m", .meaning = "bending rigidity (moment per width over curvature), "
-                                                             "warp and weft (absent: the preset's; a new value rebuilds the cloth)", .widget = kReadOnly}),
-    row<&MaterialParams::compression>({.key = "compression", .lo = 0, .hi = 1, .expected = "a ratio in (0, 1]",
-                                       .meaning = "a shortened direction's stiffness over its stretch: woven fabric "
-                                                  "buckles at its yarns (absent: the preset's, 1: as stretched)",
-                                       .widget = drag(0.01f, 0.01, 1.0, "%.2f")}),
+    row<&MaterialParams::bending>({.key = "bending", .lo = 0, .expected = "a bending rigidity > 0 (N·m)", .unit = "N·m", .meaning =
+        "bending rigidity (moment per width over curvature), warp and weft (absent: the preset's; a new value rebuilds the cloth)", .widget = kReadOnly}),
+    row<&MaterialParams::compression>({.key = "compression", .lo = 0, .hi = 1, .expected = "a ratio in (0, 1]", .meaning =
+        "a shortened direction's stiffness over its stretch, as fabric buckles (absent: the preset's)", .widget = drag(0.01f, 0.01, 1.0, "%.2f")}),
 };
 
 const Param<BoxParams> kBox[] = {
