@@ -45,9 +45,8 @@ float hinge_block(int i, Material mat) {
 
 // Particle i's membrane triangles, bending row and curved hinges at x (docs/materials.md):
 // their forces added to f, their blocks to hess (the membrane's not at_start: the residual drops
-// them), in that order. None without a material
-// (moduli 0, and then no starts were uploaded to read). The CPU twin is add_material_terms in
-// host/core/reference/reference_material.hpp.
+// them), in that order. None without a material (moduli 0, and then no starts were uploaded to
+// read). The CPU twin is add_material_terms in host/core/reference/reference_material.hpp.
 vec3 add_material_terms(int i, Material mat, vec3 x, bool at_start, vec3 f, inout Sym3 hess) {
   if (!(mat.moduli.x > 0.0)) return f;
   uint last = membrane_first(i + 1);

@@ -1,8 +1,9 @@
 // The material's formulas (docs/materials.md, "How the model uses them"): a membrane
-// triangle's, a bending row entry's and a curved hinge's force on one of its particles, and that particle's block of
-// their Hessian, kept positive semi-definite (the sweep's Newton step needs it). Included by
-// compute/relax_vertices.comp and compute/compute_residuals.comp through multigrid.glsl, and by
-// host/core/reference/reference_multigrid.cpp; the gathers stay with each backend.
+// triangle's, a bending row entry's and a curved hinge's force on one of its particles, and
+// that particle's block of their Hessian, kept positive semi-definite (the sweep's Newton step
+// needs it). Included by compute/relax_vertices.comp and compute/compute_residuals.comp through
+// multigrid.glsl, and by host/core/reference/reference_material.hpp; the gathers stay with each
+// backend.
 #ifndef CLOTHSIM_SHARED_MEMBRANE_GLSL
 #define CLOTHSIM_SHARED_MEMBRANE_GLSL
 
@@ -22,7 +23,7 @@ SHARED_BEGIN
 // dropped part is the compressive one, as a spring's). The residual needs no block: without
 // it the term costs half as much.
 SHARED_FN_INLINE VEC3 add_membrane_terms(VEC3 f, INOUT(SYM3) h, VEC3 xi, VEC3 xa, VEC3 xb, VEC4 dminv, REAL area,
-                                  VEC4 moduli, bool block) {
+                                         VEC4 moduli, bool block) {
   PRECISE VEC3 ea = xa - xi;
   PRECISE VEC3 eb = xb - xi;
   PRECISE VEC3 f0 = ea * dminv.x + eb * dminv.z;

@@ -1,6 +1,7 @@
 // The membrane and bending terms of the cloths with a material (docs/materials.md, "How the
-// model uses them"): per particle, the triangles around it and the hinges it is part of, in the
-// material's frame, so one gather per particle gives the fabric sweep its forces and Hessian.
+// model uses them"): per particle, the triangles around it, its row of the flat bending
+// stencils' Q and the curved hinges it is part of, in the material's frame, so one gather per
+// particle gives the fabric sweep its forces and Hessian.
 #include <cmath>
 #include <algorithm>
 #include <map>
@@ -245,8 +246,9 @@ void add_fabric_terms(const Scene& scene, ClothModel& m) {
     m.bend_start.push_back(uint32_t(m.bend.size()));
     m.hinge_start.push_back(uint32_t(m.hinges.size()));
   }
-  // A material particle's springs are off for good (the scene may not turn them on beside a
-  // material): its gather keeps only its seams, so no sweep walks the rest to skip them.
+  // A material particle's springs add no force (the scene may not turn them on beside a
+  // material; its structural ones serve max_stretch's passes alone, which go by colour): its
+  // gather keeps only its seams, so no sweep walks the rest to skip them.
   std::vector<uint32_t> start(1, 0), gather;
   for (uint32_t i = 0; i < uint32_t(n); ++i) {
     for (uint32_t g = m.gather_start[i]; g < m.gather_start[i + 1]; ++g)

@@ -77,9 +77,9 @@ void add_mesh_plate_stencils(const ClothModel& m, const ClothPart& part, const M
   const double rigidity[3] = {mat.bending[0], 2 * std::sqrt(mat.bending[0] * mat.bending[1]), mat.bending[1]};
   for (const auto& [c, a] : area) {
     // The material's frame at c: its triangles' warp, averaged (one direction on a flat mesh
-    // whose texture is affine), and the weft across it.
-    // Without texture coordinates each triangle's warp is its first edge, and opposite edges
-    // can cancel: then the first triangle's (the plate is isotropic where warp = weft).
+    // whose texture is affine), and the weft across it. Without texture coordinates each
+    // triangle's warp is its first edge, and opposite edges can cancel: then the first
+    // triangle's (the plate is isotropic where warp = weft).
     const TriangleFrame& first = frames[around[c][0]];
     const glm::dvec3 n = glm::cross(first.u, first.v);
     glm::dvec3 u(0.0);
